@@ -1,0 +1,10 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace rcsim::cli {
+
+// Each adds its subcommand; the callback does the work and throws on failure.
+void add_simulate_command(CLI::App& app);
+void add_models_command(CLI::App& app);
+
+}  // namespace rcsim::cli

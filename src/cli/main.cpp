@@ -1,0 +1,28 @@
+// rcsim: automotive radar target list simulation by reflection centers (see README.md).
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "common/input_error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"rcsim: radar target list simulation from reflection-center object models"};
+  app.set_version_flag("--version", std::string("rcsim ") + RCSIM_VERSION);
+  app.require_subcommand(1);
+  rcsim::cli::add_simulate_command(app);
+  rcsim::cli::add_models_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const rcsim::InputError& e) {
+    std::cerr << "rcsim: error: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "rcsim: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,154 @@
+#include "common/json_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+namespace rcsim {
+
+nlohmann::json parse_json_text(std::string_view text, const std::string& file) {
+  try {
+    return nlohmann::json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& error) {
+    // Turn the byte offset into a line and column a person can jump to.
+    std::size_t line = 1;
+    std::size_t column = 1;
+    const std::size_t end = std::min<std::size_t>(error.byte > 0 ? error.byte - 1 : 0, text.size());
+    for (std::size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string message = error.what();
+    if (const auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
+    throw InputError(file, fmt::format("line {}, column {}", line, column), "invalid JSON: " + message);
+  }
+}
+
+nlohmann::json parse_json_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse_json_text(buffer.str(), path);
+}
+
+JsonField::JsonField(const nlohmann::json& value, std::string file, std::string path)
+    : value_(&value), file_(std::move(file)), path_(std::move(path)) {}
+
+std::string JsonField::child_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+void JsonField::fail(std::string_view key, const std::string& message) const {
+  throw InputError(file_, child_path(key), message);
+}
+
+void JsonField::fail(const std::string& message) const {
+  throw InputError(file_, path_.empty() ? "(top level)" : path_, message);
+}
+
+bool JsonField::has(std::string_view key) const {
+  return value_->is_object() && value_->contains(key);
+}
+
+const nlohmann::json& JsonField::require(std::string_view key) const {
+  if (!value_->is_object()) fail("must be a JSON object");
+  const auto it = value_->find(key);
+  if (it == value_->end()) fail(key, "missing required field");
+  return *it;
+}
+
+JsonField JsonField::member(std::string_view key) const {
+  const auto& value = require(key);
+  if (!value.is_object()) fail(key, "must be a JSON object");
+  return {value, file_, child_path(key)};
+}
+
+std::optional<JsonField> JsonField::optional_member(std::string_view key) const {
+  if (!has(key)) return std::nullopt;
+  return member(key);
+}
+
+double JsonField::number(std::string_view key) const {
+  const auto& value = require(key);
+  if (!value.is_number()) fail(key, "must be a number, got " + std::string(value.type_name()));
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) fail(key, "must be finite");
+  return x;
+}
+
+std::optional<double> JsonField::optional_number(std::string_view key) const {
+  if (!has(key)) return std::nullopt;
+  return number(key);
+}
+
+double JsonField::number_or(std::string_view key, double fallback) const {
+  return has(key) ? number(key) : fallback;
+}
+
+std::string JsonField::string(std::string_view key) const {
+  const auto& value = require(key);
+  if (!value.is_string()) fail(key, "must be a string, got " + std::string(value.type_name()));
+  auto text = value.get<std::string>();
+  if (text.empty()) fail(key, "must not be empty");
+  return text;
+}
+
+bool JsonField::boolean_or(std::string_view key, bool fallback) const {
+  if (!has(key)) return fallback;
+  const auto& value = require(key);
+  if (!value.is_boolean()) fail(key, "must be true or false, got " + std::string(value.type_name()));
+  return value.get<bool>();
+}
+
+std::vector<JsonField> JsonField::array(std::string_view key) const {
+  const auto& value = require(key);
+  if (!value.is_array()) fail(key, "must be an array, got " + std::string(value.type_name()));
+  return JsonField(value, file_, child_path(key)).elements();
+}
+
+std::vector<JsonField> JsonField::elements() const {
+  if (!value_->is_array()) fail("must be an array");
+  std::vector<JsonField> out;
+  out.reserve(value_->size());
+  for (std::size_t i = 0; i < value_->size(); ++i) {
+    out.emplace_back((*value_)[i], file_, fmt::format("{}[{}]", path_, i));
+  }
+  return out;
+}
+
+void JsonField::expect_only(std::initializer_list<std::string_view> keys) const {
+  if (!value_->is_object()) fail("must be a JSON object");
+  for (const auto& [key, unused] : value_->items()) {
+    bool known = false;
+    for (const auto& k : keys) known = known || key == k;
+    if (!known) {
+      std::string expected;
+      for (const auto& k : keys) expected += (expected.empty() ? "" : ", ") + std::string(k);
+      fail(key, "unknown field (expected one of: " + expected + ")");
+    }
+  }
+}
+
+void JsonField::expect_format(std::string_view format, int version) const {
+  const std::string found = string("format");
+  if (found != format) fail("format", fmt::format("expected \"{}\", got \"{}\"", format, found));
+  const double v = number("version");
+  if (v != version) fail("version", fmt::format("unsupported version {} (this rcsim reads version {})", v, version));
+}
+
+void require_positive(const JsonField& field, std::string_view key, double value) {
+  if (!(value > 0.0)) field.fail(key, fmt::format("must be positive, got {}", value));
+}
+
+void require_non_negative(const JsonField& field, std::string_view key, double value) {
+  if (!(value >= 0.0)) field.fail(key, fmt::format("must not be negative, got {}", value));
+}
+
+}  // namespace rcsim

@@ -1,0 +1,61 @@
+#pragma once
+// Strict reading of our JSON files: every lookup knows its field path, every number is checked
+// finite, unknown fields are refused (a misspelt or wrongly-united key is an error, not ignored).
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/input_error.hpp"
+
+namespace rcsim {
+
+// Parses JSON text; syntax errors name the file, line and column.
+nlohmann::json parse_json_text(std::string_view text, const std::string& file);
+// Reads and parses a file.
+nlohmann::json parse_json_file(const std::string& path);
+
+class JsonField {
+ public:
+  JsonField(const nlohmann::json& value, std::string file, std::string path);
+
+  const std::string& file() const { return file_; }
+  const std::string& path() const { return path_; }
+  const nlohmann::json& json() const { return *value_; }
+
+  bool has(std::string_view key) const;
+  JsonField member(std::string_view key) const;  // required member
+  std::optional<JsonField> optional_member(std::string_view key) const;
+
+  double number(std::string_view key) const;  // required, finite
+  std::optional<double> optional_number(std::string_view key) const;
+  double number_or(std::string_view key, double fallback) const;
+  std::string string(std::string_view key) const;
+  bool boolean_or(std::string_view key, bool fallback) const;
+  std::vector<JsonField> array(std::string_view key) const;  // required array
+  std::vector<JsonField> elements() const;                   // this field as array
+
+  // Refuses any member not listed.
+  void expect_only(std::initializer_list<std::string_view> keys) const;
+  // Checks "format" and "version".
+  void expect_format(std::string_view format, int version) const;
+
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  [[noreturn]] void fail(const std::string& message) const;
+
+ private:
+  std::string child_path(std::string_view key) const;
+  const nlohmann::json& require(std::string_view key) const;
+
+  const nlohmann::json* value_;
+  std::string file_;
+  std::string path_;
+};
+
+// Checks on numbers that every loader needs.
+void require_positive(const JsonField& field, std::string_view key, double value);
+void require_non_negative(const JsonField& field, std::string_view key, double value);
+
+}  // namespace rcsim

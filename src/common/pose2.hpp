@@ -1,0 +1,58 @@
+#pragma once
+// Planar poses and rigid-body kinematics. Notation (Drake monogram): p_AB_C is the position
+// from A to B expressed in frame C; X_AB is the pose of frame B in frame A; v_WB_W the
+// velocity of B's origin in the world, expressed in the world.
+#include <Eigen/Core>
+#include <cmath>
+
+namespace rcsim {
+
+using Vec2 = Eigen::Vector2d;
+
+struct Pose2 {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double yaw_rad = 0.0;
+
+  Vec2 translation() const { return {x_m, y_m}; }
+};
+
+// Rotates v by yaw (counter-clockwise).
+inline Vec2 rotate(double yaw_rad, const Vec2& v) {
+  const double c = std::cos(yaw_rad);
+  const double s = std::sin(yaw_rad);
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+}
+
+// p_AP_A from X_AB and p_BP_B.
+inline Vec2 transform_point(const Pose2& X_AB, const Vec2& p_BP_B) {
+  return X_AB.translation() + rotate(X_AB.yaw_rad, p_BP_B);
+}
+
+// p_BP_B from X_AB and p_AP_A.
+inline Vec2 inverse_transform_point(const Pose2& X_AB, const Vec2& p_AP_A) {
+  return rotate(-X_AB.yaw_rad, p_AP_A - X_AB.translation());
+}
+
+// X_AC = X_AB * X_BC.
+inline Pose2 compose(const Pose2& X_AB, const Pose2& X_BC) {
+  const Vec2 p = transform_point(X_AB, X_BC.translation());
+  return {p.x(), p.y(), X_AB.yaw_rad + X_BC.yaw_rad};
+}
+
+// Planar cross product of a scalar angular rate with a vector: omega x r.
+inline Vec2 cross_rate(double rate_radps, const Vec2& r) { return {-rate_radps * r.y(), rate_radps * r.x()}; }
+
+// The motion of a rigid body B in the world W at one instant.
+struct BodyState {
+  Pose2 X_WB;
+  Vec2 v_WB_W = Vec2::Zero();
+  double yaw_rate_radps = 0.0;
+
+  // Velocity of a point P fixed on the body, from its world position.
+  Vec2 point_velocity_W(const Vec2& p_WP_W) const {
+    return v_WB_W + cross_rate(yaw_rate_radps, p_WP_W - X_WB.translation());
+  }
+};
+
+}  // namespace rcsim

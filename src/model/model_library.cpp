@@ -1,0 +1,100 @@
+#include "model/model_library.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "common/angles.hpp"
+#include "common/embedded_data.hpp"
+
+namespace rcsim {
+namespace {
+
+VisibilityFunction parse_visibility(const JsonField& field) {
+  field.expect_only({"center_deg", "full_halfwidth_deg", "falloff_deg"});
+  VisibilityFunction v;
+  v.center_rad = deg_to_rad(field.number("center_deg"));
+  const double full_deg = field.number("full_halfwidth_deg");
+  const double falloff_deg = field.number("falloff_deg");
+  require_non_negative(field, "full_halfwidth_deg", full_deg);
+  require_non_negative(field, "falloff_deg", falloff_deg);
+  if (full_deg > 180.0) field.fail("full_halfwidth_deg", "must be at most 180");
+  v.full_halfwidth_rad = deg_to_rad(full_deg);
+  v.falloff_rad = deg_to_rad(falloff_deg);
+  return v;
+}
+
+}  // namespace
+
+ObjectModel parse_object_model(const JsonField& root) {
+  root.expect_only({"format", "version", "name", "description", "length_m", "width_m", "point_reflectors",
+                    "plane_reflectors"});
+  root.expect_format("rcsim-object-model", 1);
+  ObjectModel model;
+  model.name = root.string("name");
+  model.description = root.has("description") ? root.string("description") : "";
+  model.length_m = root.number("length_m");
+  model.width_m = root.number("width_m");
+  require_positive(root, "length_m", model.length_m);
+  require_positive(root, "width_m", model.width_m);
+  if (root.has("point_reflectors")) {
+    for (const auto& p : root.array("point_reflectors")) {
+      p.expect_only({"name", "x_m", "y_m", "ercs", "visibility"});
+      PointReflector point;
+      point.name = p.string("name");
+      point.p_OR_O = {p.number("x_m"), p.number("y_m")};
+      point.ercs_max = p.number("ercs");
+      require_positive(p, "ercs", point.ercs_max);
+      point.visibility = parse_visibility(p.member("visibility"));
+      model.points.push_back(std::move(point));
+    }
+  }
+  if (root.has("plane_reflectors")) {
+    for (const auto& p : root.array("plane_reflectors")) {
+      p.expect_only({"name", "from_x_m", "from_y_m", "to_x_m", "to_y_m", "sagitta_m", "ercs"});
+      const Vec2 from{p.number("from_x_m"), p.number("from_y_m")};
+      const Vec2 to{p.number("to_x_m"), p.number("to_y_m")};
+      const double sagitta_m = p.number("sagitta_m");
+      const double ercs = p.number("ercs");
+      require_positive(p, "ercs", ercs);
+      require_positive(p, "sagitta_m", sagitta_m);
+      if ((to - from).norm() <= 0.0) p.fail("to_x_m", "chord has zero length (from and to coincide)");
+      if (sagitta_m > 0.5 * (to - from).norm()) p.fail("sagitta_m", "must be at most half the chord length");
+      model.planes.push_back(plane_from_chord(p.string("name"), from, to, sagitta_m, ercs));
+    }
+  }
+  if (model.points.empty() && model.planes.empty()) root.fail("a model needs at least one reflector");
+  return model;
+}
+
+ObjectModel load_object_model_file(const std::string& path) {
+  const auto json = parse_json_file(path);
+  return parse_object_model(JsonField(json, path, ""));
+}
+
+ModelLibrary ModelLibrary::builtin() {
+  ModelLibrary library;
+  for (const auto& file : embedded_object_models()) {
+    const std::string name = "builtin:" + std::string(file.name) + ".json";
+    const auto json = parse_json_text(file.text, name);
+    library.add(parse_object_model(JsonField(json, name, "")));
+  }
+  return library;
+}
+
+void ModelLibrary::add(ObjectModel model) {
+  const std::string name = model.name;
+  models_.insert_or_assign(name, std::move(model));
+}
+
+const ObjectModel& ModelLibrary::at(std::string_view name) const {
+  const auto it = models_.find(std::string(name));
+  if (it == models_.end()) {
+    std::string known;
+    for (const auto& [n, m] : models_) known += (known.empty() ? "" : ", ") + n;
+    throw std::out_of_range(fmt::format("unknown object model \"{}\" (known: {})", name, known));
+  }
+  return it->second;
+}
+
+}  // namespace rcsim

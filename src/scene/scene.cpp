@@ -1,0 +1,152 @@
+#include "scene/scene.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+namespace rcsim {
+namespace {
+
+bool looks_like_path(const std::string& name) {
+  return name.find('/') != std::string::npos || name.ends_with(".json");
+}
+
+std::string resolve(const std::string& base_dir, const std::string& name) {
+  const std::filesystem::path p(name);
+  return p.is_absolute() || base_dir.empty() ? name : (std::filesystem::path(base_dir) / p).string();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+SensorConfig sensor_config_for(const JsonField& sensor, const std::string& base_dir) {
+  const std::string type = sensor.string("type");
+  if (is_builtin_sensor_config(type)) return builtin_sensor_config(type);
+  if (looks_like_path(type)) {
+    const std::string path = resolve(base_dir, type);
+    if (!std::filesystem::exists(path)) sensor.fail("type", "sensor configuration file not found: " + path);
+    return load_sensor_config_file(path);
+  }
+  sensor.fail("type", "unknown sensor type \"" + type + "\" (built-in: srr24; or a path to an rcsim-sensor file)");
+}
+
+ObjectModel model_for(const JsonField& object, const ModelLibrary& library, const std::string& base_dir) {
+  const std::string name = object.string("model");
+  if (library.contains(name)) return library.at(name);
+  if (looks_like_path(name)) {
+    const std::string path = resolve(base_dir, name);
+    if (!std::filesystem::exists(path)) object.fail("model", "object model file not found: " + path);
+    return load_object_model_file(path);
+  }
+  std::string known;
+  for (const auto& [n, m] : library.models()) known += (known.empty() ? "" : ", ") + n;
+  object.fail("model", "unknown object model \"" + name + "\" (built-in: " + known + ")");
+}
+
+}  // namespace
+
+std::vector<TrajectorySample> parse_trajectory(const JsonField& owner, std::string_view key) {
+  const auto entries = owner.array(key);
+  if (entries.empty()) owner.fail(key, "needs at least one sample");
+  std::vector<TrajectorySample> samples;
+  samples.reserve(entries.size());
+  for (const auto& e : entries) {
+    e.expect_only({"t_s", "x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps", "length_m", "width_m"});
+    TrajectorySample s;
+    s.t_s = e.number("t_s");
+    s.x_m = e.number("x_m");
+    s.y_m = e.number("y_m");
+    s.yaw_rad = e.number("yaw_rad");
+    s.speed_mps = e.number("speed_mps");
+    s.yaw_rate_radps = e.optional_number("yaw_rate_radps");
+    s.length_m = e.optional_number("length_m");
+    s.width_m = e.optional_number("width_m");
+    if (s.length_m) require_positive(e, "length_m", *s.length_m);
+    if (s.width_m) require_positive(e, "width_m", *s.width_m);
+    if (!samples.empty() && !(s.t_s > samples.back().t_s)) {
+      e.fail("t_s", fmt::format("times must increase: {} follows {}", s.t_s, samples.back().t_s));
+    }
+    samples.push_back(s);
+  }
+  return samples;
+}
+
+int Scene::cycle_count() const {
+  return static_cast<int>(std::floor(duration_s / cycle_time_s + 1e-9)) + 1;
+}
+
+Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std::string& base_dir) {
+  root.expect_only({"format", "version", "name", "description", "duration_s", "cycle_time_s", "effects", "ego",
+                    "objects"});
+  root.expect_format("rcsim-scene", 1);
+  Scene scene;
+  scene.source = root.file();
+  scene.duration_s = root.number("duration_s");
+  require_non_negative(root, "duration_s", scene.duration_s);
+
+  if (const auto effects = root.optional_member("effects")) {
+    effects->expect_only({"clutter", "multibounce", "occlusion"});
+    scene.effects.clutter = effects->boolean_or("clutter", false);
+    scene.effects.multibounce = effects->boolean_or("multibounce", false);
+    scene.effects.occlusion = effects->boolean_or("occlusion", false);
+  }
+
+  const auto ego = root.member("ego");
+  ego.expect_only({"trajectory", "sensors"});
+  scene.ego = Trajectory(parse_trajectory(ego, "trajectory"));
+  const auto sensors = ego.array("sensors");
+  if (sensors.empty()) ego.fail("sensors", "the ego vehicle needs at least one sensor");
+  std::set<std::string> sensor_ids;
+  for (const auto& s : sensors) {
+    s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad"});
+    MountedSensor sensor;
+    sensor.id = s.string("id");
+    if (!sensor_ids.insert(sensor.id).second) s.fail("id", "duplicate sensor id \"" + sensor.id + "\"");
+    sensor.config = sensor_config_for(s, base_dir);
+    sensor.X_VS = {s.number("x_m"), s.number("y_m"), s.number("yaw_rad")};
+    scene.sensors.push_back(std::move(sensor));
+  }
+
+  scene.cycle_time_s = root.number_or("cycle_time_s", scene.sensors.front().config.cycle_time_s);
+  require_positive(root, "cycle_time_s", scene.cycle_time_s);
+  if (scene.duration_s / scene.cycle_time_s > 1e8) root.fail("duration_s", "more than 10^8 cycles");
+
+  std::set<std::string> object_ids;
+  if (root.has("objects")) {
+    for (const auto& o : root.array("objects")) {
+      o.expect_only({"id", "model", "trajectory"});
+      SceneObject object;
+      object.id = o.string("id");
+      if (!object_ids.insert(object.id).second) o.fail("id", "duplicate object id \"" + object.id + "\"");
+      object.model_name = o.string("model");
+      object.model = model_for(o, library, base_dir);
+      const auto samples = parse_trajectory(o, "trajectory");
+      // Sizes given on the samples (annotated boxes) scale the model; the median resists outliers.
+      std::vector<double> lengths, widths;
+      for (const auto& s : samples) {
+        if (s.length_m) lengths.push_back(*s.length_m);
+        if (s.width_m) widths.push_back(*s.width_m);
+      }
+      if (!lengths.empty() || !widths.empty()) {
+        object.model = scale_model(object.model, lengths.empty() ? object.model.length_m : median(lengths),
+                                   widths.empty() ? object.model.width_m : median(widths));
+      }
+      object.trajectory = Trajectory(samples);
+      scene.objects.push_back(std::move(object));
+    }
+  }
+  return scene;
+}
+
+Scene load_scene_file(const std::string& path, const ModelLibrary& library) {
+  const auto json = parse_json_file(path);
+  return parse_scene(JsonField(json, path, ""), library, std::filesystem::path(path).parent_path().string());
+}
+
+}  // namespace rcsim

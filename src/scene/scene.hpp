@@ -1,0 +1,50 @@
+#pragma once
+// A traffic scene (`rcsim-scene`, schemas/scene.md): the ego vehicle with its mounted sensors and
+// the objects, each with a trajectory; built once, validated, then read-only.
+#include <string>
+#include <vector>
+
+#include "model/model_library.hpp"
+#include "scene/trajectory.hpp"
+#include "sensor/sensor_config.hpp"
+
+namespace rcsim {
+
+struct Effects {
+  bool clutter = false;      // sporadic false detections (paper VI)
+  bool multibounce = false;  // back-and-forth reflections at short range (paper V, Fig. 17)
+  bool occlusion = false;    // reflection centers hidden behind nearer objects
+};
+
+struct MountedSensor {
+  std::string id;
+  SensorConfig config;
+  Pose2 X_VS;  // sensor pose in the ego vehicle frame
+};
+
+struct SceneObject {
+  std::string id;
+  std::string model_name;
+  ObjectModel model;  // scaled to the object's size
+  Trajectory trajectory;
+};
+
+struct Scene {
+  std::string source;  // file it came from, for messages
+  double duration_s = 0.0;
+  double cycle_time_s = 0.0;
+  Effects effects;
+  Trajectory ego;
+  std::vector<MountedSensor> sensors;
+  std::vector<SceneObject> objects;
+
+  // Cycles k = 0..n-1 at t = k * cycle_time_s, the last one at or before duration_s.
+  int cycle_count() const;
+  double cycle_time_at(int cycle) const { return cycle * cycle_time_s; }
+};
+
+std::vector<TrajectorySample> parse_trajectory(const JsonField& owner, std::string_view key);
+Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std::string& base_dir);
+Scene load_scene_file(const std::string& path, const ModelLibrary& library);
+
+}  // namespace rcsim

@@ -1,0 +1,47 @@
+#pragma once
+// Smooth motion through trajectory samples: cubic Hermite interpolation of position (tangents
+// from each sample's speed along its yaw) and of yaw (tangents from the yaw rates), so that
+// velocity and yaw rate are the derivatives of the interpolated pose. Before the first and after
+// the last sample the body moves on at that sample's speed and yaw rate (constant turn rate).
+#include <optional>
+#include <vector>
+
+#include "common/pose2.hpp"
+
+namespace rcsim {
+
+struct TrajectorySample {
+  double t_s = 0.0;
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double yaw_rad = 0.0;
+  double speed_mps = 0.0;
+  std::optional<double> yaw_rate_radps;
+  std::optional<double> length_m;
+  std::optional<double> width_m;
+};
+
+class Trajectory {
+ public:
+  Trajectory() = default;
+  // Samples must be non-empty with strictly increasing times (the scene loader checks this).
+  explicit Trajectory(const std::vector<TrajectorySample>& samples);
+
+  BodyState state_at(double t_s) const;
+  double start_s() const { return nodes_.front().t_s; }
+  double end_s() const { return nodes_.back().t_s; }
+  std::size_t size() const { return nodes_.size(); }
+
+ private:
+  struct Node {
+    double t_s;
+    Vec2 p_W;
+    double yaw_rad;  // unwrapped along the trajectory
+    double speed_mps;
+    double yaw_rate_radps;
+  };
+  BodyState extrapolate(const Node& node, double dt_s) const;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace rcsim

@@ -1,0 +1,142 @@
+#include "sensor/sensor_config.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "common/angles.hpp"
+#include "common/embedded_data.hpp"
+
+namespace rcsim {
+namespace {
+
+double positive(const JsonField& f, std::string_view key) {
+  const double x = f.number(key);
+  require_positive(f, key, x);
+  return x;
+}
+
+double non_negative(const JsonField& f, std::string_view key) {
+  const double x = f.number(key);
+  require_non_negative(f, key, x);
+  return x;
+}
+
+int positive_int(const JsonField& f, std::string_view key) {
+  const double x = f.number(key);
+  if (!(x >= 1.0) || x != static_cast<double>(static_cast<int>(x))) {
+    f.fail(key, fmt::format("must be a whole number of at least 1, got {}", x));
+  }
+  return static_cast<int>(x);
+}
+
+}  // namespace
+
+SensorConfig parse_sensor_config(const JsonField& root) {
+  root.expect_only({"format", "version", "name", "description", "carrier_frequency_hz", "cycle_time_s",
+                    "field_of_view", "amplitude", "antenna", "resolution", "monopulse", "measurement_noise",
+                    "tracking", "clutter", "multibounce"});
+  root.expect_format("rcsim-sensor", 1);
+  SensorConfig c;
+  c.name = root.string("name");
+  c.description = root.has("description") ? root.string("description") : "";
+  c.carrier_frequency_hz = positive(root, "carrier_frequency_hz");
+  c.cycle_time_s = positive(root, "cycle_time_s");
+
+  const auto fov = root.member("field_of_view");
+  fov.expect_only({"azimuth_half_deg", "min_range_m", "max_range_m"});
+  const double half_deg = positive(fov, "azimuth_half_deg");
+  if (half_deg >= 90.0) fov.fail("azimuth_half_deg", "must be below 90 (the antenna model covers the front half)");
+  c.fov.azimuth_half_rad = deg_to_rad(half_deg);
+  c.fov.min_range_m = non_negative(fov, "min_range_m");
+  c.fov.max_range_m = positive(fov, "max_range_m");
+  if (c.fov.max_range_m <= c.fov.min_range_m) fov.fail("max_range_m", "must exceed min_range_m");
+
+  const auto amp = root.member("amplitude");
+  amp.expect_only({"reference_level_db", "reference_slope_db_per_m", "detection_threshold_db"});
+  c.amplitude.reference_level_db = amp.number("reference_level_db");
+  c.amplitude.reference_slope_db_per_m = non_negative(amp, "reference_slope_db_per_m");
+  c.amplitude.detection_threshold_db = amp.number("detection_threshold_db");
+
+  const auto antenna = root.member("antenna");
+  antenna.expect_only({"dipole_length_wavelengths", "element_spacing_wavelengths"});
+  c.antenna.dipole_length_wavelengths = positive(antenna, "dipole_length_wavelengths");
+  c.antenna.element_spacing_wavelengths = positive(antenna, "element_spacing_wavelengths");
+  if (c.antenna.element_spacing_wavelengths > 0.5) {
+    antenna.fail("element_spacing_wavelengths", "must be at most 0.5 so that eq. (7) stays monotone over +-90 deg");
+  }
+
+  const auto res = root.member("resolution");
+  res.expect_only({"range_cell_m", "range_rate_cell_mps"});
+  c.resolution.range_cell_m = positive(res, "range_cell_m");
+  c.resolution.range_rate_cell_mps = positive(res, "range_rate_cell_mps");
+
+  const auto mono = root.member("monopulse");
+  mono.expect_only({"pointer_noise_sigma"});
+  c.pointer_noise_sigma = non_negative(mono, "pointer_noise_sigma");
+
+  const auto noise = root.member("measurement_noise");
+  noise.expect_only({"range_sigma_at_threshold_m", "range_sigma_min_m", "range_rate_sigma_at_threshold_mps",
+                     "range_rate_sigma_min_mps"});
+  c.noise.range_sigma_at_threshold_m = non_negative(noise, "range_sigma_at_threshold_m");
+  c.noise.range_sigma_min_m = non_negative(noise, "range_sigma_min_m");
+  c.noise.range_rate_sigma_at_threshold_mps = non_negative(noise, "range_rate_sigma_at_threshold_mps");
+  c.noise.range_rate_sigma_min_mps = non_negative(noise, "range_rate_sigma_min_mps");
+
+  const auto trk = root.member("tracking");
+  trk.expect_only({"confirmation_hits", "max_misses_tentative", "max_misses_confirmed", "gate_chi2", "max_tracks",
+                   "process_accel_sigma_mps2", "process_azimuth_rate_sigma_radps", "process_amplitude_sigma_db",
+                   "measurement_sigma_range_m", "measurement_sigma_range_rate_mps", "measurement_sigma_azimuth_rad",
+                   "measurement_sigma_amplitude_db"});
+  c.tracker.confirmation_hits = positive_int(trk, "confirmation_hits");
+  c.tracker.max_misses_tentative = positive_int(trk, "max_misses_tentative");
+  c.tracker.max_misses_confirmed = positive_int(trk, "max_misses_confirmed");
+  c.tracker.gate_chi2 = positive(trk, "gate_chi2");
+  c.tracker.max_tracks = positive_int(trk, "max_tracks");
+  c.tracker.process_accel_sigma_mps2 = positive(trk, "process_accel_sigma_mps2");
+  c.tracker.process_azimuth_rate_sigma_radps = positive(trk, "process_azimuth_rate_sigma_radps");
+  c.tracker.process_amplitude_sigma_db = positive(trk, "process_amplitude_sigma_db");
+  c.tracker.measurement_sigma_range_m = positive(trk, "measurement_sigma_range_m");
+  c.tracker.measurement_sigma_range_rate_mps = positive(trk, "measurement_sigma_range_rate_mps");
+  c.tracker.measurement_sigma_azimuth_rad = positive(trk, "measurement_sigma_azimuth_rad");
+  c.tracker.measurement_sigma_amplitude_db = positive(trk, "measurement_sigma_amplitude_db");
+
+  const auto clutter = root.member("clutter");
+  clutter.expect_only({"false_detections_per_cycle", "amplitude_excess_mean_db"});
+  c.clutter.false_detections_per_cycle = non_negative(clutter, "false_detections_per_cycle");
+  if (c.clutter.false_detections_per_cycle > 100.0) clutter.fail("false_detections_per_cycle", "must be at most 100");
+  c.clutter.amplitude_excess_mean_db = positive(clutter, "amplitude_excess_mean_db");
+
+  const auto mb = root.member("multibounce");
+  mb.expect_only({"max_range_m", "max_order", "loss_per_bounce_db"});
+  c.multibounce.max_range_m = non_negative(mb, "max_range_m");
+  c.multibounce.max_order = positive_int(mb, "max_order");
+  if (c.multibounce.max_order > 8) mb.fail("max_order", "must be at most 8");
+  c.multibounce.loss_per_bounce_db = non_negative(mb, "loss_per_bounce_db");
+  return c;
+}
+
+SensorConfig load_sensor_config_file(const std::string& path) {
+  const auto json = parse_json_file(path);
+  return parse_sensor_config(JsonField(json, path, ""));
+}
+
+bool is_builtin_sensor_config(const std::string& name) {
+  for (const auto& file : embedded_sensor_configs()) {
+    if (file.name == name) return true;
+  }
+  return false;
+}
+
+SensorConfig builtin_sensor_config(const std::string& name) {
+  for (const auto& file : embedded_sensor_configs()) {
+    if (file.name == name) {
+      const std::string label = "builtin:" + name + ".json";
+      const auto json = parse_json_text(file.text, label);
+      return parse_sensor_config(JsonField(json, label, ""));
+    }
+  }
+  throw std::out_of_range("unknown sensor type \"" + name + "\"");
+}
+
+}  // namespace rcsim

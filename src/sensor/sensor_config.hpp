@@ -1,0 +1,87 @@
+#pragma once
+// Sensor configuration (`rcsim-sensor` files, schemas/sensor-config.md): every parameter of the
+// sensor model of paper section III, with the paper's values in the built-in `srr24`.
+#include <string>
+
+#include "common/json_reader.hpp"
+
+namespace rcsim {
+
+struct FieldOfView {
+  double azimuth_half_rad = 0.0;
+  double min_range_m = 0.0;
+  double max_range_m = 0.0;
+};
+
+struct AmplitudeLaw {
+  double reference_level_db = 26.5;        // paper eq. (1): level at R = 0
+  double reference_slope_db_per_m = 0.75;  // paper eq. (1): fall per metre
+  double detection_threshold_db = 6.0;     // paper III-B
+};
+
+struct AntennaGeometry {
+  double dipole_length_wavelengths = 0.5;    // L / lambda in eq. (6)
+  double element_spacing_wavelengths = 0.5;  // d / lambda: exp(j 2 pi d/lambda sin(phi)) in eq. (6)
+};
+
+struct ResolutionCell {
+  double range_cell_m = 0.30;
+  double range_rate_cell_mps = 0.5;
+};
+
+struct MeasurementNoise {
+  double range_sigma_at_threshold_m = 0.1;
+  double range_sigma_min_m = 0.02;
+  double range_rate_sigma_at_threshold_mps = 0.15;
+  double range_rate_sigma_min_mps = 0.03;
+};
+
+struct TrackerConfig {
+  int confirmation_hits = 4;  // paper III-E
+  int max_misses_tentative = 1;
+  int max_misses_confirmed = 2;
+  double gate_chi2 = 16.0;
+  int max_tracks = 64;
+  double process_accel_sigma_mps2 = 6.0;
+  double process_azimuth_rate_sigma_radps = 0.6;
+  double process_amplitude_sigma_db = 3.0;
+  double measurement_sigma_range_m = 0.1;
+  double measurement_sigma_range_rate_mps = 0.15;
+  double measurement_sigma_azimuth_rad = 0.05;
+  double measurement_sigma_amplitude_db = 2.0;
+};
+
+struct ClutterConfig {
+  double false_detections_per_cycle = 0.3;
+  double amplitude_excess_mean_db = 2.0;
+};
+
+struct MultibounceConfig {
+  double max_range_m = 3.0;
+  int max_order = 3;
+  double loss_per_bounce_db = 6.0;
+};
+
+struct SensorConfig {
+  std::string name;
+  std::string description;
+  double carrier_frequency_hz = 24.0e9;
+  double cycle_time_s = 0.04;
+  FieldOfView fov;
+  AmplitudeLaw amplitude;
+  AntennaGeometry antenna;
+  ResolutionCell resolution;
+  double pointer_noise_sigma = 0.1;  // std. dev. of the complex pointer noise, eq. (8)
+  MeasurementNoise noise;
+  TrackerConfig tracker;
+  ClutterConfig clutter;
+  MultibounceConfig multibounce;
+};
+
+SensorConfig parse_sensor_config(const JsonField& root);
+SensorConfig load_sensor_config_file(const std::string& path);
+// A built-in configuration by name (`srr24`); throws std::out_of_range for an unknown name.
+SensorConfig builtin_sensor_config(const std::string& name);
+bool is_builtin_sensor_config(const std::string& name);
+
+}  // namespace rcsim

@@ -1,0 +1,31 @@
+#include "sim/amplitude.hpp"
+
+#include <cmath>
+
+namespace rcsim {
+
+double amplitude_to_db(double amplitude) { return 20.0 * std::log10(amplitude); }
+double db_to_amplitude(double level_db) { return std::pow(10.0, level_db / 20.0); }
+
+double reference_range_amplitude(const AmplitudeLaw& law, double range_m) {
+  return db_to_amplitude(law.reference_level_db - law.reference_slope_db_per_m * range_m);  // eq. (1)
+}
+
+void compute_echoes(const AmplitudeLaw& law, const MonopulseAntenna& antenna, const IdealTargets& ideal, Echoes& out) {
+  out.clear();
+  for (std::size_t i = 0; i < ideal.size(); ++i) {
+    const auto& t = ideal[i];
+    const double weight = reference_range_amplitude(law, t.range_m) * t.ercs;  // A_ref^R(R_n) ERCS_n, eq. (8)
+    const AntennaPointers h = antenna.pattern(t.azimuth_rad);                 // eq. (6)
+    Echo e;
+    e.range_m = t.range_m;
+    e.range_rate_mps = t.range_rate_mps;
+    e.sum_pointer = weight * h.sum;
+    e.delta_pointer = weight * h.delta;
+    e.amplitude = std::abs(e.sum_pointer);  // eqs. (2)-(3): A^phi = |H_sum|
+    e.ideal_index = static_cast<int>(i);
+    out.push_back(e);
+  }
+}
+
+}  // namespace rcsim

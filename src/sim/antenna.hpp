@@ -1,0 +1,38 @@
+#pragma once
+// Sum and delta antenna patterns of the monopulse sensor (paper III-D, eq. (6)) and the
+// additive sensing ratio (eq. (7)) with its exact inverse.
+#include <complex>
+
+#include "sensor/sensor_config.hpp"
+
+namespace rcsim {
+
+struct AntennaPointers {
+  std::complex<double> sum;
+  std::complex<double> delta;
+};
+
+class MonopulseAntenna {
+ public:
+  explicit MonopulseAntenna(const AntennaGeometry& geometry);
+
+  // Paper eq. (6): H(phi) = si(pi L/lambda sin phi) cos phi * 1/2 (1 +- exp(j 2 pi d/lambda sin phi)).
+  AntennaPointers pattern(double azimuth_rad) const;
+  // |H_sum(phi)|, the antenna pattern A^phi of eq. (2) (1 at boresight).
+  double sum_magnitude(double azimuth_rad) const { return std::abs(pattern(azimuth_rad).sum); }
+
+  // Paper eq. (7): ASR = (|H_delta| - |H_sum|) / (|H_delta| + |H_sum|), in [-1, 1].
+  static double additive_sensing_ratio(const AntennaPointers& pointers);
+  // |phi| from the ASR, the closed-form inverse of eq. (7): with u = pi d/lambda sin phi the
+  // common factor cancels and ASR = tan(|u| - pi/4), so |u| = atan(ASR) + pi/4.
+  double absolute_azimuth_from_asr(double asr) const;
+  // The estimated azimuth: |phi| from eq. (7), the sign from the phase between delta and sum
+  // (H_delta / H_sum = -j tan(u) for one target: Im(H_delta conj(H_sum)) < 0 means phi > 0).
+  double estimate_azimuth(const AntennaPointers& pointers) const;
+
+ private:
+  double length_factor_;   // pi L / lambda
+  double spacing_factor_;  // pi d / lambda
+};
+
+}  // namespace rcsim

@@ -1,0 +1,20 @@
+#pragma once
+// Angle estimation by the monopulse principle (paper III-D, eqs. (7)-(8)).
+#include "common/rng.hpp"
+#include "sim/antenna.hpp"
+#include "sim/stage_types.hpp"
+
+namespace rcsim {
+
+// For each cell: complex Gaussian noise of constant variance (std. dev. pointer_noise_sigma, half
+// the variance in each of real and imaginary part) added to the summed pointers, eq. (8); the
+// angle from the noisy pointers by inverting eq. (7); the amplitude the magnitude of the noisy sum
+// pointer. `rng` null means no noise. The truth of the cell is its strongest member's object.
+void estimate_monopulse_angles(const MonopulseAntenna& antenna, double pointer_noise_sigma,
+                               const ResolutionCells& cells, const IdealTargets& ideal, Rng* rng, Detections& out);
+
+// The detection decision on the cell's resulting amplitude (paper III-B): keeps detections at or
+// above the threshold.
+void apply_detection_threshold(double threshold_db, Detections& detections);
+
+}  // namespace rcsim

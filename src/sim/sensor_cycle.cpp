@@ -1,0 +1,57 @@
+#include "sim/sensor_cycle.hpp"
+
+#include "sim/amplitude.hpp"
+#include "sim/effects.hpp"
+#include "sim/measurement_noise.hpp"
+#include "sim/monopulse.hpp"
+#include "sim/resolution_cells.hpp"
+
+namespace rcsim {
+
+SensorModel::SensorModel(const MountedSensor& mount_in, const Effects& effects_in, const SimulationOptions& options_in)
+    : mount(mount_in),
+      antenna(mount_in.config.antenna),
+      threshold_amplitude(db_to_amplitude(mount_in.config.amplitude.detection_threshold_db)),
+      effects(effects_in),
+      options(options_in) {}
+
+SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflector_capacity, double cycle_time_s, std::uint64_t seed,
+                                   std::uint64_t stream)
+    : tracker(model.mount.config.tracker, cycle_time_s), rng(seed, stream) {
+  const std::size_t capacity = reflector_capacity * static_cast<std::size_t>(model.mount.config.multibounce.max_order);
+  ideal.reserve(capacity);
+  echoes.reserve(capacity);
+  cells.reserve(capacity);
+  detections.reserve(capacity + 64);
+  reported.reserve(static_cast<std::size_t>(model.mount.config.tracker.max_tracks));
+}
+
+void run_sensor_cycle(const SensorModel& model, std::span<const SceneObject> objects, const SceneSnapshot& snapshot,
+                      SensorCycleState& state) {
+  const SensorConfig& config = model.mount.config;
+  Rng* rng = model.options.noise ? &state.rng : nullptr;
+  state.kinematics = sensor_kinematics(snapshot.ego, model.mount.X_VS);
+
+  // objects, sensor pose => ideal target list of visible reflection centers     (paper II-B, IV-2/3)
+  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, state.ideal);
+  if (model.effects.occlusion) remove_occluded_targets(state.kinematics, objects, snapshot.objects, state.ideal);
+  if (model.effects.multibounce) add_multibounce_targets(config.multibounce, state.ideal);
+  // ideal targets => echoes: amplitude and weighted sum/delta pointers          (eqs. (1)-(3), (6))
+  compute_echoes(config.amplitude, model.antenna, state.ideal, state.echoes);
+  if (model.options.level == OutputLevel::ideal) return;
+  // echoes => resolution cells, strongest first, upper amplitude bound          (eqs. (4)-(5))
+  form_resolution_cells(config.resolution, model.threshold_amplitude, state.echoes, state.cells);
+  // cells => detections: pointer noise, monopulse angle, resulting amplitude    (eqs. (7)-(8))
+  estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
+  // detections => those whose amplitude passes the threshold                    (III-B)
+  apply_detection_threshold(config.amplitude.detection_threshold_db, state.detections);
+  // detections => with range and range-rate noise of amplitude-dependent variance (III-A)
+  if (rng != nullptr) add_measurement_noise(config.noise, config.amplitude.detection_threshold_db, *rng, state.detections);
+  // detections => plus sporadic false detections                                 (VI)
+  if (model.effects.clutter && rng != nullptr) add_clutter(config, state.kinematics, *rng, state.detections);
+  if (model.options.level == OutputLevel::detections) return;
+  // detections => tracked target list, reported after four measurements         (III-E)
+  state.tracker.step(state.detections, state.reported);
+}
+
+}  // namespace rcsim

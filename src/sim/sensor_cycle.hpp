@@ -1,0 +1,59 @@
+#pragma once
+// One sensor cycle, the paper's Fig. 13 in one function. The sensor model is built once and read
+// as const; what changes from cycle to cycle (stage buffers, tracker, generator) lives in
+// SensorCycleState.
+#include <span>
+
+#include "common/rng.hpp"
+#include "scene/scene.hpp"
+#include "sim/antenna.hpp"
+#include "sim/ideal_targets.hpp"
+#include "sim/stage_types.hpp"
+#include "sim/tracking.hpp"
+
+namespace rcsim {
+
+enum class OutputLevel { ideal, detections, tracks };
+
+struct SimulationOptions {
+  OutputLevel level = OutputLevel::tracks;
+  std::uint64_t seed = 0;
+  bool noise = true;  // false: every random draw off (no noise, no clutter)
+};
+
+// The immutable model of one mounted sensor.
+struct SensorModel {
+  SensorModel(const MountedSensor& mount, const Effects& effects, const SimulationOptions& options);
+
+  MountedSensor mount;
+  MonopulseAntenna antenna;
+  double threshold_amplitude;
+  Effects effects;
+  SimulationOptions options;
+};
+
+// Everything of one sensor that changes per cycle; buffers keep their capacity between cycles.
+struct SensorCycleState {
+  SensorCycleState(const SensorModel& model, std::size_t reflector_capacity, double cycle_time_s, std::uint64_t seed, std::uint64_t stream);
+
+  SensorKinematics kinematics;
+  IdealTargets ideal;
+  Echoes echoes;
+  ResolutionCells cells;
+  Detections detections;
+  ReportedTargets reported;
+  Tracker tracker;
+  Rng rng;
+};
+
+// The scene at one instant: computed once per cycle, shared by all sensors.
+struct SceneSnapshot {
+  double t_s = 0.0;
+  BodyState ego;
+  std::vector<BodyState> objects;
+};
+
+void run_sensor_cycle(const SensorModel& model, std::span<const SceneObject> objects, const SceneSnapshot& snapshot,
+                      SensorCycleState& state);
+
+}  // namespace rcsim

@@ -1,0 +1,71 @@
+#pragma once
+// The typed result of each stage of the sensor cycle (STYLE.md):
+// IdealTargets -> Echoes -> ResolutionCells -> Detections -> (tracker) -> ReportedTargets.
+#include <complex>
+#include <cstdint>
+#include <vector>
+
+#include "common/pose2.hpp"
+
+namespace rcsim {
+
+enum class ReflectorKind : std::uint8_t { Point, Plane };
+
+// One entry of the ideal target list: a visible reflection center (paper IV-3).
+struct IdealTarget {
+  Vec2 p_WT_W = Vec2::Zero();  // reflection point in the world
+  double range_m = 0.0;
+  double azimuth_rad = 0.0;
+  double range_rate_mps = 0.0;
+  double ercs = 0.0;
+  int object_index = -1;
+  int reflector_index = -1;  // into the model's points or planes, by kind
+  ReflectorKind kind = ReflectorKind::Point;
+  int bounce_order = 1;  // 1 direct; k > 1 a back-and-forth duplicate at k times the range
+};
+using IdealTargets = std::vector<IdealTarget>;
+
+// A reflector's echo: amplitude and the weighted sum/delta pointers (eqs. (3), (6), (8)).
+struct Echo {
+  double range_m = 0.0;
+  double range_rate_mps = 0.0;
+  double amplitude = 0.0;  // A_n, linear, eq. (3)
+  std::complex<double> sum_pointer;
+  std::complex<double> delta_pointer;
+  int ideal_index = -1;
+};
+using Echoes = std::vector<Echo>;
+
+// One range/range-rate resolution cell (paper III-C).
+struct ResolutionCellSum {
+  double range_m = 0.0;          // eq. (4)
+  double range_rate_mps = 0.0;   // eq. (4)
+  double amplitude_upper = 0.0;  // A_cell^u: sum of member amplitudes
+  std::complex<double> sum_pointer;
+  std::complex<double> delta_pointer;
+  int strongest_ideal_index = -1;
+  int member_count = 0;
+};
+using ResolutionCells = std::vector<ResolutionCellSum>;
+
+// A measured target before tracking.
+struct Detection {
+  double range_m = 0.0;
+  double azimuth_rad = 0.0;
+  double range_rate_mps = 0.0;
+  double amplitude_db = 0.0;
+  int object_index = -1;  // truth of the strongest member; -1 for clutter
+};
+using Detections = std::vector<Detection>;
+
+// A target in the sensor's final (tracked) target list.
+struct ReportedTarget {
+  int id = 0;
+  double range_m = 0.0;
+  double azimuth_rad = 0.0;
+  double range_rate_mps = 0.0;
+  double amplitude_db = 0.0;
+};
+using ReportedTargets = std::vector<ReportedTarget>;
+
+}  // namespace rcsim

@@ -1,0 +1,138 @@
+#include "sim/tracking.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+
+#include "common/angles.hpp"
+
+namespace rcsim {
+
+KalmanModel::KalmanModel(const TrackerConfig& c, double dt) {
+  F.setIdentity();
+  F(0, 1) = dt;
+  const double qa = c.process_accel_sigma_mps2 * c.process_accel_sigma_mps2;
+  Q.setZero();
+  // Discrete white-noise acceleration for [range, range rate] (Blackman [3]).
+  Q(0, 0) = qa * dt * dt * dt * dt / 4.0;
+  Q(0, 1) = Q(1, 0) = qa * dt * dt * dt / 2.0;
+  Q(1, 1) = qa * dt * dt;
+  Q(2, 2) = c.process_azimuth_rate_sigma_radps * c.process_azimuth_rate_sigma_radps * dt * dt;
+  Q(3, 3) = c.process_amplitude_sigma_db * c.process_amplitude_sigma_db;  // per cycle
+  R.setZero();
+  R(0, 0) = c.measurement_sigma_range_m * c.measurement_sigma_range_m;
+  R(1, 1) = c.measurement_sigma_range_rate_mps * c.measurement_sigma_range_rate_mps;
+  R(2, 2) = c.measurement_sigma_azimuth_rad * c.measurement_sigma_azimuth_rad;
+  R(3, 3) = c.measurement_sigma_amplitude_db * c.measurement_sigma_amplitude_db;
+}
+
+void kalman_predict(const KalmanModel& model, Track& track) {
+  track.x = model.F * track.x;
+  track.x(2) = wrap_angle_rad(track.x(2));
+  track.P = model.F * track.P * model.F.transpose() + model.Q;
+  track.P = 0.5 * (track.P + track.P.transpose());
+}
+
+Eigen::Vector4d innovation(const Track& track, const Detection& d) {
+  return {d.range_m - track.x(0), d.range_rate_mps - track.x(1), angle_difference_rad(d.azimuth_rad, track.x(2)),
+          d.amplitude_db - track.x(3)};
+}
+
+void kalman_update(const KalmanModel& model, const Detection& detection, Track& track) {
+  const Eigen::Matrix4d S = track.P + model.R;
+  const Eigen::Matrix4d K = S.llt().solve(track.P).transpose();  // K = P S^-1 (P, S symmetric)
+  track.x += K * innovation(track, detection);
+  track.x(2) = wrap_angle_rad(track.x(2));
+  const Eigen::Matrix4d I_K = Eigen::Matrix4d::Identity() - K;
+  track.P = I_K * track.P * I_K.transpose() + K * model.R * K.transpose();  // Joseph form
+  track.P = 0.5 * (track.P + track.P.transpose());
+}
+
+Tracker::Tracker(const TrackerConfig& config, double cycle_time_s) : config_(config), model_(config, cycle_time_s) {
+  tracks_.reserve(static_cast<std::size_t>(config.max_tracks));
+  candidates_.reserve(static_cast<std::size_t>(config.max_tracks) * 16);
+  detection_taken_.reserve(256);
+}
+
+void Tracker::predict() {
+  for (auto& t : tracks_) {
+    kalman_predict(model_, t);
+    t.updated = false;
+    ++t.age_cycles;
+  }
+}
+
+void Tracker::associate(const Detections& detections) {
+  // Gater: every (track, detection) pair inside the chi-square gate.
+  candidates_.clear();
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    const Eigen::LLT<Eigen::Matrix4d> S(tracks_[i].P + model_.R);
+    for (std::size_t j = 0; j < detections.size(); ++j) {
+      const Eigen::Vector4d nu = innovation(tracks_[i], detections[j]);
+      const double d2 = nu.dot(S.solve(nu));
+      if (d2 <= config_.gate_chi2) candidates_.push_back({d2, static_cast<int>(i), static_cast<int>(j)});
+    }
+  }
+  // Associator: global nearest neighbour, greedily by distance with a total order.
+  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.distance2 != b.distance2) return a.distance2 < b.distance2;
+    if (a.track != b.track) return a.track < b.track;
+    return a.detection < b.detection;
+  });
+  detection_taken_.assign(detections.size(), 0);
+  for (const auto& c : candidates_) {
+    Track& track = tracks_[static_cast<std::size_t>(c.track)];
+    if (track.updated || detection_taken_[static_cast<std::size_t>(c.detection)]) continue;
+    const Detection& d = detections[static_cast<std::size_t>(c.detection)];
+    kalman_update(model_, d, track);  // updater
+    track.updated = true;
+    track.object_index = d.object_index;
+    ++track.hits;
+    track.misses = 0;
+    if (track.hits >= config_.confirmation_hits) track.status = TrackStatus::Confirmed;
+    detection_taken_[static_cast<std::size_t>(c.detection)] = 1;
+  }
+  for (auto& t : tracks_) {
+    if (!t.updated) ++t.misses;
+  }
+}
+
+void Tracker::initiate(const Detections& detections) {
+  for (std::size_t j = 0; j < detections.size(); ++j) {
+    if (detection_taken_[j]) continue;
+    if (tracks_.size() >= static_cast<std::size_t>(config_.max_tracks)) {
+      ++dropped_initiations_;
+      continue;
+    }
+    const Detection& d = detections[j];
+    Track t;
+    t.id = next_id_++;
+    t.hits = 1;
+    t.updated = true;
+    t.object_index = d.object_index;
+    t.x << d.range_m, d.range_rate_mps, d.azimuth_rad, d.amplitude_db;
+    t.P = model_.R;
+    if (t.hits >= config_.confirmation_hits) t.status = TrackStatus::Confirmed;
+    tracks_.push_back(t);
+  }
+}
+
+void Tracker::delete_stale() {
+  std::erase_if(tracks_, [&](const Track& t) {
+    const int allowed = t.status == TrackStatus::Confirmed ? config_.max_misses_confirmed : config_.max_misses_tentative;
+    return t.misses > allowed;
+  });
+}
+
+void Tracker::step(const Detections& detections, ReportedTargets& reported) {
+  predict();
+  associate(detections);
+  initiate(detections);
+  delete_stale();
+  reported.clear();
+  for (const auto& t : tracks_) {
+    if (t.status != TrackStatus::Confirmed || !t.updated) continue;
+    reported.push_back({t.id, std::max(0.0, t.x(0)), t.x(2), t.x(1), t.x(3)});
+  }
+}
+
+}  // namespace rcsim
