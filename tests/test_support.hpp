@@ -1,0 +1,52 @@
+#pragma once
+// Small scenes built in code for the stage tests.
+#include <string>
+#include <vector>
+
+#include "model/model_library.hpp"
+#include "scene/scene.hpp"
+#include "sensor/sensor_config.hpp"
+
+namespace rcsim::testing {
+
+inline const ModelLibrary& library() {
+  static const ModelLibrary lib = ModelLibrary::builtin();
+  return lib;
+}
+
+inline TrajectorySample sample(double t_s, double x_m, double y_m, double yaw_rad, double speed_mps) {
+  TrajectorySample s;
+  s.t_s = t_s;
+  s.x_m = x_m;
+  s.y_m = y_m;
+  s.yaw_rad = yaw_rad;
+  s.speed_mps = speed_mps;
+  return s;
+}
+
+// A scene with a standing ego at the origin and one srr24 sensor at the origin looking along +x.
+inline Scene single_sensor_scene(double duration_s = 1.0) {
+  Scene scene;
+  scene.source = "test";
+  scene.duration_s = duration_s;
+  scene.ego = Trajectory({sample(0.0, 0.0, 0.0, 0.0, 0.0)});
+  MountedSensor sensor;
+  sensor.id = "s";
+  sensor.config = builtin_sensor_config("srr24");
+  sensor.X_VS = {0.0, 0.0, 0.0};
+  scene.sensors.push_back(sensor);
+  scene.cycle_time_s = sensor.config.cycle_time_s;
+  return scene;
+}
+
+inline void add_object(Scene& scene, const std::string& id, const std::string& model,
+                       const std::vector<TrajectorySample>& samples) {
+  SceneObject object;
+  object.id = id;
+  object.model_name = model;
+  object.model = library().at(model);
+  object.trajectory = Trajectory(samples);
+  scene.objects.push_back(object);
+}
+
+}  // namespace rcsim::testing
