@@ -1,0 +1,86 @@
+// Paper II-B, Fig. 6 and 7: visibility functions and plane reflection points.
+#include "sim/visibility.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/angles.hpp"
+
+namespace rcsim {
+namespace {
+
+TEST(Visibility, FunctionIsOneThenRaisedCosineThenZero) {
+  const VisibilityFunction v{deg_to_rad(45), deg_to_rad(25), deg_to_rad(40)};
+  EXPECT_DOUBLE_EQ(v(deg_to_rad(45)), 1.0);
+  EXPECT_DOUBLE_EQ(v(deg_to_rad(70)), 1.0);
+  EXPECT_NEAR(v(deg_to_rad(90)), 0.5, 1e-12);  // half-way down the fall-off
+  EXPECT_NEAR(v(deg_to_rad(0)), 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(v(deg_to_rad(110)), 0.0);
+  EXPECT_DOUBLE_EQ(v(deg_to_rad(-135)), 0.0);
+  // continuity at the edges
+  EXPECT_NEAR(v(deg_to_rad(70.001)), 1.0, 1e-6);
+  EXPECT_NEAR(v(deg_to_rad(109.999)), 0.0, 1e-6);
+}
+
+TEST(Visibility, WrapsAroundPi) {
+  const VisibilityFunction v{deg_to_rad(170), deg_to_rad(20), deg_to_rad(10)};
+  EXPECT_DOUBLE_EQ(v(deg_to_rad(-175)), 1.0);
+}
+
+TEST(Visibility, PointReflectorErcsFromSensorDirection) {
+  PointReflector p;
+  p.p_OR_O = {2.3, 0.9};
+  p.ercs_max = 2.0;
+  p.visibility = {deg_to_rad(45), deg_to_rad(25), deg_to_rad(40)};
+  EXPECT_DOUBLE_EQ(point_reflector_ercs(p, {12.3, 10.9}), 2.0);  // from 45 deg
+  EXPECT_DOUBLE_EQ(point_reflector_ercs(p, {-7.7, 0.9}), 0.0);   // from behind (180 deg)
+  EXPECT_NEAR(point_reflector_ercs(p, {2.3, 10.9}), 1.0, 1e-12);  // from 90 deg: half
+  EXPECT_DOUBLE_EQ(point_reflector_ercs(p, {2.3, 0.9}), 0.0);     // sensor on the reflector
+}
+
+TEST(Visibility, PlaneReflectionPointOnTheLineToTheCentre) {
+  // Front plane: chord from (2.2, -0.75) to (2.2, 0.75), sagitta 0.1: r = (0.5625 + 0.01)/0.2 = 2.8625
+  const PlaneReflector plane = plane_from_chord("front", {2.2, -0.75}, {2.2, 0.75}, 0.1, 1.0);
+  EXPECT_NEAR(plane.radius_m, 2.8625, 1e-12);
+  EXPECT_NEAR(plane.center_O.x(), 2.3 - 2.8625, 1e-12);
+  // Sensor straight ahead: the apex.
+  const auto apex = plane_reflection_point_O(plane, {20.0, 0.0});
+  ASSERT_TRUE(apex);
+  EXPECT_NEAR(apex->x(), 2.3, 1e-12);
+  EXPECT_NEAR(apex->y(), 0.0, 1e-12);
+  // Sensor off to the side within the sector: the point lies on the arc towards the sensor.
+  const Vec2 sensor{10.0, 1.5};
+  const auto p = plane_reflection_point_O(plane, sensor);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR((*p - plane.center_O).norm(), plane.radius_m, 1e-12);
+  const Vec2 a = (*p - plane.center_O).normalized(), b = (sensor - plane.center_O).normalized();
+  EXPECT_NEAR(a.x() * b.y() - a.y() * b.x(), 0.0, 1e-12);
+  // Position 2 of Fig. 7: the line misses the sector.
+  EXPECT_FALSE(plane_reflection_point_O(plane, {3.0, 5.0}));
+  // Sensor inside the circle or on it: no reflection.
+  EXPECT_FALSE(plane_reflection_point_O(plane, {0.0, 0.0}));
+  EXPECT_FALSE(plane_reflection_point_O(plane, plane.center_O));
+  EXPECT_FALSE(plane_reflection_point_O(plane, plane.arc_point_O(plane.start_rad + 0.5 * plane.span_rad)));
+}
+
+TEST(Visibility, ScaledModelKeepsChordEndsAndApex) {
+  const PlaneReflector plane = plane_from_chord("front", {2.2, -0.75}, {2.2, 0.75}, 0.1, 1.0);
+  ObjectModel m;
+  m.length_m = 4.6;
+  m.width_m = 1.8;
+  m.planes.push_back(plane);
+  PointReflector corner;
+  corner.p_OR_O = {2.3, 0.9};
+  m.points.push_back(corner);
+  const ObjectModel s = scale_model(m, 2 * 4.6, 1.8 * 1.5);
+  EXPECT_NEAR(s.points[0].p_OR_O.x(), 4.6, 1e-12);
+  EXPECT_NEAR(s.points[0].p_OR_O.y(), 1.35, 1e-12);
+  const auto& q = s.planes[0];
+  EXPECT_NEAR(q.arc_point_O(q.start_rad).x(), 4.4, 1e-9);
+  EXPECT_NEAR(std::abs(q.arc_point_O(q.start_rad).y()), 1.125, 1e-9);
+  EXPECT_NEAR(q.arc_point_O(q.start_rad + 0.5 * q.span_rad).x(), 4.6, 1e-9);
+}
+
+}  // namespace
+}  // namespace rcsim
