@@ -27,6 +27,11 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& file) {
     std::string message = error.what();
     if (const auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
     throw InputError(file, fmt::format("line {}, column {}", line, column), "invalid JSON: " + message);
+  } catch (const nlohmann::json::exception& error) {
+    // e.g. a number too large for a double ("number overflow parsing '1e999'")
+    std::string message = error.what();
+    if (const auto pos = message.find("] "); pos != std::string::npos) message = message.substr(pos + 2);
+    throw InputError(file, "", "invalid JSON: " + message);
   }
 }
 

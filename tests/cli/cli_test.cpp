@@ -1,0 +1,120 @@
+// The rcsim command as a user runs it: determinism, output files, refusals.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  const std::string command = std::string(RCSIM_BINARY) + " " + args + " 2>&1";
+  Result result{0, {}};
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exit_code = WEXITSTATUS(status);
+  return result;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+const std::string kExamples = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/";
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("rcsim_cli_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(Cli, SameSeedByteIdenticalOtherSeedDifferent) {
+  for (const char* level : {"detections", "tracks"}) {
+    const auto a = dir_ / "a.csv", b = dir_ / "b.csv", c = dir_ / "c.csv";
+    const std::string scene = kExamples + "front_approach.json --level " + level;
+    ASSERT_EQ(run("simulate " + scene + " --seed 7 -o " + a.string()).exit_code, 0);
+    ASSERT_EQ(run("simulate " + scene + " --seed 7 -o " + b.string()).exit_code, 0);
+    ASSERT_EQ(run("simulate " + scene + " --seed 8 -o " + c.string()).exit_code, 0);
+    EXPECT_GT(read(a).size(), 1000u);
+    EXPECT_EQ(read(a), read(b)) << level;
+    EXPECT_NE(read(a), read(c)) << level;
+  }
+}
+
+TEST_F(Cli, NoNoiseIgnoresTheSeed) {
+  const std::string scene = kExamples + "front_approach.json --no-noise --level detections";
+  EXPECT_EQ(run("simulate " + scene + " --seed 1").output, run("simulate " + scene + " --seed 2").output);
+}
+
+TEST_F(Cli, CsvAndJsonlCarryTheSameRows) {
+  const auto csv = run("simulate " + kExamples + "front_approach.json --level ideal");
+  const auto jsonl = run("simulate " + kExamples + "front_approach.json --level ideal --format jsonl");
+  ASSERT_EQ(csv.exit_code, 0);
+  ASSERT_EQ(jsonl.exit_code, 0);
+  const auto lines = [](const std::string& s) { return std::count(s.begin(), s.end(), '\n'); };
+  EXPECT_EQ(lines(csv.output), lines(jsonl.output) + 1);  // + the CSV header
+  EXPECT_EQ(csv.output.rfind("t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db,object,reflector\n", 0), 0u);
+  EXPECT_NE(jsonl.output.find("\"reflector\":\"front\""), std::string::npos);
+}
+
+TEST_F(Cli, BadSceneNamesFileAndFieldAndLeavesNoOutput) {
+  const auto scene = dir_ / "bad.json";
+  std::string text = read(kExamples + "front_approach.json");
+  text.replace(text.find("\"passenger_car\""), 15, "\"hovercraft\"");
+  std::ofstream(scene) << text;
+  const auto out = dir_ / "out.csv";
+  const auto r = run("simulate " + scene.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("bad.json: objects[0].model: unknown object model \"hovercraft\""), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& entry : fs::directory_iterator(dir_)) EXPECT_NE(entry.path().extension(), ".csv") << entry.path();
+}
+
+TEST_F(Cli, EarlierOutputSurvivesAFailedRun) {
+  const auto out = dir_ / "out.csv";
+  ASSERT_EQ(run("simulate " + kExamples + "front_approach.json -o " + out.string()).exit_code, 0);
+  const std::string before = read(out);
+  const auto scene = dir_ / "truncated.json";
+  const std::string text = read(kExamples + "front_approach.json");
+  std::ofstream(scene) << text.substr(0, text.size() / 2);
+  const auto r = run("simulate " + scene.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("truncated.json: line"), std::string::npos) << r.output;
+  EXPECT_EQ(read(out), before);
+}
+
+TEST_F(Cli, ModelsListsTheLibrary) {
+  const auto r = run("models --json");
+  ASSERT_EQ(r.exit_code, 0);
+  for (const char* name : {"passenger_car", "truck_trailer", "guide_board", "pole"}) {
+    EXPECT_NE(r.output.find(std::string("\"name\": \"") + name + "\""), std::string::npos) << name;
+  }
+}
+
+TEST_F(Cli, UnknownLevelIsRefused) {
+  const auto r = run("simulate " + kExamples + "front_approach.json --level raw");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--level"), std::string::npos) << r.output;
+}
+
+}  // namespace

@@ -1,0 +1,116 @@
+// Scene loading and its refusals of bad input: every message names the file and the field.
+#include "scene/scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/json_reader.hpp"
+#include "test_support.hpp"
+
+namespace rcsim {
+namespace {
+
+const std::string kValid = R"({
+  "format": "rcsim-scene", "version": 1, "duration_s": 1.0,
+  "ego": {"trajectory": [{"t_s": 0, "x_m": 0, "y_m": 0, "yaw_rad": 0, "speed_mps": 10}],
+          "sensors": [{"id": "fr", "type": "srr24", "x_m": 3.7, "y_m": -0.7, "yaw_rad": -0.5}]},
+  "objects": [{"id": "car1", "model": "passenger_car",
+               "trajectory": [{"t_s": 0, "x_m": 20, "y_m": -3, "yaw_rad": 3.1416, "speed_mps": 5, "length_m": 4.0, "width_m": 1.7},
+                              {"t_s": 5, "x_m": 0, "y_m": -3, "yaw_rad": 3.1416, "speed_mps": 3, "length_m": 4.2, "width_m": 1.7}]}]
+})";
+
+Scene parse(const std::string& text) {
+  const auto json = parse_json_text(text, "scene.json");
+  return parse_scene(JsonField(json, "scene.json", ""), testing::library(), "");
+}
+
+// Replaces the first occurrence of `from` by `to` in the valid scene and expects an error
+// whose message contains every one of `needles`.
+void expect_refused(const std::string& from, const std::string& to, std::initializer_list<std::string> needles) {
+  std::string text = kValid;
+  const auto pos = text.find(from);
+  ASSERT_NE(pos, std::string::npos) << from;
+  text.replace(pos, from.size(), to);
+  try {
+    parse(text);
+    FAIL() << "accepted: " << to;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("scene.json"), std::string::npos) << message;
+    for (const auto& n : needles) EXPECT_NE(message.find(n), std::string::npos) << message << " lacks " << n;
+  }
+}
+
+TEST(Scene, ValidSceneLoads) {
+  const Scene s = parse(kValid);
+  EXPECT_EQ(s.sensors.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.cycle_time_s, 0.04);  // from the sensor configuration
+  EXPECT_EQ(s.cycle_count(), 26);          // t = 0, 0.04, ..., 1.0
+  EXPECT_FALSE(s.effects.occlusion);
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.objects[0].model.length_m, 4.1);  // median of the annotated lengths
+}
+
+TEST(Scene, RefusesBadInput) {
+  expect_refused("\"duration_s\": 1.0,", "\"duration_s\": 1.0,,", {"line 2", "invalid JSON"});
+  expect_refused("\"duration_s\": 1.0", "\"duration_s\": -1.0", {"duration_s", "negative"});
+  expect_refused("\"duration_s\": 1.0", "\"duration_s\": \"1\"", {"duration_s", "number"});
+  expect_refused("\"version\": 1", "\"version\": 2", {"version", "unsupported"});
+  expect_refused("\"passenger_car\"", "\"spaceship\"", {"objects[0].model", "unknown object model", "passenger_car"});
+  expect_refused("\"srr24\"", "\"lrr77\"", {"ego.sensors[0].type", "unknown sensor type"});
+  expect_refused("\"t_s\": 5", "\"t_s\": 0", {"objects[0].trajectory[1].t_s", "increase"});
+  expect_refused("\"yaw_rad\": 3.1416, \"speed_mps\": 5", "\"yaw_deg\": 180, \"speed_mps\": 5",
+                 {"objects[0].trajectory[0].yaw_deg", "unknown field"});
+  expect_refused("\"length_m\": 4.0", "\"length_m\": -4.0", {"objects[0].trajectory[0].length_m", "positive"});
+  expect_refused("\"x_m\": 20", "\"x_m\": 1e999", {"number overflow", "1e999"});
+  expect_refused("\"id\": \"car1\"", "\"id\": \"\"", {"objects[0].id", "empty"});
+  expect_refused("\"sensors\": [", "\"sensors\": [{\"id\": \"fr\", \"type\": \"srr24\", \"x_m\": 0, \"y_m\": 0, \"yaw_rad\": 0},",
+                 {"ego.sensors[1].id", "duplicate"});
+  expect_refused("\"format\": \"rcsim-scene\"", "\"format\": \"rcsim-recording\"", {"format", "rcsim-scene"});
+  expect_refused("\"trajectory\": [{\"t_s\": 0, \"x_m\": 0,", "\"trajectory\": [{\"t_s\": 0,", {"ego.trajectory[0].x_m", "missing"});
+}
+
+TEST(Scene, NaNIsNotJson) {
+  expect_refused("\"x_m\": 20", "\"x_m\": NaN", {"invalid JSON", "line"});
+}
+
+TEST(Scene, SensorAndModelFilesResolveRelativeToTheScene) {
+  const auto dir = std::filesystem::temp_directory_path() / "rcsim_scene_test";
+  std::filesystem::create_directories(dir);
+  std::string text = kValid;
+  text.replace(text.find("\"passenger_car\""), 15, "\"my_pole.json\"");
+  { std::ofstream(dir / "scene.json") << text; }
+  {
+    std::ofstream(dir / "my_pole.json") << R"({"format": "rcsim-object-model", "version": 1, "name": "my_pole",
+      "length_m": 0.2, "width_m": 0.2, "point_reflectors": [{"name": "p", "x_m": 0, "y_m": 0, "ercs": 3,
+      "visibility": {"center_deg": 0, "full_halfwidth_deg": 180, "falloff_deg": 0}}]})";
+  }
+  const Scene s = load_scene_file((dir / "scene.json").string(), testing::library());
+  EXPECT_DOUBLE_EQ(s.objects[0].model.max_ercs(), 3.0);
+  { std::ofstream(dir / "my_pole.json") << R"({"format": "rcsim-object-model", "version": 1, "name": "my_pole",
+      "length_m": 0.2, "width_m": 0.2, "point_reflectors": [{"name": "p", "x_m": 0, "y_m": 0, "ercs": -3,
+      "visibility": {"center_deg": 0, "full_halfwidth_deg": 180, "falloff_deg": 0}}]})"; }
+  try {
+    load_scene_file((dir / "scene.json").string(), testing::library());
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("my_pole.json: point_reflectors[0].ercs"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ModelLibrary, BuiltinsAreThere) {
+  for (const char* name : {"passenger_car", "truck_trailer", "guide_board", "pole"}) {
+    EXPECT_TRUE(testing::library().contains(name)) << name;
+  }
+  const auto& pole = testing::library().at("pole");
+  ASSERT_EQ(pole.points.size(), 1u);
+  EXPECT_DOUBLE_EQ(pole.points[0].ercs(1.234), 1.0);  // visible from every direction, ERCS 1
+  EXPECT_EQ(testing::library().at("passenger_car").points.size(), 8u);  // Fig. 3: A..H
+  EXPECT_EQ(testing::library().at("passenger_car").planes.size(), 4u);
+}
+
+}  // namespace
+}  // namespace rcsim
