@@ -20,9 +20,9 @@ nlohmann::json model_to_json(const ObjectModel& m) {
                       {"y_m", p.p_OR_O.y()},
                       {"ercs", p.ercs_max},
                       {"visibility",
-                       {{"center_deg", rad_to_deg(p.visibility.center_rad)},
-                        {"full_halfwidth_deg", rad_to_deg(p.visibility.full_halfwidth_rad)},
-                        {"falloff_deg", rad_to_deg(p.visibility.falloff_rad)}}}});
+                       {{"center_deg", rad_to_deg(p.visibility.center_rad())},
+                        {"full_halfwidth_deg", rad_to_deg(p.visibility.full_halfwidth_rad())},
+                        {"falloff_deg", rad_to_deg(p.visibility.falloff_rad())}}}});
   }
   nlohmann::json planes = nlohmann::json::array();
   for (const auto& p : m.planes) {

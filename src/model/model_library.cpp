@@ -12,16 +12,13 @@ namespace {
 
 VisibilityFunction parse_visibility(const JsonField& field) {
   field.expect_only({"center_deg", "full_halfwidth_deg", "falloff_deg"});
-  VisibilityFunction v;
-  v.center_rad = deg_to_rad(field.number("center_deg"));
+  const double center_deg = field.number("center_deg");
   const double full_deg = field.number("full_halfwidth_deg");
   const double falloff_deg = field.number("falloff_deg");
   require_non_negative(field, "full_halfwidth_deg", full_deg);
   require_non_negative(field, "falloff_deg", falloff_deg);
   if (full_deg > 180.0) field.fail("full_halfwidth_deg", "must be at most 180");
-  v.full_halfwidth_rad = deg_to_rad(full_deg);
-  v.falloff_rad = deg_to_rad(falloff_deg);
-  return v;
+  return {deg_to_rad(center_deg), deg_to_rad(full_deg), deg_to_rad(falloff_deg)};
 }
 
 }  // namespace

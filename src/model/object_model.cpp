@@ -8,20 +8,31 @@
 
 namespace rcsim {
 
+VisibilityFunction::VisibilityFunction(double center_rad, double full_halfwidth_rad, double falloff_rad)
+    : center_rad_(center_rad),
+      full_halfwidth_rad_(full_halfwidth_rad),
+      falloff_rad_(falloff_rad),
+      cos_center_(std::cos(center_rad)),
+      sin_center_(std::sin(center_rad)),
+      cos_full_edge_(std::cos(full_halfwidth_rad)),
+      cos_zero_edge_(std::cos(full_halfwidth_rad + falloff_rad)),
+      everywhere_(full_halfwidth_rad >= kPi - 1e-12),
+      nowhere_beyond_(full_halfwidth_rad + falloff_rad < kPi) {}
+
 double VisibilityFunction::operator()(double alpha_rad) const {
-  const double delta = angle_difference_rad(alpha_rad, center_rad);
-  return from_direction(std::cos(delta), std::sin(delta));
+  return from_unit_direction(std::cos(alpha_rad), std::sin(alpha_rad));
 }
 
-double VisibilityFunction::from_direction(double cos_delta, double sin_delta) const {
-  const double full_edge_rad = full_halfwidth_rad;
-  const double zero_edge_rad = full_halfwidth_rad + falloff_rad;
-  if (full_edge_rad >= kPi - 1e-12 || cos_delta >= std::cos(full_edge_rad)) return 1.0;
-  if (zero_edge_rad < kPi && cos_delta <= std::cos(zero_edge_rad)) return 0.0;
+double VisibilityFunction::from_unit_direction(double ux, double uy) const {
+  // cos and sin of (alpha - center) from the unit direction.
+  const double cos_delta = ux * cos_center_ + uy * sin_center_;
+  if (everywhere_ || cos_delta >= cos_full_edge_) return 1.0;
+  if (nowhere_beyond_ && cos_delta <= cos_zero_edge_) return 0.0;
+  const double sin_delta = uy * cos_center_ - ux * sin_center_;
   const double delta_rad = std::abs(std::atan2(sin_delta, cos_delta));
-  if (falloff_rad <= 0.0) return delta_rad <= full_edge_rad ? 1.0 : 0.0;
-  const double x = std::clamp((delta_rad - full_edge_rad) / falloff_rad, 0.0, 1.0);
-  return 0.5 * (1.0 + std::cos(kPi * x));
+  if (falloff_rad_ <= 0.0) return delta_rad <= full_halfwidth_rad_ ? 1.0 : 0.0;
+  const double x = std::clamp((delta_rad - full_halfwidth_rad_) / falloff_rad_, 0.0, 1.0);
+  return 0.5 * (1.0 + std::cos(kPi * x));  // raised-cosine fall-off
 }
 
 Vec2 PlaneReflector::arc_point_O(double angle_rad) const {

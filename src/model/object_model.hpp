@@ -12,14 +12,24 @@ namespace rcsim {
 // the object frame from the object's longitudinal axis to the direction reflector -> sensor
 // (paper II-B, Fig. 6): 1 within full_halfwidth of the centre direction, a raised-cosine fall to 0
 // over falloff beyond that, 0 elsewhere.
-struct VisibilityFunction {
-  double center_rad = 0.0;
-  double full_halfwidth_rad = 0.0;
-  double falloff_rad = 0.0;
+class VisibilityFunction {
+ public:
+  VisibilityFunction() : VisibilityFunction(0.0, 0.0, 0.0) {}
+  VisibilityFunction(double center_rad, double full_halfwidth_rad, double falloff_rad);
+
+  double center_rad() const { return center_rad_; }
+  double full_halfwidth_rad() const { return full_halfwidth_rad_; }
+  double falloff_rad() const { return falloff_rad_; }
 
   double operator()(double alpha_rad) const;
-  // The same, from cos and sin of (alpha - center), avoiding an atan2 where the answer is 0 or 1.
-  double from_direction(double cos_delta, double sin_delta) const;
+  // The same for the unit direction (ux, uy) in the object frame; trigonometry only in the fall-off.
+  double from_unit_direction(double ux, double uy) const;
+
+ private:
+  double center_rad_, full_halfwidth_rad_, falloff_rad_;
+  double cos_center_, sin_center_;
+  double cos_full_edge_, cos_zero_edge_;  // cos of the angles where it leaves 1 and reaches 0
+  bool everywhere_, nowhere_beyond_;
 };
 
 struct PointReflector {

@@ -19,8 +19,10 @@ SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS);
 
 // Per reflection center of every object: range check, view-field check, visibility check;
 // for each one that passes, range, azimuth, range rate (relative velocity of the reflecting
-// point on the line of sight) and ERCS. Appends to `out` after clearing it.
+// point on the line of sight) and ERCS. Appends to `out` after clearing it. `bounding_radius_m`
+// holds each object's ObjectModel::bounding_radius_m(), computed once per scene.
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                           std::span<const BodyState> object_states, IdealTargets& out);
+                           std::span<const BodyState> object_states, std::span<const double> bounding_radius_m,
+                           IdealTargets& out);
 
 }  // namespace rcsim

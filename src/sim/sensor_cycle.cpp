@@ -26,14 +26,21 @@ SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflect
   reported.reserve(static_cast<std::size_t>(model.mount.config.tracker.max_tracks));
 }
 
-void run_sensor_cycle(const SensorModel& model, std::span<const SceneObject> objects, const SceneSnapshot& snapshot,
+SceneObjects::SceneObjects(std::span<const SceneObject> objects_in) : objects(objects_in) {
+  bounding_radius_m.reserve(objects.size());
+  for (const auto& o : objects) bounding_radius_m.push_back(o.model.bounding_radius_m());
+}
+
+void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_objects, const SceneSnapshot& snapshot,
                       SensorCycleState& state) {
+  const auto objects = scene_objects.objects;
   const SensorConfig& config = model.mount.config;
   Rng* rng = model.options.noise ? &state.rng : nullptr;
   state.kinematics = sensor_kinematics(snapshot.ego, model.mount.X_VS);
 
   // objects, sensor pose => ideal target list of visible reflection centers     (paper II-B, IV-2/3)
-  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, state.ideal);
+  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, scene_objects.bounding_radius_m,
+                        state.ideal);
   if (model.effects.occlusion) remove_occluded_targets(state.kinematics, objects, snapshot.objects, state.ideal);
   if (model.effects.multibounce) add_multibounce_targets(config.multibounce, state.ideal);
   // ideal targets => echoes: amplitude and weighted sum/delta pointers          (eqs. (1)-(3), (6))

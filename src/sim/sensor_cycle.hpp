@@ -53,7 +53,14 @@ struct SceneSnapshot {
   std::vector<BodyState> objects;
 };
 
-void run_sensor_cycle(const SensorModel& model, std::span<const SceneObject> objects, const SceneSnapshot& snapshot,
+// The scene's objects as the sensor cycle reads them; bounding radii computed once.
+struct SceneObjects {
+  explicit SceneObjects(std::span<const SceneObject> objects);
+  std::span<const SceneObject> objects;
+  std::vector<double> bounding_radius_m;
+};
+
+void run_sensor_cycle(const SensorModel& model, const SceneObjects& objects, const SceneSnapshot& snapshot,
                       SensorCycleState& state);
 
 }  // namespace rcsim

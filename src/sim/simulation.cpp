@@ -2,7 +2,7 @@
 
 namespace rcsim {
 
-Simulation::Simulation(const Scene& scene, const SimulationOptions& options) : scene_(scene) {
+Simulation::Simulation(const Scene& scene, const SimulationOptions& options) : scene_(scene), objects_(scene.objects) {
   std::size_t reflectors = 0;
   for (const auto& o : scene.objects) reflectors += o.model.reflector_count();
   models_.reserve(scene.sensors.size());
@@ -21,7 +21,7 @@ void Simulation::run_at(double t_s) {
   snapshot_.t_s = t_s;
   snapshot_.ego = scene_.ego.state_at(t_s);
   for (std::size_t i = 0; i < scene_.objects.size(); ++i) snapshot_.objects[i] = scene_.objects[i].trajectory.state_at(t_s);
-  for (std::size_t i = 0; i < models_.size(); ++i) run_sensor_cycle(models_[i], scene_.objects, snapshot_, states_[i]);
+  for (std::size_t i = 0; i < models_.size(); ++i) run_sensor_cycle(models_[i], objects_, snapshot_, states_[i]);
 }
 
 }  // namespace rcsim

@@ -22,9 +22,11 @@ class Simulation {
   std::size_t sensor_count() const { return models_.size(); }
   const SensorModel& sensor_model(std::size_t i) const { return models_[i]; }
   const SensorCycleState& sensor_state(std::size_t i) const { return states_[i]; }
+  const SceneObjects& objects() const { return objects_; }
 
  private:
   const Scene& scene_;
+  SceneObjects objects_;
   std::vector<SensorModel> models_;
   std::vector<SensorCycleState> states_;
   SceneSnapshot snapshot_;

@@ -65,8 +65,14 @@ void Tracker::associate(const Detections& detections) {
   // Gater: every (track, detection) pair inside the chi-square gate.
   candidates_.clear();
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
-    const Eigen::LLT<Eigen::Matrix4d> S(tracks_[i].P + model_.R);
+    const Eigen::Matrix4d S_matrix = tracks_[i].P + model_.R;
+    // For a positive definite S, nu' S^-1 nu >= nu_r^2 / S_rr: the range innovation alone rules
+    // most pairs out exactly, before any solve.
+    const double range_gate_m2 = config_.gate_chi2 * S_matrix(0, 0);
+    const Eigen::LLT<Eigen::Matrix4d> S(S_matrix);
     for (std::size_t j = 0; j < detections.size(); ++j) {
+      const double range_innovation_m = detections[j].range_m - tracks_[i].x(0);
+      if (range_innovation_m * range_innovation_m > range_gate_m2) continue;
       const Eigen::Vector4d nu = innovation(tracks_[i], detections[j]);
       const double d2 = nu.dot(S.solve(nu));
       if (d2 <= config_.gate_chi2) candidates_.push_back({d2, static_cast<int>(i), static_cast<int>(j)});

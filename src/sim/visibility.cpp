@@ -8,12 +8,7 @@ double point_reflector_ercs(const PointReflector& point, const Vec2& p_OS_O) {
   const Vec2 p_RS_O = p_OS_O - point.p_OR_O;  // reflector -> sensor
   const double norm = p_RS_O.norm();
   if (!(norm > 0.0)) return 0.0;  // sensor on the reflector: no defined impinging angle
-  // cos and sin of (alpha - center) from the unit direction, no atan2 unless in the fall-off.
-  const double c = std::cos(point.visibility.center_rad);
-  const double s = std::sin(point.visibility.center_rad);
-  const double ux = p_RS_O.x() / norm;
-  const double uy = p_RS_O.y() / norm;
-  return point.ercs_max * point.visibility.from_direction(ux * c + uy * s, uy * c - ux * s);
+  return point.ercs_max * point.visibility.from_unit_direction(p_RS_O.x() / norm, p_RS_O.y() / norm);
 }
 
 std::optional<Vec2> plane_reflection_point_O(const PlaneReflector& plane, const Vec2& p_OS_O) {

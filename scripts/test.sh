@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The whole test suite: set up, build, run every test through CTest; then the same under
+# AddressSanitizer + UndefinedBehaviorSanitizer (skip with RCSIM_SKIP_SANITIZE=1).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh build
+ctest --test-dir build --output-on-failure -j 2
+if [ "${RCSIM_SKIP_SANITIZE:-0}" != "1" ]; then
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build"
+  scripts/setup.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRCSIM_SANITIZE=ON -DRCSIM_BUILD_BENCHMARKS=OFF
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir build-asan --output-on-failure -j 2
+fi
