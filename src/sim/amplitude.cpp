@@ -22,7 +22,7 @@ void compute_echoes(const AmplitudeLaw& law, const MonopulseAntenna& antenna, co
     e.range_rate_mps = t.range_rate_mps;
     e.sum_pointer = weight * h.sum;
     e.delta_pointer = weight * h.delta;
-    e.amplitude = std::abs(e.sum_pointer);  // eqs. (2)-(3): A^phi = |H_sum|
+    e.amplitude = magnitude(e.sum_pointer);  // eqs. (2)-(3): A^phi = |H_sum|
     e.ideal_index = static_cast<int>(i);
     out.push_back(e);
   }

@@ -22,8 +22,8 @@ AntennaPointers MonopulseAntenna::pattern(double azimuth_rad) const {
 }
 
 double MonopulseAntenna::additive_sensing_ratio(const AntennaPointers& pointers) {
-  const double d = std::abs(pointers.delta);
-  const double s = std::abs(pointers.sum);
+  const double d = magnitude(pointers.delta);
+  const double s = magnitude(pointers.sum);
   if (!(d + s > 0.0)) return -1.0;  // no signal at all: take boresight
   return (d - s) / (d + s);
 }

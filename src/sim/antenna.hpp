@@ -1,11 +1,15 @@
 #pragma once
 // Sum and delta antenna patterns of the monopulse sensor (paper III-D, eq. (6)) and the
 // additive sensing ratio (eq. (7)) with its exact inverse.
+#include <cmath>
 #include <complex>
 
 #include "sensor/sensor_config.hpp"
 
 namespace rcsim {
+
+// |z| without hypot's overflow guards: pointer magnitudes are far from overflow.
+inline double magnitude(const std::complex<double>& z) { return std::sqrt(std::norm(z)); }
 
 struct AntennaPointers {
   std::complex<double> sum;
@@ -19,7 +23,7 @@ class MonopulseAntenna {
   // Paper eq. (6): H(phi) = si(pi L/lambda sin phi) cos phi * 1/2 (1 +- exp(j 2 pi d/lambda sin phi)).
   AntennaPointers pattern(double azimuth_rad) const;
   // |H_sum(phi)|, the antenna pattern A^phi of eq. (2) (1 at boresight).
-  double sum_magnitude(double azimuth_rad) const { return std::abs(pattern(azimuth_rad).sum); }
+  double sum_magnitude(double azimuth_rad) const { return magnitude(pattern(azimuth_rad).sum); }
 
   // Paper eq. (7): ASR = (|H_delta| - |H_sum|) / (|H_delta| + |H_sum|), in [-1, 1].
   static double additive_sensing_ratio(const AntennaPointers& pointers);

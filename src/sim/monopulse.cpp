@@ -21,7 +21,7 @@ void estimate_monopulse_angles(const MonopulseAntenna& antenna, double pointer_n
     d.range_m = c.range_m;
     d.range_rate_mps = c.range_rate_mps;
     d.azimuth_rad = antenna.estimate_azimuth(h);  // eq. (7) inverted, sign from the phase
-    const double amplitude = std::abs(h.sum);
+    const double amplitude = magnitude(h.sum);
     d.amplitude_db = amplitude > 0.0 ? amplitude_to_db(amplitude) : -300.0;
     d.object_index = ideal[static_cast<std::size_t>(c.strongest_ideal_index)].object_index;
     out.push_back(d);

@@ -1,6 +1,6 @@
 #include "sim/tracking.hpp"
 
-#include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <algorithm>
 
 #include "common/angles.hpp"
@@ -38,8 +38,10 @@ Eigen::Vector4d innovation(const Track& track, const Detection& d) {
 }
 
 void kalman_update(const KalmanModel& model, const Detection& detection, Track& track) {
-  const Eigen::Matrix4d S = track.P + model.R;
-  const Eigen::Matrix4d K = S.llt().solve(track.P).transpose();  // K = P S^-1 (P, S symmetric)
+  // S = P + R is symmetric positive definite with R bounded away from zero: the closed-form 4x4
+  // inverse is accurate here and avoids the generic solver's overhead.
+  const Eigen::Matrix4d S_inv = (track.P + model.R).inverse();
+  const Eigen::Matrix4d K = track.P * S_inv;
   track.x += K * innovation(track, detection);
   track.x(2) = wrap_angle_rad(track.x(2));
   const Eigen::Matrix4d I_K = Eigen::Matrix4d::Identity() - K;
@@ -69,12 +71,12 @@ void Tracker::associate(const Detections& detections) {
     // For a positive definite S, nu' S^-1 nu >= nu_r^2 / S_rr: the range innovation alone rules
     // most pairs out exactly, before any solve.
     const double range_gate_m2 = config_.gate_chi2 * S_matrix(0, 0);
-    const Eigen::LLT<Eigen::Matrix4d> S(S_matrix);
+    const Eigen::Matrix4d S_inv = S_matrix.inverse();
     for (std::size_t j = 0; j < detections.size(); ++j) {
       const double range_innovation_m = detections[j].range_m - tracks_[i].x(0);
       if (range_innovation_m * range_innovation_m > range_gate_m2) continue;
       const Eigen::Vector4d nu = innovation(tracks_[i], detections[j]);
-      const double d2 = nu.dot(S.solve(nu));
+      const double d2 = nu.dot(S_inv * nu);
       if (d2 <= config_.gate_chi2) candidates_.push_back({d2, static_cast<int>(i), static_cast<int>(j)});
     }
   }
