@@ -25,11 +25,17 @@ KalmanModel::KalmanModel(const TrackerConfig& c, double dt) {
   R(3, 3) = c.measurement_sigma_amplitude_db * c.measurement_sigma_amplitude_db;
 }
 
+// F, Q, R and the initial P are block-diagonal in (range, range rate) | azimuth | amplitude, so P
+// stays block-diagonal and the filter splits exactly into a 2-state and two 1-state filters; the
+// code below is the 4x4 filter written block by block.
 void kalman_predict(const KalmanModel& model, Track& track) {
-  track.x = model.F * track.x;
+  track.x(0) += model.F(0, 1) * track.x(1);
   track.x(2) = wrap_angle_rad(track.x(2));
-  track.P = model.F * track.P * model.F.transpose() + model.Q;
-  track.P = 0.5 * (track.P + track.P.transpose());
+  const Eigen::Matrix2d F2 = model.F.topLeftCorner<2, 2>();
+  Eigen::Matrix2d P2 = F2 * track.P.topLeftCorner<2, 2>() * F2.transpose() + model.Q.topLeftCorner<2, 2>();
+  track.P.topLeftCorner<2, 2>() = 0.5 * (P2 + P2.transpose());
+  track.P(2, 2) += model.Q(2, 2);
+  track.P(3, 3) += model.Q(3, 3);
 }
 
 Eigen::Vector4d innovation(const Track& track, const Detection& d) {
@@ -37,16 +43,31 @@ Eigen::Vector4d innovation(const Track& track, const Detection& d) {
           d.amplitude_db - track.x(3)};
 }
 
+double mahalanobis2(const KalmanModel& model, const Track& track, const Eigen::Vector4d& nu) {
+  const Eigen::Matrix2d S2 = track.P.topLeftCorner<2, 2>() + model.R.topLeftCorner<2, 2>();
+  const Eigen::Vector2d nu2 = nu.head<2>();
+  return nu2.dot(S2.inverse() * nu2) + nu(2) * nu(2) / (track.P(2, 2) + model.R(2, 2)) +
+         nu(3) * nu(3) / (track.P(3, 3) + model.R(3, 3));
+}
+
 void kalman_update(const KalmanModel& model, const Detection& detection, Track& track) {
-  // S = P + R is symmetric positive definite with R bounded away from zero: the closed-form 4x4
-  // inverse is accurate here and avoids the generic solver's overhead.
-  const Eigen::Matrix4d S_inv = (track.P + model.R).inverse();
-  const Eigen::Matrix4d K = track.P * S_inv;
-  track.x += K * innovation(track, detection);
+  const Eigen::Vector4d nu = innovation(track, detection);
+  // (range, range rate): K = P S^-1, Joseph form P = (I-K) P (I-K)' + K R K'.
+  const Eigen::Matrix2d P2 = track.P.topLeftCorner<2, 2>();
+  const Eigen::Matrix2d R2 = model.R.topLeftCorner<2, 2>();
+  const Eigen::Matrix2d K2 = P2 * (P2 + R2).inverse();
+  track.x.head<2>() += K2 * nu.head<2>();
+  const Eigen::Matrix2d I_K = Eigen::Matrix2d::Identity() - K2;
+  const Eigen::Matrix2d P2_new = I_K * P2 * I_K.transpose() + K2 * R2 * K2.transpose();
+  track.P.topLeftCorner<2, 2>() = 0.5 * (P2_new + P2_new.transpose());
+  // azimuth and amplitude: scalar Joseph form p = (1-k)^2 p + k^2 r.
+  for (int i = 2; i < 4; ++i) {
+    const double p = track.P(i, i), r = model.R(i, i);
+    const double k = p / (p + r);
+    track.x(i) += k * nu(i);
+    track.P(i, i) = (1.0 - k) * (1.0 - k) * p + k * k * r;
+  }
   track.x(2) = wrap_angle_rad(track.x(2));
-  const Eigen::Matrix4d I_K = Eigen::Matrix4d::Identity() - K;
-  track.P = I_K * track.P * I_K.transpose() + K * model.R * K.transpose();  // Joseph form
-  track.P = 0.5 * (track.P + track.P.transpose());
 }
 
 Tracker::Tracker(const TrackerConfig& config, double cycle_time_s) : config_(config), model_(config, cycle_time_s) {
@@ -67,16 +88,14 @@ void Tracker::associate(const Detections& detections) {
   // Gater: every (track, detection) pair inside the chi-square gate.
   candidates_.clear();
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
-    const Eigen::Matrix4d S_matrix = tracks_[i].P + model_.R;
     // For a positive definite S, nu' S^-1 nu >= nu_r^2 / S_rr: the range innovation alone rules
     // most pairs out exactly, before any solve.
-    const double range_gate_m2 = config_.gate_chi2 * S_matrix(0, 0);
-    const Eigen::Matrix4d S_inv = S_matrix.inverse();
+    const double range_gate_m2 = config_.gate_chi2 * (tracks_[i].P(0, 0) + model_.R(0, 0));
     for (std::size_t j = 0; j < detections.size(); ++j) {
       const double range_innovation_m = detections[j].range_m - tracks_[i].x(0);
       if (range_innovation_m * range_innovation_m > range_gate_m2) continue;
       const Eigen::Vector4d nu = innovation(tracks_[i], detections[j]);
-      const double d2 = nu.dot(S_inv * nu);
+      const double d2 = mahalanobis2(model_, tracks_[i], nu);
       if (d2 <= config_.gate_chi2) candidates_.push_back({d2, static_cast<int>(i), static_cast<int>(j)});
     }
   }

@@ -39,6 +39,8 @@ struct KalmanModel {
 void kalman_predict(const KalmanModel& model, Track& track);
 // Innovation z - H x with the azimuth difference wrapped.
 Eigen::Vector4d innovation(const Track& track, const Detection& detection);
+// Squared Mahalanobis distance of an innovation, nu' (P + R)^-1 nu.
+double mahalanobis2(const KalmanModel& model, const Track& track, const Eigen::Vector4d& nu);
 // Joseph-form update (H = I), covariance kept symmetric.
 void kalman_update(const KalmanModel& model, const Detection& detection, Track& track);
 

@@ -102,5 +102,33 @@ TEST(Tracking, CovarianceStaysSymmetricPositiveDefinite) {
   EXPECT_LT(P(0, 0), 0.1 * 0.1);  // filtered below the measurement variance
 }
 
+TEST(Tracking, BlockwiseUpdateEqualsTheFull4x4JosephForm) {
+  const KalmanModel model(TrackerConfig{}, 0.04);
+  Track track;
+  track.x << 12.0, -1.5, 0.3, 14.0;
+  track.P.setZero();
+  track.P.topLeftCorner<2, 2>() << 0.04, 0.01, 0.01, 0.09;
+  track.P(2, 2) = 0.003;
+  track.P(3, 3) = 5.0;
+  const Detection d = detection(12.2, -1.1, 0.25, 16.0);
+  // The textbook filter with H = I on the full matrices.
+  Track full = track;
+  full.x = model.F * full.x;
+  full.P = model.F * full.P * model.F.transpose() + model.Q;
+  const Eigen::Matrix4d K = full.P * (full.P + model.R).inverse();
+  const Eigen::Vector4d nu(d.range_m - full.x(0), d.range_rate_mps - full.x(1), d.azimuth_rad - full.x(2),
+                           d.amplitude_db - full.x(3));
+  const double d2_full = nu.dot((full.P + model.R).inverse() * nu);
+  full.x += K * nu;
+  const Eigen::Matrix4d I_K = Eigen::Matrix4d::Identity() - K;
+  full.P = I_K * full.P * I_K.transpose() + K * model.R * K.transpose();
+
+  kalman_predict(model, track);
+  EXPECT_NEAR(mahalanobis2(model, track, innovation(track, d)), d2_full, 1e-9);
+  kalman_update(model, d, track);
+  EXPECT_LT((track.x - full.x).norm(), 1e-12);
+  EXPECT_LT((track.P - full.P).norm(), 1e-12);
+}
+
 }  // namespace
 }  // namespace rcsim
