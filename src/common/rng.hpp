@@ -1,10 +1,10 @@
 #pragma once
 // The random generator passed explicitly to every stage that draws (STYLE.md: Drake's
-// RandomGenerator). xoshiro256** seeded through SplitMix64; normal variates by Box-Muller,
-// written here so that the draws are identical on every standard library.
+// RandomGenerator). xoshiro256** seeded through SplitMix64; normal variates by Marsaglia's polar
+// method (two per round, the second kept), written here so that the draws are identical on every
+// standard library.
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 
 namespace rcsim {
 
@@ -31,11 +31,22 @@ class Rng {
   double uniform01() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform01(); }
 
-  // Standard normal variate (Box-Muller, one value per call).
+  // Standard normal variate.
   double normal() {
-    const double u1 = 1.0 - uniform01();  // (0, 1]
-    const double u2 = uniform01();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
+    double u, v, s;
+    do {
+      u = 2.0 * uniform01() - 1.0;
+      v = 2.0 * uniform01() - 1.0;
+      s = u * u + v * v;
+    } while (s >= 1.0 || s == 0.0);
+    const double scale = std::sqrt(-2.0 * std::log(s) / s);
+    spare_ = v * scale;
+    has_spare_ = true;
+    return u * scale;
   }
 
   // Exponential variate with the given mean.
@@ -62,6 +73,8 @@ class Rng {
     return z ^ (z >> 31);
   }
   std::uint64_t state_[4];
+  double spare_ = 0.0;
+  bool has_spare_ = false;
 };
 
 }  // namespace rcsim

@@ -12,11 +12,10 @@ double noise_sigma(double sigma_at_threshold, double sigma_min, double threshold
 
 void add_measurement_noise(const MeasurementNoise& noise, double threshold_db, Rng& rng, Detections& detections) {
   for (auto& d : detections) {
-    d.range_m += noise_sigma(noise.range_sigma_at_threshold_m, noise.range_sigma_min_m, threshold_db, d.amplitude_db) *
-                 rng.normal();
-    d.range_rate_mps += noise_sigma(noise.range_rate_sigma_at_threshold_mps, noise.range_rate_sigma_min_mps,
-                                    threshold_db, d.amplitude_db) *
-                        rng.normal();
+    const double ratio = std::pow(10.0, (threshold_db - d.amplitude_db) / 20.0);  // A_th / A
+    d.range_m += std::max(noise.range_sigma_min_m, noise.range_sigma_at_threshold_m * ratio) * rng.normal();
+    d.range_rate_mps +=
+        std::max(noise.range_rate_sigma_min_mps, noise.range_rate_sigma_at_threshold_mps * ratio) * rng.normal();
     d.range_m = std::max(d.range_m, 0.0);
   }
 }
