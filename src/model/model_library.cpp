@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <set>
 #include <stdexcept>
 
 #include "common/angles.hpp"
@@ -61,6 +62,13 @@ ObjectModel parse_object_model(const JsonField& root) {
     }
   }
   if (model.points.empty() && model.planes.empty()) root.fail("a model needs at least one reflector");
+  std::set<std::string> names;
+  for (const auto& p : model.points) {
+    if (!names.insert(p.name).second) root.fail("point_reflectors", "duplicate reflector name \"" + p.name + "\"");
+  }
+  for (const auto& p : model.planes) {
+    if (!names.insert(p.name).second) root.fail("plane_reflectors", "duplicate reflector name \"" + p.name + "\"");
+  }
   return model;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <stdexcept>
 
 namespace rcsim {
 namespace {
@@ -85,6 +86,8 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
   root.expect_only({"format", "version", "name", "description", "duration_s", "cycle_time_s", "effects", "ego",
                     "objects"});
   root.expect_format("rcsim-scene", 1);
+  if (root.has("name")) root.string("name");
+  if (root.has("description")) root.string("description");
   Scene scene;
   scene.source = root.file();
   scene.duration_s = root.number("duration_s");
@@ -134,8 +137,14 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
         if (s.width_m) widths.push_back(*s.width_m);
       }
       if (!lengths.empty() || !widths.empty()) {
-        object.model = scale_model(object.model, lengths.empty() ? object.model.length_m : median(lengths),
-                                   widths.empty() ? object.model.width_m : median(widths));
+        const double length_m = lengths.empty() ? object.model.length_m : median(lengths);
+        const double width_m = widths.empty() ? object.model.width_m : median(widths);
+        try {
+          object.model = scale_model(object.model, length_m, width_m);
+        } catch (const std::invalid_argument& e) {
+          o.fail("trajectory", fmt::format("cannot scale model \"{}\" to {} m x {} m: {}", object.model_name, length_m,
+                                           width_m, e.what()));
+        }
       }
       object.trajectory = Trajectory(samples);
       scene.objects.push_back(std::move(object));

@@ -64,6 +64,8 @@ TEST(Scene, RefusesBadInput) {
   expect_refused("\"yaw_rad\": 3.1416, \"speed_mps\": 5", "\"yaw_deg\": 180, \"speed_mps\": 5",
                  {"objects[0].trajectory[0].yaw_deg", "unknown field"});
   expect_refused("\"length_m\": 4.0", "\"length_m\": -4.0", {"objects[0].trajectory[0].length_m", "positive"});
+  expect_refused("\"length_m\": 4.0, \"width_m\": 1.7", "\"length_m\": 50.0, \"width_m\": 0.2",
+                 {"objects[0].trajectory", "cannot scale model \"passenger_car\""});
   expect_refused("\"x_m\": 20", "\"x_m\": 1e999", {"number overflow", "1e999"});
   expect_refused("\"id\": \"car1\"", "\"id\": \"\"", {"objects[0].id", "empty"});
   expect_refused("\"sensors\": [", "\"sensors\": [{\"id\": \"fr\", \"type\": \"srr24\", \"x_m\": 0, \"y_m\": 0, \"yaw_rad\": 0},",
