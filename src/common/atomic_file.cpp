@@ -7,14 +7,15 @@
 #include <filesystem>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include "common/input_error.hpp"
 
 namespace rcsim {
 
 AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
   const auto target = std::filesystem::path(path_);
-  temp_path_ = (target.parent_path() / ("." + target.filename().string() + ".tmp." + std::to_string(::getpid())))
-                   .string();
+  temp_path_ = (target.parent_path() / fmt::format(".{}.tmp.{}", target.filename().string(), ::getpid())).string();
   out_.open(temp_path_, std::ios::binary | std::ios::trunc);
   if (!out_) throw InputError(path_, "", std::string("cannot create output file: ") + std::strerror(errno));
 }
