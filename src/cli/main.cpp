@@ -12,6 +12,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("rcsim ") + RCSIM_VERSION);
   app.require_subcommand(1);
   rcsim::cli::add_simulate_command(app);
+  rcsim::cli::add_import_command(app);
+  rcsim::cli::add_replay_command(app);
+  rcsim::cli::add_report_command(app);
+  rcsim::cli::add_synth_command(app);
   rcsim::cli::add_models_command(app);
   try {
     app.parse(argc, argv);

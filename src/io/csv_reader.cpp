@@ -1,0 +1,123 @@
+#include "io/csv_reader.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "common/input_error.hpp"
+
+namespace rcsim {
+
+namespace {
+
+// Splits one line into fields; false if a quote is left open.
+bool split_csv_line(std::string_view line, std::vector<std::string>& fields) {
+  fields.clear();
+  std::string field;
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        field += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.push_back(std::move(field));
+      field.clear();
+    } else {
+      field += c;
+    }
+  }
+  fields.push_back(std::move(field));
+  return !quoted;
+}
+
+}  // namespace
+
+CsvReader::CsvReader(std::string path, const std::vector<std::string_view>& required_columns)
+    : path_(std::move(path)), in_(path_, std::ios::binary) {
+  if (!in_) throw InputError(path_, "", "cannot open file");
+  std::string text;
+  if (!read_fields(text)) throw InputError(path_, "line 1", "empty file: expected a header line");
+  header_ = fields_;
+  for (std::size_t i = 0; i < header_.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (header_[i] == header_[j]) fail_line(fmt::format("column '{}' appears twice in the header", header_[i]));
+    }
+  }
+  for (const auto name : required_columns) {
+    if (column(name) < 0) fail_line(fmt::format("header lacks the column '{}'", name));
+  }
+}
+
+bool CsvReader::read_fields(std::string& line_text) {
+  while (std::getline(in_, line_text)) {
+    ++line_;
+    if (!line_text.empty() && line_text.back() == '\r') line_text.pop_back();
+    if (line_text.find_first_not_of(" \t") == std::string::npos) continue;
+    if (!split_csv_line(line_text, fields_)) fail_line("a quoted field is not closed");
+    return true;
+  }
+  return false;
+}
+
+bool CsvReader::next() {
+  std::string text;
+  if (!read_fields(text)) return false;
+  if (fields_.size() != header_.size()) {
+    fail_line(fmt::format("{} fields where the header has {} (truncated or malformed row?)", fields_.size(),
+                          header_.size()));
+  }
+  return true;
+}
+
+int CsvReader::column(std::string_view name) const {
+  for (std::size_t i = 0; i < header_.size(); ++i) {
+    if (header_[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+double CsvReader::number(int col) const {
+  const std::string& field = text(col);
+  double value = 0.0;
+  const char* first = field.data();
+  const char* last = field.data() + field.size();
+  const auto [end, error] = std::from_chars(first, last, value);
+  if (field.empty() || error != std::errc() || end != last) fail(col, fmt::format("'{}' is not a number", field));
+  if (!std::isfinite(value)) fail(col, fmt::format("'{}' is not finite", field));
+  return value;
+}
+
+long long CsvReader::integer(int col) const {
+  const std::string& field = text(col);
+  long long value = 0;
+  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+  if (field.empty() || error != std::errc() || end != field.data() + field.size()) {
+    fail(col, fmt::format("'{}' is not a whole number", field));
+  }
+  return value;
+}
+
+const std::string& CsvReader::text(int col) const {
+  if (col < 0 || col >= static_cast<int>(fields_.size())) fail_line("internal: column index out of range");
+  return fields_[static_cast<std::size_t>(col)];
+}
+
+void CsvReader::fail(int col, const std::string& message) const {
+  const std::string name = col >= 0 && col < static_cast<int>(header_.size()) ? header_[col] : std::string("?");
+  throw InputError(path_, fmt::format("line {}, column '{}'", line_, name), message);
+}
+
+void CsvReader::fail_line(const std::string& message) const {
+  throw InputError(path_, fmt::format("line {}", line_), message);
+}
+
+}  // namespace rcsim

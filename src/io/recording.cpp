@@ -1,0 +1,275 @@
+#include "io/recording.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+#include "io/csv_reader.hpp"
+#include "io/target_list_writer.hpp"
+
+namespace rcsim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Times in a recording agree when they differ by less than this (files carry 6 decimals).
+constexpr double kTimeTolerance_s = 2e-6;
+
+std::string read_whole_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "", "cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void read_header(Recording& rec, const fs::path& path) {
+  const std::string file = path.string();
+  const nlohmann::json json = parse_json_text(read_whole_file(path), file);
+  const JsonField root(json, file, "");
+  root.expect_format("rcsim-recording", 1);
+  root.expect_only({"format", "version", "name", "description", "cycle_time_s", "sensors", "objects", "source"});
+  rec.name = root.string("name");
+  if (root.has("description")) rec.description = root.string("description");
+  rec.cycle_time_s = root.number("cycle_time_s");
+  require_positive(root, "cycle_time_s", rec.cycle_time_s);
+  if (const auto source = root.optional_member("source")) {
+    if (!source->json().is_object()) root.fail("source", "must be an object");
+    rec.source = source->json();
+  }
+  for (const JsonField& s : root.array("sensors")) {
+    s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad"});
+    RecordingSensor sensor{s.string("id"), s.string("type"), s.number("x_m"), s.number("y_m"), s.number("yaw_rad")};
+    if (sensor.id.empty()) s.fail("id", "must not be empty");
+    if (rec.sensor_index(sensor.id) >= 0) s.fail("id", fmt::format("sensor '{}' is listed twice", sensor.id));
+    rec.sensors.push_back(std::move(sensor));
+  }
+  if (rec.sensors.empty()) root.fail("sensors", "a recording needs at least one sensor");
+  for (const JsonField& o : root.array("objects")) {
+    o.expect_only({"id", "class", "length_m", "width_m"});
+    RecordingObject object{o.string("id"), o.string("class"), o.number("length_m"), o.number("width_m")};
+    require_positive(o, "length_m", object.length_m);
+    require_positive(o, "width_m", object.width_m);
+    if (object.id.empty()) o.fail("id", "must not be empty");
+    for (const RecordingObject& other : rec.objects) {
+      if (other.id == object.id) o.fail("id", fmt::format("object '{}' is listed twice", object.id));
+    }
+    rec.objects.push_back(std::move(object));
+  }
+}
+
+void read_ego(Recording& rec, const fs::path& path) {
+  CsvReader csv(path.string(), {"t_s", "x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps"});
+  const int t = csv.column("t_s"), x = csv.column("x_m"), y = csv.column("y_m"), yaw = csv.column("yaw_rad"),
+            v = csv.column("speed_mps"), w = csv.column("yaw_rate_radps");
+  while (csv.next()) {
+    EgoSample s{csv.number(t), csv.number(x), csv.number(y), csv.number(yaw), csv.number(v), csv.number(w)};
+    if (!rec.ego.empty() && s.t_s <= rec.ego.back().t_s) {
+      csv.fail(t, fmt::format("time {} s does not follow the previous row's {} s (times must increase)", s.t_s,
+                              rec.ego.back().t_s));
+    }
+    if (!rec.ego.empty() && s.t_s - rec.ego.back().t_s > 1.5 * rec.cycle_time_s) {
+      csv.fail(t, fmt::format("gap of {:.6f} s after the previous row (cycle time {} s): the ego log must have "
+                              "one row per sensor cycle",
+                              s.t_s - rec.ego.back().t_s, rec.cycle_time_s));
+    }
+    rec.ego.push_back(s);
+  }
+  if (rec.ego.empty()) csv.fail_line("the ego log has no rows");
+}
+
+void read_boxes(Recording& rec, const fs::path& path) {
+  rec.boxes.assign(rec.objects.size(), {});
+  CsvReader csv(path.string(), {"t_s", "object", "x_m", "y_m", "yaw_rad", "speed_mps"});
+  const int t = csv.column("t_s"), id = csv.column("object"), x = csv.column("x_m"), y = csv.column("y_m"),
+            yaw = csv.column("yaw_rad"), v = csv.column("speed_mps");
+  while (csv.next()) {
+    const std::string& object_id = csv.text(id);
+    std::size_t index = 0;
+    while (index < rec.objects.size() && rec.objects[index].id != object_id) ++index;
+    if (index == rec.objects.size()) {
+      csv.fail(id, fmt::format("object '{}' is not listed in recording.json", object_id));
+    }
+    AnnotatedBox box{csv.number(t), csv.number(x), csv.number(y), csv.number(yaw), csv.number(v), csv.line()};
+    auto& boxes = rec.boxes[index];
+    if (!boxes.empty() && box.t_s <= boxes.back().t_s) {
+      csv.fail(t, fmt::format("time {} s of object '{}' does not follow its previous row's {} s (line {})", box.t_s,
+                              object_id, boxes.back().t_s, boxes.back().line));
+    }
+    boxes.push_back(box);
+  }
+  for (std::size_t i = 0; i < rec.objects.size(); ++i) {
+    if (rec.boxes[i].empty()) {
+      throw InputError(path.string(), "", fmt::format("object '{}' of recording.json has no rows", rec.objects[i].id));
+    }
+  }
+}
+
+void read_targets(Recording& rec, const fs::path& path) {
+  CsvReader csv(path.string(),
+                {"t_s", "cycle", "sensor", "range_m", "azimuth_rad", "range_rate_mps", "amplitude_db"});
+  const int t = csv.column("t_s"), k = csv.column("cycle"), s = csv.column("sensor"), id = csv.column("id"),
+            r = csv.column("range_m"), az = csv.column("azimuth_rad"), rr = csv.column("range_rate_mps"),
+            amp = csv.column("amplitude_db");
+  int previous_cycle = 0;
+  while (csv.next()) {
+    RecordedTarget target;
+    target.t_s = csv.number(t);
+    const long long cycle = csv.integer(k);
+    if (cycle < 0 || cycle >= rec.cycle_count()) {
+      csv.fail(k, fmt::format("cycle {} is outside the ego log's cycles 0..{}", cycle, rec.cycle_count() - 1));
+    }
+    target.cycle = static_cast<int>(cycle);
+    if (target.cycle < previous_cycle) csv.fail(k, fmt::format("cycle {} after cycle {}: rows must be in cycle order",
+                                                               target.cycle, previous_cycle));
+    previous_cycle = target.cycle;
+    if (std::abs(target.t_s - rec.ego[target.cycle].t_s) > kTimeTolerance_s) {
+      csv.fail(t, fmt::format("time {} s differs from cycle {}'s time {} s in ego.csv", target.t_s, target.cycle,
+                              rec.ego[target.cycle].t_s));
+    }
+    target.sensor = rec.sensor_index(csv.text(s));
+    if (target.sensor < 0) csv.fail(s, fmt::format("sensor '{}' is not listed in recording.json", csv.text(s)));
+    if (id >= 0) {
+      const long long track_id = csv.integer(id);
+      if (track_id < 0 || track_id > 1'000'000'000) csv.fail(id, "track id out of range");
+      target.id = static_cast<int>(track_id);
+    }
+    target.range_m = csv.number(r);
+    if (target.range_m < 0.0) csv.fail(r, "range must not be negative");
+    target.azimuth_rad = csv.number(az);
+    if (std::abs(target.azimuth_rad) > 3.15) csv.fail(az, "azimuth beyond ±π: is it in degrees?");
+    target.range_rate_mps = csv.number(rr);
+    target.amplitude_db = csv.number(amp);
+    rec.targets.push_back(target);
+  }
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) throw InputError(path.string(), "", std::string("cannot create file: ") + std::strerror(errno));
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0) {
+      ::close(fd);
+      throw InputError(path.string(), "", std::string("write failed: ") + std::strerror(errno));
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  ::fsync(fd);
+  ::close(fd);
+}
+
+std::string header_text(const Recording& rec) {
+  nlohmann::ordered_json json;
+  json["format"] = "rcsim-recording";
+  json["version"] = 1;
+  json["name"] = rec.name;
+  if (!rec.description.empty()) json["description"] = rec.description;
+  json["cycle_time_s"] = rec.cycle_time_s;
+  json["sensors"] = nlohmann::ordered_json::array();
+  for (const auto& s : rec.sensors) {
+    json["sensors"].push_back({{"id", s.id}, {"type", s.type}, {"x_m", s.x_m}, {"y_m", s.y_m}, {"yaw_rad", s.yaw_rad}});
+  }
+  json["objects"] = nlohmann::ordered_json::array();
+  for (const auto& o : rec.objects) {
+    json["objects"].push_back({{"id", o.id}, {"class", o.object_class}, {"length_m", o.length_m}, {"width_m", o.width_m}});
+  }
+  if (!rec.source.empty()) json["source"] = rec.source;
+  return json.dump(2) + "\n";
+}
+
+}  // namespace
+
+int Recording::sensor_index(const std::string& id) const {
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    if (sensors[i].id == id) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t hash) {
+  for (const char c : bytes) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+Recording read_recording(const fs::path& dir) {
+  if (!fs::is_directory(dir)) throw InputError(dir.string(), "", "not a recording directory");
+  Recording rec;
+  rec.dir = dir;
+  read_header(rec, dir / "recording.json");
+  read_ego(rec, dir / "ego.csv");
+  read_boxes(rec, dir / "objects.csv");
+  read_targets(rec, dir / "targets.csv");
+  std::uint64_t hash = fnv1a64("rcsim-recording/1");
+  for (const char* name : {"recording.json", "ego.csv", "objects.csv", "targets.csv"}) {
+    hash = fnv1a64(read_whole_file(dir / name), hash);
+  }
+  rec.checksum = hash;
+  return rec;
+}
+
+void write_recording(const fs::path& dir, const Recording& rec) {
+  const fs::path target = fs::absolute(dir).lexically_normal();
+  const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
+  const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
+  if (!fs::is_directory(parent)) throw InputError(dir.string(), "", "the parent directory does not exist");
+  const fs::path temp = parent / fmt::format(".{}.tmp.{}", name.string(), ::getpid());
+  fs::remove_all(temp);
+  fs::create_directory(temp);
+  try {
+    write_file(temp / "recording.json", header_text(rec));
+
+    std::string ego = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
+    for (const auto& e : rec.ego) {
+      fmt::format_to(std::back_inserter(ego), "{:.6f},{:.4f},{:.4f},{:.6f},{:.4f},{:.6f}\n", e.t_s, e.x_m, e.y_m,
+                     e.yaw_rad, e.speed_mps, e.yaw_rate_radps);
+    }
+    write_file(temp / "ego.csv", ego);
+
+    // Rows in time order, objects in recording order within one time.
+    std::vector<std::pair<std::size_t, const AnnotatedBox*>> rows;
+    for (std::size_t i = 0; i < rec.boxes.size(); ++i) {
+      for (const auto& b : rec.boxes[i]) rows.emplace_back(i, &b);
+    }
+    std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second->t_s < b.second->t_s; });
+    std::string objects = "t_s,object,x_m,y_m,yaw_rad,speed_mps\n";
+    for (const auto& [i, b] : rows) {
+      fmt::format_to(std::back_inserter(objects), "{:.6f},{},{:.4f},{:.4f},{:.6f},{:.4f}\n", b->t_s,
+                     csv_field(rec.objects[i].id), b->x_m, b->y_m, b->yaw_rad, b->speed_mps);
+    }
+    write_file(temp / "objects.csv", objects);
+
+    std::string targets = "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db\n";
+    for (const auto& t : rec.targets) {
+      fmt::format_to(std::back_inserter(targets), "{:.6f},{},{},{},{:.4f},{:.6f},{:.4f},{:.3f}\n", t.t_s, t.cycle,
+                     csv_field(rec.sensors[t.sensor].id), t.id, t.range_m, t.azimuth_rad, t.range_rate_mps,
+                     t.amplitude_db);
+    }
+    write_file(temp / "targets.csv", targets);
+
+    // A directory cannot be renamed over a non-empty one: move the old one aside first.
+    const fs::path old = parent / fmt::format(".{}.old.{}", name.string(), ::getpid());
+    const bool replacing = fs::exists(target);
+    if (replacing) fs::rename(target, old);
+    fs::rename(temp, target);
+    if (replacing) fs::remove_all(old);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(temp, ignored);
+    throw;
+  }
+}
+
+}  // namespace rcsim

@@ -1,0 +1,73 @@
+#pragma once
+// A recorded measurement campaign (`rcsim-recording` v1, schemas/recording.md): a directory with
+// recording.json, ego.csv (one row per sensor cycle), objects.csv (annotated boxes) and
+// targets.csv (what the sensors reported). Read once, validated, then read-only.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace rcsim {
+
+struct RecordingSensor {
+  std::string id;
+  std::string type;  // built-in sensor configuration name or a path relative to the recording
+  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  // pose in the ego vehicle frame
+};
+
+struct RecordingObject {
+  std::string id;
+  std::string object_class;  // names a model of the object library
+  double length_m = 0.0, width_m = 0.0;
+};
+
+// One ego.csv row; row k is the ego state at sensor cycle k.
+struct EgoSample {
+  double t_s = 0.0, x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, speed_mps = 0.0, yaw_rate_radps = 0.0;
+};
+
+// One objects.csv row: an annotated box centre in the world frame.
+struct AnnotatedBox {
+  double t_s = 0.0, x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, speed_mps = 0.0;
+  int line = 0;  // line in objects.csv, for messages
+};
+
+// One targets.csv row.
+struct RecordedTarget {
+  double t_s = 0.0;
+  int cycle = 0;
+  int sensor = 0;  // index into Recording::sensors
+  int id = -1;     // the sensor's track id, -1 when the file has no id column
+  double range_m = 0.0, azimuth_rad = 0.0, range_rate_mps = 0.0, amplitude_db = 0.0;
+};
+
+struct Recording {
+  std::filesystem::path dir;
+  std::string name;
+  std::string description;
+  double cycle_time_s = 0.0;
+  std::vector<RecordingSensor> sensors;
+  std::vector<RecordingObject> objects;
+  nlohmann::json source = nlohmann::json::object();  // free-form provenance (generator, seed, ...)
+  std::vector<EgoSample> ego;                           // one per cycle
+  std::vector<std::vector<AnnotatedBox>> boxes;         // per object, time-ordered
+  std::vector<RecordedTarget> targets;                  // in file order (cycle-ordered)
+  std::uint64_t checksum = 0;                           // FNV-1a 64 over the four files
+
+  int cycle_count() const { return static_cast<int>(ego.size()); }
+  int sensor_index(const std::string& id) const;  // -1 if unknown
+};
+
+// Reads and validates a recording directory; any problem is an InputError naming the file and
+// the line or field.
+Recording read_recording(const std::filesystem::path& dir);
+
+// Writes a recording directory atomically: into a temporary sibling directory, then renamed into
+// place (replacing an earlier recording of that name only once the new one is complete).
+void write_recording(const std::filesystem::path& dir, const Recording& recording);
+
+// FNV-1a 64-bit hash of bytes, chained; identifies a recording's content (not a security hash).
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t hash = 0xcbf29ce484222325ULL);
+
+}  // namespace rcsim
