@@ -1,13 +1,102 @@
-// Placeholder while the replay harness (issue 4) is written.
-#include <stdexcept>
+// rcsim replay RECORDING_DIR --db REPORT.sqlite: import, re-simulate, compare per cycle, store.
+#include <fmt/format.h>
+#include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/replay_options.hpp"
+#include "io/recording.hpp"
+#include "replay/replay_run.hpp"
+#include "replay/report_store.hpp"
 
 namespace rcsim::cli {
 
+namespace {
+
+struct ReplayArgs {
+  std::string recording_dir;
+  std::string db_path;
+  std::int64_t seed = 0;
+  bool json = false;
+  double cutoff_m = 2.0;
+  double order_p = 2.0;
+  double gate_m = 1.0;
+  ImportArgs import;
+};
+
+nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, const replay::ReplaySummary& s) {
+  const auto optional = [](double value) { return value < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(value); };
+  nlohmann::ordered_json distances = nlohmann::ordered_json::object();
+  for (const auto& d : s.distances) {
+    distances[d.quantity] = {{"wasserstein1", std::isnan(d.distance.wasserstein1) ? nlohmann::ordered_json() : nlohmann::ordered_json(d.distance.wasserstein1)},
+                             {"kolmogorov_smirnov", std::isnan(d.distance.kolmogorov_smirnov) ? nlohmann::ordered_json() : nlohmann::ordered_json(d.distance.kolmogorov_smirnov)},
+                             {"unit", d.unit}};
+  }
+  return {{"run_id", run_id},
+          {"recording", rec.name},
+          {"cycles", s.cycles},
+          {"sensors", rec.sensors.size()},
+          {"targets_recorded", s.targets_recorded},
+          {"targets_simulated", s.targets_simulated},
+          {"targets_matched", s.targets_matched},
+          {"gospa_mean", s.gospa_mean_m},
+          {"ospa_mean", s.ospa_mean_m},
+          {"merge_artefacts_recorded", s.merge_artefacts_recorded},
+          {"merge_artefacts_simulated", s.merge_artefacts_simulated},
+          {"merge_artefacts_matched", s.merge_artefacts_matched},
+          {"latency_recorded_s", optional(s.latency_recorded_s)},
+          {"latency_simulated_s", optional(s.latency_simulated_s)},
+          {"latency_pairs", s.latency_pairs},
+          {"residual_range_rms_m", s.residual_range_rms_m},
+          {"residual_azimuth_rms_rad", s.residual_azimuth_rms_rad},
+          {"residual_range_rate_rms_mps", s.residual_range_rate_rms_mps},
+          {"residual_amplitude_mean_db", s.residual_amplitude_mean_db},
+          {"distribution_distances", distances},
+          {"simulate_cpu_s", s.simulate_cpu_s},
+          {"wall_s", s.total_wall_s}};
+}
+
+void run_replay(const ReplayArgs& args) {
+  const Recording recording = read_recording(args.recording_dir);
+  replay::ReplayOptions options;
+  options.seed = static_cast<std::uint64_t>(args.seed);
+  options.import = import_options(args.import);
+  options.gospa = {args.cutoff_m, args.order_p};
+  options.association_gate_m = args.gate_m;
+  const auto db = replay::open_report_database(args.db_path, true);
+  replay::ReportWriter writer(*db);
+  const replay::ReplaySummary summary = replay::replay_recording(recording, options, writer);
+  if (args.json) {
+    std::cout << summary_json(writer.run_id(), recording, summary).dump(2) << '\n';
+  } else {
+    std::cout << fmt::format(
+        "run {}: {} ({} cycles, {} sensors): {} recorded / {} simulated targets, GOSPA mean {:.3f} m, "
+        "merge artefacts {} / {}, latency {} / {}; stored in {}\n",
+        writer.run_id(), recording.name, summary.cycles, recording.sensors.size(), summary.targets_recorded,
+        summary.targets_simulated, summary.gospa_mean_m, summary.merge_artefacts_recorded,
+        summary.merge_artefacts_simulated,
+        summary.latency_recorded_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_recorded_s),
+        summary.latency_simulated_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_simulated_s),
+        args.db_path);
+  }
+}
+
+}  // namespace
+
 void add_replay_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("replay", "(not built yet)");
-  cmd->callback([] { throw std::runtime_error("rcsim replay is not available in this build yet"); });
+  auto args = std::make_shared<ReplayArgs>();
+  auto* cmd = app.add_subcommand("replay", "import a recording, re-simulate it, compare per cycle, store the report");
+  cmd->add_option("RECORDING_DIR", args->recording_dir, "recording directory (rcsim-recording)")->required();
+  cmd->add_option("--db", args->db_path, "report database (rcsim-report, SQLite); created if missing")->required();
+  cmd->add_option("--seed", args->seed, "seed of the simulation's random draws")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_flag("--json", args->json, "print the run's summary as JSON");
+  cmd->add_option("--gospa-cutoff-m", args->cutoff_m, "GOSPA/OSPA cut-off c")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--gospa-order", args->order_p, "GOSPA/OSPA order p")->check(CLI::Range(1.0, 100.0))->capture_default_str();
+  cmd->add_option("--gate-m", args->gate_m, "target-to-object association gate")->check(CLI::PositiveNumber)->capture_default_str();
+  add_import_options(*cmd, args->import);
+  cmd->callback([args] { run_replay(*args); });
 }
 
 }  // namespace rcsim::cli

@@ -27,30 +27,45 @@ double median(std::vector<double> values) {
 }
 
 SensorConfig sensor_config_for(const JsonField& sensor, const std::string& base_dir) {
-  const std::string type = sensor.string("type");
-  if (is_builtin_sensor_config(type)) return builtin_sensor_config(type);
-  if (looks_like_path(type)) {
-    const std::string path = resolve(base_dir, type);
-    if (!std::filesystem::exists(path)) sensor.fail("type", "sensor configuration file not found: " + path);
-    return load_sensor_config_file(path);
+  try {
+    return sensor_config_for_type(sensor.string("type"), base_dir);
+  } catch (const std::invalid_argument& e) {
+    sensor.fail("type", e.what());
   }
-  sensor.fail("type", "unknown sensor type \"" + type + "\" (built-in: srr24; or a path to an rcsim-sensor file)");
 }
 
 ObjectModel model_for(const JsonField& object, const ModelLibrary& library, const std::string& base_dir) {
-  const std::string name = object.string("model");
+  try {
+    return object_model_for_name(object.string("model"), library, base_dir);
+  } catch (const std::invalid_argument& e) {
+    object.fail("model", e.what());
+  }
+}
+
+}  // namespace
+
+SensorConfig sensor_config_for_type(const std::string& type, const std::string& base_dir) {
+  if (is_builtin_sensor_config(type)) return builtin_sensor_config(type);
+  if (looks_like_path(type)) {
+    const std::string path = resolve(base_dir, type);
+    if (!std::filesystem::exists(path)) throw std::invalid_argument("sensor configuration file not found: " + path);
+    return load_sensor_config_file(path);
+  }
+  throw std::invalid_argument("unknown sensor type \"" + type +
+                              "\" (built-in: srr24; or a path to an rcsim-sensor file)");
+}
+
+ObjectModel object_model_for_name(const std::string& name, const ModelLibrary& library, const std::string& base_dir) {
   if (library.contains(name)) return library.at(name);
   if (looks_like_path(name)) {
     const std::string path = resolve(base_dir, name);
-    if (!std::filesystem::exists(path)) object.fail("model", "object model file not found: " + path);
+    if (!std::filesystem::exists(path)) throw std::invalid_argument("object model file not found: " + path);
     return load_object_model_file(path);
   }
   std::string known;
   for (const auto& [n, m] : library.models()) known += (known.empty() ? "" : ", ") + n;
-  object.fail("model", "unknown object model \"" + name + "\" (built-in: " + known + ")");
+  throw std::invalid_argument("unknown object model \"" + name + "\" (built-in: " + known + ")");
 }
-
-}  // namespace
 
 std::vector<TrajectorySample> parse_trajectory(const JsonField& owner, std::string_view key) {
   const auto entries = owner.array(key);
@@ -123,7 +138,7 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
   std::set<std::string> object_ids;
   if (root.has("objects")) {
     for (const auto& o : root.array("objects")) {
-      o.expect_only({"id", "model", "trajectory"});
+      o.expect_only({"id", "model", "trajectory", "present_from_s", "present_until_s"});
       SceneObject object;
       object.id = o.string("id");
       if (!object_ids.insert(object.id).second) o.fail("id", "duplicate object id \"" + object.id + "\"");
@@ -147,6 +162,12 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
         }
       }
       object.trajectory = Trajectory(samples);
+      object.present_from_s = o.number_or("present_from_s", object.present_from_s);
+      object.present_until_s = o.number_or("present_until_s", object.present_until_s);
+      if (object.present_until_s < object.present_from_s) {
+        o.fail("present_until_s", fmt::format("{} s is before present_from_s {} s", object.present_until_s,
+                                              object.present_from_s));
+      }
       scene.objects.push_back(std::move(object));
     }
   }

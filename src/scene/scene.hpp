@@ -1,6 +1,7 @@
 #pragma once
 // A traffic scene (`rcsim-scene`, schemas/scene.md): the ego vehicle with its mounted sensors and
 // the objects, each with a trajectory; built once, validated, then read-only.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ struct SceneObject {
   std::string model_name;
   ObjectModel model;  // scaled to the object's size
   Trajectory trajectory;
+  // The object takes part in the scene only within these times (imported recordings: the span
+  // of its annotation); always by default.
+  double present_from_s = -std::numeric_limits<double>::infinity();
+  double present_until_s = std::numeric_limits<double>::infinity();
+  bool present_at(double t_s) const { return t_s >= present_from_s && t_s <= present_until_s; }
 };
 
 struct Scene {
@@ -42,6 +48,12 @@ struct Scene {
   int cycle_count() const;
   double cycle_time_at(int cycle) const { return cycle * cycle_time_s; }
 };
+
+// A sensor `type`: a built-in configuration name or a file path relative to base_dir.
+// Throws std::invalid_argument with a message when neither.
+SensorConfig sensor_config_for_type(const std::string& type, const std::string& base_dir);
+// An object `model`: a library model name or a file path relative to base_dir; throws likewise.
+ObjectModel object_model_for_name(const std::string& name, const ModelLibrary& library, const std::string& base_dir);
 
 std::vector<TrajectorySample> parse_trajectory(const JsonField& owner, std::string_view key);
 Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std::string& base_dir);

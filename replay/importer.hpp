@@ -1,0 +1,51 @@
+#pragma once
+// Recording -> scene (rcsim import, and the first step of rcsim replay): the ego log becomes the
+// ego trajectory as it is; each annotated object gets the library model its class names, scaled
+// to its annotated length and width, and a trajectory through its smoothed annotated boxes
+// (annotation_smoothing.hpp); it takes part only over the span of its annotation.
+#include <string>
+#include <vector>
+
+#include "io/recording.hpp"
+#include "model/model_library.hpp"
+#include "scene/scene.hpp"
+
+namespace rcsim::replay {
+
+struct ImportOptions {
+  double smoothing_half_window_s = 0.5;  // ±0.5 s: about 25 boxes at 25 Hz
+  double max_gap_s = 0.5;  // a longer hole in an object's annotation is refused, not bridged
+  Effects effects{true, true, true};  // a real drive has clutter, multiple reflections, occlusion
+};
+
+struct ImportedObject {
+  std::string id;
+  std::string model;  // the class
+  double length_m = 0.0, width_m = 0.0;
+  double present_from_s = 0.0, present_until_s = 0.0;
+  std::vector<TrajectorySample> trajectory;
+};
+
+struct ImportedScene {
+  std::string name;
+  std::string description;
+  double time_offset_s = 0.0;  // scene time = recording time − time_offset_s (the first ego row)
+  double duration_s = 0.0;
+  double cycle_time_s = 0.0;
+  Effects effects;
+  std::vector<TrajectorySample> ego;
+  std::vector<RecordingSensor> sensors;
+  std::vector<ImportedObject> objects;
+  std::vector<std::string> warnings;  // things a person should know (bridged annotation gaps)
+};
+
+ImportedScene import_recording(const Recording& recording, const ModelLibrary& library, const ImportOptions& options);
+
+// The scene the simulation runs, built without a detour through JSON (an hour-long recording has
+// hundreds of thousands of samples). Sensor types resolve relative to the recording directory.
+Scene build_scene(const ImportedScene& imported, const ModelLibrary& library, const std::string& base_dir);
+
+// Writes the imported scene as an `rcsim-scene` file, atomically.
+void write_scene_file(const std::string& path, const ImportedScene& imported);
+
+}  // namespace rcsim::replay

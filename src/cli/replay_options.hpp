@@ -1,0 +1,48 @@
+#pragma once
+// Command-line options shared by rcsim import and rcsim replay.
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "replay/importer.hpp"
+
+namespace rcsim::cli {
+
+struct ImportArgs {
+  double smoothing_half_window_s = replay::ImportOptions{}.smoothing_half_window_s;
+  double max_gap_s = replay::ImportOptions{}.max_gap_s;
+  std::string effects = "clutter,multibounce,occlusion";
+};
+
+inline void add_import_options(CLI::App& cmd, ImportArgs& args) {
+  cmd.add_option("--smooth-half-window-s", args.smoothing_half_window_s,
+                 "half width of the local quadratic smoothing of annotated boxes (0: none)")
+      ->check(CLI::Range(0.0, 60.0))
+      ->capture_default_str();
+  cmd.add_option("--max-gap-s", args.max_gap_s, "longest hole in an object's annotation that is bridged")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd.add_option("--effects", args.effects,
+                 "effects of the re-simulation, comma-separated from clutter,multibounce,occlusion, or none")
+      ->capture_default_str();
+}
+
+inline replay::ImportOptions import_options(const ImportArgs& args) {
+  replay::ImportOptions options;
+  options.smoothing_half_window_s = args.smoothing_half_window_s;
+  options.max_gap_s = args.max_gap_s;
+  options.effects = {};
+  std::string rest = args.effects;
+  while (!rest.empty() && rest != "none") {
+    const auto comma = rest.find(',');
+    const std::string name = rest.substr(0, comma);
+    if (name == "clutter") options.effects.clutter = true;
+    else if (name == "multibounce") options.effects.multibounce = true;
+    else if (name == "occlusion") options.effects.occlusion = true;
+    else throw CLI::ValidationError("--effects", "unknown effect '" + name + "' (clutter, multibounce, occlusion, none)");
+    rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+  }
+  return options;
+}
+
+}  // namespace rcsim::cli
