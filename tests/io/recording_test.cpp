@@ -1,0 +1,116 @@
+#include "io/recording.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/input_error.hpp"
+
+namespace rcsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RecordingFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("rcsim_rec_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    rec_.name = "tiny";
+    rec_.cycle_time_s = 0.04;
+    rec_.sensors = {{"front_left", "srr24", 3.7, 0.7, 0.5}};
+    rec_.objects = {{"car1", "passenger_car", 4.5, 1.8}};
+    rec_.source = {{"generator", "test"}};
+    rec_.boxes.resize(1);
+    for (int k = 0; k < 3; ++k) {
+      const double t = 0.04 * k;
+      rec_.ego.push_back({t, 1.0 * k, 0.0, 0.0, 25.0, 0.0});
+      rec_.boxes[0].push_back({t, 20.0, 1.0, 3.14159, 0.0, 0});
+      rec_.targets.push_back({t, k, 0, 3, 15.0 + k, 0.1, -2.0, 12.5});
+    }
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Writes the recording, then replaces one file's text and expects the error to mention `expected`.
+  void expect_refused(const std::string& file, const std::string& text, const std::string& expected) {
+    const fs::path dir = dir_ / "bad";
+    write_recording(dir, rec_);
+    std::ofstream(dir / file, std::ios::trunc) << text;
+    try {
+      read_recording(dir);
+      FAIL() << "accepted " << file << ":\n" << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+    }
+  }
+
+  fs::path dir_;
+  Recording rec_;
+};
+
+TEST_F(RecordingFiles, RoundTripKeepsEveryRowAndIsByteStable) {
+  write_recording(dir_ / "a", rec_);
+  const Recording back = read_recording(dir_ / "a");
+  EXPECT_EQ(back.name, "tiny");
+  EXPECT_EQ(back.cycle_count(), 3);
+  ASSERT_EQ(back.targets.size(), 3u);
+  EXPECT_EQ(back.targets[2].cycle, 2);
+  EXPECT_EQ(back.targets[2].id, 3);
+  EXPECT_DOUBLE_EQ(back.targets[2].range_m, 17.0);
+  EXPECT_EQ(back.boxes[0].size(), 3u);
+  EXPECT_EQ(back.source["generator"], "test");
+  write_recording(dir_ / "b", back);
+  EXPECT_EQ(read_recording(dir_ / "b").checksum, back.checksum);
+}
+
+TEST_F(RecordingFiles, RewritingReplacesAnEarlierRecordingWhole) {
+  write_recording(dir_ / "a", rec_);
+  rec_.targets.pop_back();
+  write_recording(dir_ / "a", rec_);
+  EXPECT_EQ(read_recording(dir_ / "a").targets.size(), 2u);
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();
+  }
+}
+
+TEST_F(RecordingFiles, RefusesBadEgoLogs) {
+  expect_refused("ego.csv", "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,0,0,0,0\n0.04,0,0,0,0,0\n0.02,0,0,0,0,0\n",
+                 "line 4, column 't_s'");
+  expect_refused("ego.csv", "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,0,0,0,0\n0.5,0,0,0,0,0\n", "gap");
+  expect_refused("ego.csv", "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,nan,0,0,0\n", "column 'y_m'");
+  expect_refused("ego.csv", "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,0,0,0,0\n0.04,0,0,0\n", "line 3");
+  expect_refused("ego.csv", "t_s,x_m,yaw_rad,speed_mps,yaw_rate_radps\n", "'y_m'");
+  expect_refused("ego.csv", "", "empty file");
+}
+
+TEST_F(RecordingFiles, RefusesBadTargetsAndObjects) {
+  const std::string header = "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db\n";
+  expect_refused("targets.csv", header + "0.000000,0,rear,10,0,0,10\n", "sensor 'rear'");
+  expect_refused("targets.csv", header + "0.040000,0,front_left,10,0,0,10\n", "differs from cycle 0");
+  expect_refused("targets.csv", header + "0.000000,7,front_left,10,0,0,10\n", "outside");
+  expect_refused("targets.csv", header + "0.000000,0,front_left,10,20.0,0,10\n", "degrees");
+  expect_refused("targets.csv", header + "0.000000,0,front_left,10m,0,0,10\n", "not a number");
+  expect_refused("objects.csv", "t_s,object,x_m,y_m,yaw_rad,speed_mps\n0,truck9,1,1,0,0\n", "'truck9'");
+  expect_refused("objects.csv", "t_s,object,x_m,y_m,yaw_rad,speed_mps\n", "has no rows");
+  expect_refused("recording.json", R"({"format": "rcsim-recording", "version": 2})", "version");
+  expect_refused("recording.json",
+                 R"({"format": "rcsim-recording", "version": 1, "name": "x", "cycle_time_s": 0.04,
+                     "sensors": [{"id": "a", "type": "srr24", "x_m": 0, "y_m": 0, "yaw_deg": 0}], "objects": []})",
+                 "yaw_deg");
+}
+
+TEST_F(RecordingFiles, MissingDirectoryIsNamed) {
+  try {
+    read_recording(dir_ / "nowhere");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nowhere"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace rcsim
