@@ -10,5 +10,7 @@ void add_synth_command(CLI::App& app);
 void add_import_command(CLI::App& app);
 void add_replay_command(CLI::App& app);
 void add_report_command(CLI::App& app);
+void add_stream_command(CLI::App& app);
+void add_listen_command(CLI::App& app);
 
 }  // namespace rcsim::cli

@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   rcsim::cli::add_import_command(app);
   rcsim::cli::add_replay_command(app);
   rcsim::cli::add_report_command(app);
+  rcsim::cli::add_stream_command(app);
+  rcsim::cli::add_listen_command(app);
   rcsim::cli::add_synth_command(app);
   rcsim::cli::add_models_command(app);
   try {

@@ -1,0 +1,22 @@
+#pragma once
+// A recording made by the reflection-center model itself: the scene simulated at the tracks
+// level and written down as if a sensor had reported it, with the true boxes as annotation
+// (optionally with annotation noise). Used where a known answer is needed: harness tests (the
+// model replayed against itself with the same seed must agree) and the replay benchmark's
+// hour-long recording.
+#include <cstdint>
+
+#include "io/recording.hpp"
+#include "scene/scene.hpp"
+
+namespace rcsim::replay {
+
+struct AnnotationNoise {
+  double position_sigma_m = 0.0;
+  double yaw_sigma_rad = 0.0;
+};
+
+Recording model_recording(const Scene& scene, const std::string& name, std::uint64_t seed,
+                          const AnnotationNoise& noise = {});
+
+}  // namespace rcsim::replay
