@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "common/input_error.hpp"
-#include "model_recording.hpp"
+#include "replay_fixtures.hpp"
 
 namespace rcsim::replay {
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "model_recording.hpp"
+#include "replay_fixtures.hpp"
 #include "replay/report_store.hpp"
 
 namespace rcsim::replay {
