@@ -19,4 +19,10 @@ struct LocalFit {
 std::vector<LocalFit> smooth_local_quadratic(const std::vector<double>& t_s, const std::vector<double>& y,
                                              double half_window_s);
 
+// The same for several series sampled at the same times (they share the weights and the normal
+// equations): result[k][i] is series k's fit at t_i.
+std::vector<std::vector<LocalFit>> smooth_local_quadratic(const std::vector<double>& t_s,
+                                                          const std::vector<const std::vector<double>*>& series,
+                                                          double half_window_s);
+
 }  // namespace rcsim::replay

@@ -66,10 +66,11 @@ ImportedObject import_object(const Recording& rec, std::size_t index, double t0_
     speed_mps.push_back(b.speed_mps);
   }
   const double h = options.smoothing_half_window_s;
-  const auto x_fit = smooth_local_quadratic(t_s, x_m, h);
-  const auto y_fit = smooth_local_quadratic(t_s, y_m, h);
-  const auto yaw_fit = smooth_local_quadratic(t_s, yaw_rad, h);
-  const auto speed_fit = smooth_local_quadratic(t_s, speed_mps, h);
+  const auto fits = smooth_local_quadratic(t_s, {&x_m, &y_m, &yaw_rad, &speed_mps}, h);
+  const auto& x_fit = fits[0];
+  const auto& y_fit = fits[1];
+  const auto& yaw_fit = fits[2];
+  const auto& speed_fit = fits[3];
   for (std::size_t i = 0; i < t_s.size(); ++i) {
     TrajectorySample s;
     s.t_s = t_s[i];

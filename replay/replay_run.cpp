@@ -16,6 +16,10 @@ Vec2 cartesian_S(double range_m, double azimuth_rad) {
   return {range_m * std::cos(azimuth_rad), range_m * std::sin(azimuth_rad)};
 }
 
+// An episode of detectability ends after this many cycles without a detectable echo (longer than
+// any track survives without hits).
+constexpr int kEpisodeGapCycles = 10;
+
 // The largest range at which an object's strongest reflector still passes the detection
 // threshold on boresight: L0 − s R + 20 log10(ERCS_max) = threshold (paper eq. (1)).
 double detectable_range_m(const SensorConfig& config, const ObjectModel& model) {
@@ -60,14 +64,24 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
   for (std::size_t s = 0; s < n_sensors; ++s) {
     for (std::size_t o = 0; o < n_objects; ++o) detectable_m[s][o] = detectable_range_m(scene.sensors[s].config, scene.objects[o].model);
   }
+  // Per (sensor, object): the open episode (detectable_from_s < 0: none) and the cycles since the
+  // object was last detectable.
   std::vector<LatencyRow> latency(n_sensors * n_objects);
+  std::vector<int> undetectable_cycles(n_sensors * n_objects, kEpisodeGapCycles);
+  std::vector<int> episodes(n_sensors * n_objects, 0);
+  std::vector<char> detectable_now(n_objects);
   for (std::size_t s = 0; s < n_sensors; ++s) {
     for (std::size_t o = 0; o < n_objects; ++o) {
-      latency[s * n_objects + o] = {static_cast<int>(s), static_cast<int>(o), -1.0, -1.0, -1.0};
+      latency[s * n_objects + o] = {static_cast<int>(s), static_cast<int>(o), 0, -1.0, -1.0, -1.0};
     }
   }
-
   ReplaySummary summary;
+  const auto close_episode = [&](std::size_t key) {
+    LatencyRow& row = latency[key];
+    if (row.detectable_from_s >= 0.0) summary.latencies.push_back(row);
+    row.detectable_from_s = row.first_recorded_s = row.first_simulated_s = -1.0;
+  };
+
   Accumulators acc;
   double simulate_cpu_s = 0.0;
   std::size_t cursor = 0;  // into rec.targets, which are in cycle order
@@ -109,10 +123,30 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
                              box.range_m >= config.fov.min_range_m && box.range_m <= detectable_m[s][o];
         boxes.push_back(box);
         if (visible) in_view.push_back(box);
-        const Pose2& X_WO = snapshot.objects[o].X_WB;
-        cycle.objects.push_back({static_cast<int>(o), X_WO.x_m, X_WO.y_m, X_WO.yaw_rad, visible});
-        LatencyRow& row = latency[s * n_objects + o];
-        if (visible && row.detectable_from_s < 0.0) row.detectable_from_s = t_rec_s;
+        // Boxes for the report's pictures: those near the sensors (an hour-long drive passes many).
+        constexpr double kPictureMargin_m = 20.0;
+        if (box.range_m <= config.fov.max_range_m + kPictureMargin_m) {
+          const Pose2& X_WO = snapshot.objects[o].X_WB;
+          cycle.objects.push_back({static_cast<int>(o), X_WO.x_m, X_WO.y_m, X_WO.yaw_rad, visible});
+        }
+      }
+      // Detectability: the model detects the object (a detection whose strongest member is one of
+      // its reflectors, paper III-C/D), before the tracker; then the episodes.
+      std::fill(detectable_now.begin(), detectable_now.end(), 0);
+      for (const Detection& d : simulation.sensor_state(s).detections) {
+        if (d.object_index >= 0) detectable_now[static_cast<std::size_t>(d.object_index)] = 1;
+      }
+      for (std::size_t o = 0; o < n_objects; ++o) {
+        const std::size_t key = s * n_objects + o;
+        if (detectable_now[o]) {
+          if (latency[key].detectable_from_s < 0.0) {
+            latency[key].detectable_from_s = t_rec_s;
+            latency[key].episode = episodes[key]++;
+          }
+          undetectable_cycles[key] = 0;
+        } else if (++undetectable_cycles[key] == kEpisodeGapCycles) {
+          close_episode(key);
+        }
       }
       for (std::size_t i = cursor; i < cycle_end; ++i) {
         const RecordedTarget& r = rec.targets[i];
@@ -216,10 +250,9 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
   summary.residual_range_rate_rms_mps = std::sqrt(acc.rate_sq / m);
   summary.residual_amplitude_mean_db = acc.amplitude_sum / m;
 
+  for (std::size_t key = 0; key < latency.size(); ++key) close_episode(key);
   double rec_sum = 0.0, sim_sum = 0.0;
-  for (const LatencyRow& row : latency) {
-    if (row.detectable_from_s < 0.0) continue;
-    summary.latencies.push_back(row);
+  for (const LatencyRow& row : summary.latencies) {
     if (row.first_recorded_s >= 0.0 && row.first_simulated_s >= 0.0) {
       rec_sum += row.first_recorded_s - row.detectable_from_s;
       sim_sum += row.first_simulated_s - row.detectable_from_s;

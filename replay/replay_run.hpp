@@ -48,11 +48,17 @@ struct CycleComparison {
   metrics::GospaResult gospa;
   std::vector<std::pair<int, int>> merge_pairs;  // object indices sharing a resolution cell
   int merge_matched = 0;                         // artefacts found in both lists, per pair
-  std::vector<ObjectInCycle> objects;            // present objects (once per cycle: sensor 0 only)
+  std::vector<ObjectInCycle> objects;            // present objects near the sensor (stored for sensor 0)
 };
 
+// One episode in which an object is detectable by a sensor: it starts when the re-simulation's
+// sensor model first detects it (a detection, before tracking, whose strongest member is one of
+// its reflectors) and ends after kEpisodeGapCycles cycles without such a detection; an object that
+// leaves and comes back (a parked car passed lap after lap) has several episodes. The latency is
+// the time from the start to the first reported target that belongs to the object: for the
+// simulation the tracker's confirmation delay, for the recording that of the real sensor.
 struct LatencyRow {
-  int sensor = 0, object = 0;
+  int sensor = 0, object = 0, episode = 0;
   double detectable_from_s = 0.0;
   double first_recorded_s = -1.0, first_simulated_s = -1.0;  // -1: never reported
 };
@@ -68,7 +74,7 @@ struct ReplaySummary {
   double gospa_mean_m = 0.0, ospa_mean_m = 0.0;
   double gospa_localisation_mean_mp = 0.0, gospa_missed_mean_mp = 0.0, gospa_false_mean_mp = 0.0;
   long long merge_artefacts_recorded = 0, merge_artefacts_simulated = 0, merge_artefacts_matched = 0;
-  // Mean over (object, sensor) rows where both recorded and simulated latencies exist; -1 if none.
+  // Mean over episodes where both recorded and simulated latencies exist; -1 if none.
   double latency_recorded_s = -1.0, latency_simulated_s = -1.0;
   int latency_pairs = 0;
   double residual_range_rms_m = 0.0, residual_azimuth_rms_rad = 0.0, residual_range_rate_rms_mps = 0.0,

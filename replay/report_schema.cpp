@@ -91,10 +91,11 @@ CREATE TABLE IF NOT EXISTS latencies (
   run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
   sensor INTEGER NOT NULL,
   object INTEGER NOT NULL,
+  episode INTEGER NOT NULL,              -- 0, 1, ...: the object's detectable episodes for this sensor
   detectable_from_s REAL NOT NULL,
   first_recorded_s REAL, first_simulated_s REAL,       -- NULL: never reported
   latency_recorded_s REAL, latency_simulated_s REAL,
-  PRIMARY KEY (run_id, sensor, object)
+  PRIMARY KEY (run_id, sensor, object, episode)
 ) STRICT;
 
 CREATE TABLE IF NOT EXISTS distribution_distances (

@@ -49,8 +49,9 @@ nlohmann::ordered_json parameters_json(const ReplayOptions& options) {
                  "azimuths, within a range cell, farther than the margin from both"},
         {"source", "paper III-C, Fig. 10"}}},
       {"latency",
-       {{"detectable", "nearest contour point in the field of view and within the range at which the object "
-                       "model's strongest reflector passes the detection threshold (paper eq. (1))"}}},
+       {{"detectable", "the re-simulation's sensor model detects the object (before tracking); an episode ends "
+                       "after 10 cycles without a detection"},
+        {"latency", "first reported target belonging to the object minus the episode's start"}}},
       {"distribution_distances",
        {{"area_metric", "S. Ferson, W. L. Oberkampf, L. Ginzburg, CMAME 197, 2008 (= Wasserstein-1)"},
         {"kolmogorov_smirnov", "two-sample statistic sup |F_rec - F_sim|"}}},
@@ -95,7 +96,7 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
     const int tables = db->execAndGet("SELECT count(*) FROM sqlite_schema").getInt();
     if (application_id == 0 && user_version == 0 && tables == 0) {
       if (!create) throw InputError(path, "", "the database is empty: no replay has been stored in it");
-      db->exec("PRAGMA journal_mode = WAL");
+      db->exec("PRAGMA journal_mode = WAL");  // persistent: readers never block the writer
       SQLite::Transaction transaction(*db);
       db->exec(kReportSchemaSql);
       db->exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
@@ -109,6 +110,9 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
                                              user_version, kReportSchemaVersion));
     }
     db->exec("PRAGMA foreign_keys = ON");
+    // In WAL mode NORMAL keeps the database consistent on a crash or power loss; only the last
+    // committed run may be lost on power loss, never an earlier one.
+    db->exec("PRAGMA synchronous = NORMAL");
   } catch (const SQLite::Exception& e) {
     throw InputError(path, "", std::string("cannot use as a report database: ") + e.what());
   }
@@ -254,16 +258,17 @@ void ReportWriter::add_cycle(const CycleComparison& c) {
 }
 
 void ReportWriter::end_run(const ReplaySummary& r) {
-  SQLite::Statement latency(db_, "INSERT INTO latencies VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  SQLite::Statement latency(db_, "INSERT INTO latencies VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
   for (const LatencyRow& row : r.latencies) {
     latency.bind(1, run_id_);
     latency.bind(2, row.sensor);
     latency.bind(3, row.object);
-    latency.bind(4, row.detectable_from_s);
-    bind_optional(latency, 5, row.first_recorded_s);
-    bind_optional(latency, 6, row.first_simulated_s);
-    bind_optional(latency, 7, row.first_recorded_s < 0.0 ? -1.0 : row.first_recorded_s - row.detectable_from_s);
-    bind_optional(latency, 8, row.first_simulated_s < 0.0 ? -1.0 : row.first_simulated_s - row.detectable_from_s);
+    latency.bind(4, row.episode);
+    latency.bind(5, row.detectable_from_s);
+    bind_optional(latency, 6, row.first_recorded_s);
+    bind_optional(latency, 7, row.first_simulated_s);
+    bind_optional(latency, 8, row.first_recorded_s < 0.0 ? -1.0 : row.first_recorded_s - row.detectable_from_s);
+    bind_optional(latency, 9, row.first_simulated_s < 0.0 ? -1.0 : row.first_simulated_s - row.detectable_from_s);
     latency.exec();
     latency.reset();
   }

@@ -51,7 +51,7 @@ TEST(AnnotationSmoothing, ShortAndZeroWindowsKeepTheData) {
   const auto line = smooth_local_quadratic(t, y, 2.0);  // two points: a straight line
   EXPECT_NEAR(line[0].value, 3.0, 1e-12);
   EXPECT_NEAR(line[0].slope_per_s, 2.0, 1e-12);
-  const auto single = smooth_local_quadratic({1.0}, {7.0}, 1.0);
+  const auto single = smooth_local_quadratic(std::vector<double>{1.0}, std::vector<double>{7.0}, 1.0);
   EXPECT_EQ(single[0].value, 7.0);
   EXPECT_EQ(single[0].slope_per_s, 0.0);
 }

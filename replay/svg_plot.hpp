@@ -1,0 +1,43 @@
+#pragma once
+// Plots for the HTML report, as self-contained SVG text: time series (lines or dots over time,
+// like paper Fig. 5) and histograms of residuals. Every label is escaped here.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rcsim::replay::svg {
+
+inline constexpr const char* kRecordedColour = "#1f5fbf";   // blue
+inline constexpr const char* kSimulatedColour = "#d9480f";  // orange-red
+
+struct PlotSeries {
+  std::string label;
+  std::string colour;
+  bool dots = false;                              // dots (a scatter) instead of a line
+  std::vector<std::pair<double, double>> points;  // (x, y); a NaN y breaks a line
+};
+
+struct PlotSpec {
+  std::string title;
+  std::string x_label;  // with unit, e.g. "t / s"
+  std::string y_label;
+  std::string note;     // small text under the title, e.g. how the series was thinned
+  int width_px = 600, height_px = 250;
+  std::vector<PlotSeries> series;
+};
+
+std::string plot_svg(const PlotSpec& spec);
+
+struct HistogramSpec {
+  std::string title;
+  std::string x_label;
+  double lo = 0.0, bin_width = 1.0;  // bin i covers [lo + i w, lo + (i + 1) w)
+  std::vector<long long> counts;     // the first and last bins include what lies beyond them
+  long long below = 0, above = 0;    // how many of those were clamped into the end bins
+  std::string note;
+  int width_px = 420, height_px = 230;
+};
+
+std::string histogram_svg(const HistogramSpec& spec);
+
+}  // namespace rcsim::replay::svg
