@@ -1,0 +1,155 @@
+// rcsim import / replay as a user runs them: the JSON summary, many runs in one database,
+// determinism, refusals, and a replay killed midway.
+#include <gtest/gtest.h>
+
+#include <SQLiteCpp/SQLiteCpp.h>
+#include <csignal>
+#include <fcntl.h>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <thread>
+#include <unistd.h>
+
+#include "cli/run_rcsim.hpp"
+#include "replay/replay_fixtures.hpp"
+
+namespace rcsim {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::read_file;
+using testing::run_rcsim;
+
+class ReplayCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("rcsim_replay_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path recording(double duration_s, const std::string& name = "rec") {
+    const fs::path path = dir_ / name;
+    write_recording(path, testing::model_recording(testing::two_cars_scene(duration_s), 2, 0.03, 0.01));
+    return path;
+  }
+  fs::path dir_;
+};
+
+std::size_t data_rows(const std::string& csv) {
+  std::size_t lines = 0;
+  for (const char c : csv) lines += c == '\n';
+  return lines - 1;
+}
+
+TEST_F(ReplayCli, JsonSummaryAccountsForEveryRecordedTarget) {
+  const fs::path rec = recording(3.0);
+  const auto r = run_rcsim("replay " + rec.string() + " --db " + (dir_ / "r.sqlite").string() + " --json --seed 2", false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = nlohmann::json::parse(r.output);
+  for (const char* key : {"run_id", "cycles", "targets_recorded", "targets_simulated", "gospa_mean",
+                          "merge_artefacts_recorded", "merge_artefacts_simulated", "latency_recorded_s",
+                          "latency_simulated_s"}) {
+    EXPECT_TRUE(summary.contains(key)) << key;
+  }
+  EXPECT_EQ(summary["run_id"], 1);
+  EXPECT_EQ(summary["cycles"], 76);
+  EXPECT_EQ(summary["targets_recorded"].get<std::size_t>(), data_rows(read_file(rec / "targets.csv")));
+  EXPECT_GT(summary["targets_simulated"].get<int>(), 0);
+}
+
+TEST_F(ReplayCli, RunsAccumulateAndTheSameSeedRepeatsExactly) {
+  const fs::path rec = recording(2.0);
+  const std::string db = (dir_ / "r.sqlite").string();
+  for (const char* seed : {"4", "4", "5"}) {
+    ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db + " --seed " + seed).exit_code, 0);
+  }
+  SQLite::Database d(db);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 3);
+  const auto targets_of = [&](int run) {
+    SQLite::Statement q(d, "SELECT group_concat(printf('%d,%d,%s,%d,%.6f,%.6f', cycle, sensor, origin, idx, range_m, "
+                           "azimuth_rad), ';') FROM (SELECT * FROM targets WHERE run_id = ? ORDER BY cycle, sensor, "
+                           "origin, idx)");
+    q.bind(1, run);
+    q.executeStep();
+    return q.getColumn(0).getString();
+  };
+  EXPECT_GT(targets_of(1).size(), 100u);
+  EXPECT_EQ(targets_of(1), targets_of(2));
+  EXPECT_NE(targets_of(1), targets_of(3));
+  EXPECT_EQ(d.execAndGet("PRAGMA application_id").getInt(), 0x52435352);
+  EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), 1);
+}
+
+TEST_F(ReplayCli, ImportWritesALoadableScene) {
+  const fs::path rec = recording(2.0);
+  const fs::path scene = dir_ / "scene.json";
+  ASSERT_EQ(run_rcsim("import " + rec.string() + " -o " + scene.string()).exit_code, 0);
+  const auto r = run_rcsim("simulate " + scene.string() + " --level tracks", false);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_GT(data_rows(r.output), 10u);
+}
+
+TEST_F(ReplayCli, BadRecordingsAreNamedAndNothingIsStored) {
+  const fs::path rec = recording(1.0);
+  const std::string db = (dir_ / "r.sqlite").string();
+  ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db).exit_code, 0);
+  const auto foreign = run_rcsim("replay " + rec.string() + " --db " + (rec / "ego.csv").string());
+  EXPECT_EQ(foreign.exit_code, 2);
+  EXPECT_NE(foreign.output.find("ego.csv"), std::string::npos) << foreign.output;
+  std::ofstream(rec / "targets.csv", std::ios::app) << "0.04,1,front_left,12.0,0.1\n";  // truncated row
+  const auto r = run_rcsim("replay " + rec.string() + " --db " + db);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("targets.csv: line"), std::string::npos) << r.output;
+  SQLite::Database d(db);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 1);
+
+  const auto missing = run_rcsim("replay " + (dir_ / "nothing").string() + " --db " + db);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("nothing"), std::string::npos);
+}
+
+TEST_F(ReplayCli, ReplayKilledMidwayLeavesEarlierRunsComplete) {
+  const fs::path small = recording(1.0, "small");
+  const fs::path large = recording(400.0, "large");  // 10,000 cycles: long enough to kill midway
+  const std::string db = (dir_ / "r.sqlite").string();
+  ASSERT_EQ(run_rcsim("replay " + small.string() + " --db " + db).exit_code, 0);
+
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execl(RCSIM_BINARY, RCSIM_BINARY, "replay", large.c_str(), "--db", db.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Kill it once its uncommitted transaction has started spilling into the write-ahead log.
+  const fs::path wal = db + "-wal";
+  bool killed = false;
+  for (int i = 0; i < 4000 && !killed; ++i) {
+    std::error_code ec;
+    if (fs::exists(wal, ec) && fs::file_size(wal, ec) > 64 * 1024) {
+      ::kill(child, SIGKILL);
+      killed = true;
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(killed && WIFSIGNALED(status)) << "the replay ended before it could be killed";
+
+  SQLite::Database d(db, SQLite::OPEN_READWRITE);
+  EXPECT_EQ(d.execAndGet("PRAGMA integrity_check").getString(), "ok");
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 1);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM summaries").getInt(), 1);
+  EXPECT_EQ(d.execAndGet("SELECT count(DISTINCT run_id) FROM targets").getInt(), 1);
+  // And the database takes the next run.
+  EXPECT_EQ(run_rcsim("replay " + small.string() + " --db " + db).exit_code, 0);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM summaries").getInt(), 2);
+}
+
+}  // namespace
+}  // namespace rcsim

@@ -1,0 +1,37 @@
+#pragma once
+// Runs the rcsim binary as a user would, capturing its output.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace rcsim::testing {
+
+struct CommandResult {
+  int exit_code;
+  std::string output;  // stdout, and stderr unless separated
+};
+
+// `rcsim ARGS` through the shell; stderr joins stdout unless with_stderr is false.
+inline CommandResult run_rcsim(const std::string& args, bool with_stderr = true) {
+  const std::string command = std::string(RCSIM_BINARY) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
+  CommandResult result{0, {}};
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exit_code = WEXITSTATUS(status);
+  return result;
+}
+
+inline std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace rcsim::testing
