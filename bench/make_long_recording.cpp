@@ -1,7 +1,9 @@
 // Writes a long two-sensor recording for the replay benchmark (not committed: regenerate it).
-// The ego drives laps of a 500 m radius ring road at 20 m/s; six cars drive in the neighbouring
-// lanes at other speeds, so that they keep overtaking and being overtaken; thirty cars are parked
-// along the outer edge. The targets are the reflection-center model's own, the boxes carry
+// The ego drives laps of a 500 m radius ring road at 20 m/s; six vehicles drive in the
+// neighbouring lanes, each surging back and forth around the ego (its arc distance to the ego
+// oscillates between about 5 m behind and 45 m ahead), so that there is always traffic in view;
+// thirty cars are parked along the inner edge. The targets are the reflection-center model's
+// own, the boxes carry
 // annotation noise (3 cm, 0.5°).
 //   usage: rcsim_make_long_recording OUTPUT_DIR [DURATION_S=3600] [SEED=1]
 #include <cmath>
@@ -22,18 +24,25 @@ using namespace rcsim;
 
 constexpr double kRingRadius_m = 500.0;
 
-// Samples of a body driving counter-clockwise around the ring at a constant speed.
-Trajectory ring_trajectory(double radius_m, double speed_mps, double phase_rad, double duration_s) {
+// Arc position s(t) = s0 + v t + a sin(ω t + φ) along a ring of the given radius,
+// counter-clockwise, sampled every second.
+struct RingMotion {
+  double radius_m, s0_m, speed_mps, surge_m = 0.0, surge_radps = 0.0, surge_phase_rad = 0.0;
+};
+
+Trajectory ring_trajectory(const RingMotion& m, double duration_s) {
   std::vector<TrajectorySample> samples;
   for (double t = 0.0; t <= duration_s + 1.0; t += 1.0) {
-    const double angle = phase_rad + speed_mps * t / radius_m;
+    const double arc_m = m.s0_m + m.speed_mps * t + m.surge_m * std::sin(m.surge_radps * t + m.surge_phase_rad);
+    const double arc_speed_mps = m.speed_mps + m.surge_m * m.surge_radps * std::cos(m.surge_radps * t + m.surge_phase_rad);
+    const double angle = arc_m / m.radius_m;
     TrajectorySample s;
     s.t_s = t;
-    s.x_m = radius_m * std::cos(angle);
-    s.y_m = radius_m * std::sin(angle);
+    s.x_m = m.radius_m * std::cos(angle);
+    s.y_m = m.radius_m * std::sin(angle);
     s.yaw_rad = angle + kPi / 2;  // unwrapped: grows lap after lap
-    s.speed_mps = speed_mps;
-    s.yaw_rate_radps = speed_mps / radius_m;
+    s.speed_mps = arc_speed_mps;
+    s.yaw_rate_radps = arc_speed_mps / m.radius_m;
     samples.push_back(s);
   }
   return Trajectory(samples);
@@ -55,7 +64,7 @@ int main(int argc, char** argv) {
   scene.duration_s = duration_s;
   scene.cycle_time_s = 0.04;
   scene.effects = {true, false, true};
-  scene.ego = ring_trajectory(kRingRadius_m, 20.0, 0.0, duration_s);
+  scene.ego = ring_trajectory({kRingRadius_m, 0.0, 20.0}, duration_s);
   for (const auto& [id, y_m, yaw_rad] : {std::tuple{"front_left", 0.7, 0.5}, std::tuple{"front_right", -0.7, -0.5}}) {
     MountedSensor sensor;
     sensor.id = id;
@@ -72,13 +81,17 @@ int main(int argc, char** argv) {
     scene.objects.push_back(std::move(object));
   };
   for (int i = 0; i < 6; ++i) {
-    const double lane_m = i % 2 == 0 ? 3.5 : -3.5;  // inner and outer neighbouring lanes
-    add("car" + std::to_string(i + 1), i == 3 ? "truck_trailer" : "passenger_car",
-        ring_trajectory(kRingRadius_m + lane_m, 20.0 + (i - 2.5) * 0.8, 0.01 + 0.02 * i, duration_s));
+    const double lane_m = i % 2 == 0 ? 3.5 : -3.5;  // outer and inner neighbouring lanes
+    const double radius_m = kRingRadius_m + lane_m;
+    // Same angular speed as the ego on average; the surge moves it between ~5 m behind and ~45 m ahead.
+    const RingMotion motion{radius_m, radius_m / kRingRadius_m * (20.0 + 6.0 * i), 20.0 * radius_m / kRingRadius_m,
+                            12.0 + 2.0 * i, 2.0 * kPi / (40.0 + 13.0 * i), 1.3 * i};
+    add("car" + std::to_string(i + 1), i == 3 ? "truck_trailer" : "passenger_car", ring_trajectory(motion, duration_s));
   }
   for (int i = 0; i < 30; ++i) {
+    const double radius_m = kRingRadius_m - 7.5;
     add("parked" + std::to_string(i + 1), "passenger_car",
-        ring_trajectory(kRingRadius_m - 7.5, 0.0, 2 * kPi * i / 30.0 + 0.05, duration_s));
+        ring_trajectory({radius_m, radius_m * (2 * kPi * i / 30.0 + 0.05), 0.0}, duration_s));
   }
   const Recording rec = replay::model_recording(scene, "long_ring_drive", seed, {0.03, deg_to_rad(0.5)});
   write_recording(argv[1], rec);
