@@ -27,7 +27,8 @@ table { border-collapse: collapse; margin: 6px 0 14px; font-size: 13px; }
 th, td { border: 1px solid #ced4da; padding: 3px 8px; vertical-align: top; }
 th { background: #f1f3f5; text-align: left; font-weight: 600; white-space: pre; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
-table.kv th { min-width: 280px; }
+table.kv th { min-width: 200px; }
+table.kv td.text { text-align: left; }
 .scroll { overflow-x: auto; }
 .cols { display: flex; flex-wrap: wrap; gap: 24px; align-items: flex-start; }
 .figs { display: flex; flex-wrap: wrap; gap: 14px; }
@@ -51,32 +52,34 @@ void write_run_section(std::ostream& out, SQLite::Database& db, const report::Ru
                      escape(i.recording_name));
   out << R"(<div class="cols"><div><h3>Run</h3>)" << report::run_information_table(run)
       << "</div><div><h3>Summary</h3>" << report::summary_table(run) << "</div></div>";
-  out << "<h3>Sensors</h3>" << report::sensor_table(run);
+  out << R"(<h3>Sensors</h3><div class="scroll">)" << report::sensor_table(run) << "</div>";
   out << R"(<div class="cols"><div><h3>Objects</h3>)" << report::object_table(run)
       << "</div><div><h3>Distribution distances, recorded against simulated</h3>" << report::distance_table(run)
       << "</div></div>";
 
-  out << "<h3>Bird's-eye view of chosen cycles</h3>"
-         R"(<p class="hint">Ego vehicle frame of the pictured cycle, x forward (up), y left. Cycles chosen )"
+  out << fmt::format(R"(<h3 id="run-{}-pictures">Bird's-eye view of chosen cycles</h3>)", i.run_id)
+      << R"(<p class="hint">Ego vehicle frame of the pictured cycle, x forward (up), y left. Cycles chosen )"
          "automatically: the largest GOSPA, the most merge artefacts, the first recorded target, the middle of the "
-         "run, the first simulated target, the largest difference in target counts.</p>";
+         "run, the first simulated target, the largest difference in target counts, then the last cycle and the "
+         "quarters.</p>";
   out << R"(<div class="figs">)";
   for (const auto& chosen : report::choose_cycles(db, run, static_cast<std::size_t>(std::max(0, options.pictures)))) {
     out << svg::birdseye_svg(report::birdseye_of_cycle(db, run, chosen, options.trace_cycles));
   }
   out << "</div>";
 
-  out << "<h3>Time series</h3>";
+  out << fmt::format(R"(<h3 id="run-{}-series">Time series</h3>)", i.run_id);
   out << R"(<div class="figs">)";
   for (const auto& plot : report::time_series(db, run, max_points)) out << svg::plot_svg(plot);
   out << "</div>";
 
-  out << "<h3>Residuals of assigned pairs</h3>";
+  out << fmt::format(R"(<h3 id="run-{}-residuals">Residuals of assigned pairs</h3>)", i.run_id);
   out << R"(<div class="figs">)";
   for (const auto& h : report::residual_histograms(db, run, options.histogram_bins)) out << svg::histogram_svg(h);
   out << "</div>";
 
-  out << "<h3>Merge artefacts per object pair and sensor</h3>" << report::merge_artefact_table(run);
+  out << fmt::format(R"(<h3 id="run-{}-merge">Merge artefacts per object pair and sensor</h3>)", i.run_id)
+      << report::merge_artefact_table(run);
   out << "<h3>Confirmation latency per object and sensor</h3>" << report::latency_table(run);
   out << "<h3>Parameters and sources</h3>" << report::parameter_table(run);
   out << "<h3>Provenance</h3>" << report::provenance_blocks(run);

@@ -78,6 +78,12 @@ std::vector<ChosenCycle> choose_cycles(SQLite::Database& db, const RunData& run,
                 id, cycle, value, sensor)) {
     add(cycle, fmt::format("largest count difference ({:.0f})", value));
   }
+  // Fill up with the last cycle and the quarters, so that quiet runs still show their course.
+  if (run.info.cycles > 0) {
+    add(run.info.cycles - 1, "last cycle");
+    add(run.info.cycles / 4, "first quarter");
+    add(3 * run.info.cycles / 4, "third quarter");
+  }
   std::sort(chosen.begin(), chosen.end(), [](const auto& a, const auto& b) { return a.cycle < b.cycle; });
   return chosen;
 }
@@ -119,10 +125,11 @@ svg::BirdsEyeSpec birdseye_of_cycle(SQLite::Database& db, const RunData& run, co
     X_VW = inverse(compose(it->second, inverse(s.X_VS)));
     break;
   }
-  spec.title = fmt::format("Cycle {} at t = {:.2f} s: {}", k, t_s, chosen.reason);
-  spec.note = fmt::format("{} recorded / {} simulated targets; GOSPA {}{}", n_recorded, n_simulated,
-                          gospa_text.empty() ? "-" : gospa_text,
-                          spec.trace_cycles > 0 ? fmt::format("; faded: the {} cycles before", spec.trace_cycles) : "");
+  spec.title = fmt::format("Cycle {} at t = {:.2f} s", k, t_s);
+  spec.notes.push_back(chosen.reason);
+  spec.notes.push_back(fmt::format("{} recorded / {} simulated targets; GOSPA {}", n_recorded, n_simulated,
+                                   gospa_text.empty() ? "-" : gospa_text));
+  if (spec.trace_cycles > 0) spec.notes.push_back(fmt::format("faded: the {} cycles before", spec.trace_cycles));
   for (const auto& s : run.sensors) spec.sensors.push_back({s.id, s.X_VS, s.azimuth_half_rad, s.max_range_m});
 
   {
@@ -138,7 +145,7 @@ svg::BirdsEyeSpec birdseye_of_cycle(SQLite::Database& db, const RunData& run, co
       const int object = q.getColumn(0).getInt();
       const Pose2 X_WO{q.getColumn(1).getDouble(), q.getColumn(2).getDouble(), q.getColumn(3).getDouble()};
       svg::BirdsEyeBox box;
-      box.label = run.object_label(object);
+      box.label = svg::shorten(run.object_label(object), 14);
       box.X_VO = compose(X_VW, X_WO);
       for (const auto& o : run.objects) {
         if (o.object == object) box.length_m = o.length_m, box.width_m = o.width_m;
@@ -236,14 +243,15 @@ std::vector<svg::PlotSpec> time_series(SQLite::Database& db, const RunData& run,
     const std::string name = run.sensor_label(sensor);
     const auto pair = [&](svg::PlotSeries (&s)[2], bool dots) {
       s[0].label = "recorded", s[0].colour = svg::kRecordedColour, s[0].dots = dots;
-      s[1].label = "simulated", s[1].colour = svg::kSimulatedColour, s[1].dots = dots;
+      s[1].label = "simulated", s[1].colour = svg::kSimulatedColour, s[1].dots = dots, s[1].dashed = !dots;
       return std::vector<svg::PlotSeries>{std::move(s[0]), std::move(s[1])};
     };
-    plots.push_back({"Nearest target range, sensor " + name, "t / s", "range / m", dots_note, 600, 250,
+    plots.push_back({"Nearest target range, sensor " + name, "t / s", "range / m", dots_note, 600, 250, false,
                      pair(p.range, true)});
-    plots.push_back({"Nearest target lateral position, sensor " + name, "t / s", "y / m (vehicle frame)", dots_note, 600,
-                     250, pair(p.lateral, true)});
-    plots.push_back({"Targets per cycle, sensor " + name, "t / s", "targets", mean_note, 600, 250, pair(p.count, false)});
+    plots.push_back({"Nearest target lateral position, sensor " + name, "t / s", "y / m (vehicle frame)",
+                     dots_note, 600, 250, false, pair(p.lateral, true)});
+    plots.push_back({"Targets per cycle, sensor " + name, "t / s", "targets", mean_note, 600, 250, true,
+                     pair(p.count, false)});
     std::vector<svg::PlotSeries> gospa;
     if (stride > 1) {
       p.gospa_max.label = "maximum", p.gospa_max.colour = "#adb5bd";
@@ -251,7 +259,7 @@ std::vector<svg::PlotSpec> time_series(SQLite::Database& db, const RunData& run,
     }
     p.gospa_mean.label = stride > 1 ? "mean" : "GOSPA", p.gospa_mean.colour = "#212529";
     gospa.push_back(std::move(p.gospa_mean));
-    plots.push_back({"GOSPA, sensor " + name, "t / s", "GOSPA / m", mean_note, 600, 250, std::move(gospa)});
+    plots.push_back({"GOSPA, sensor " + name, "t / s", "GOSPA / m", mean_note, 600, 250, true, std::move(gospa)});
   }
   return plots;
 }
@@ -278,16 +286,19 @@ std::vector<svg::HistogramSpec> residual_histograms(SQLite::Database& db, const 
                                   {"Range-rate residual", "range rate, simulated - recorded / (m/s)", 1.0, 0.02},
                                   {"Amplitude residual", "amplitude, simulated - recorded / dB", 1.0, 0.02}};
 
-  // First pass, in SQL: count, mean, mean square, min, max of each residual.
+  // First pass, in SQL, over the pairs of about 5000 cycles spread over the run: count, mean,
+  // mean square, min, max of each residual, to choose the histogram ranges.
+  const int stride = std::max(1, run.info.cycles / 5000);
   SQLite::Statement stats(db, std::string("SELECT count(*), avg(d0), avg(d0 * d0), min(d0), max(d0), avg(d1), "
                                           "avg(d1 * d1), min(d1), max(d1), avg(d2), avg(d2 * d2), min(d2), max(d2), "
                                           "avg(d3), avg(d3 * d3), min(d3), max(d3) FROM (") +
-                                  kPairs + ")");
+                                  kPairs + " AND r.cycle % ? = 0)");
   stats.bind(1, run.info.run_id);
+  stats.bind(2, stride);
   stats.executeStep();
-  const long long n = stats.getColumn(0).getInt64();
+  const long long n_sample = stats.getColumn(0).getInt64();
   std::vector<svg::HistogramSpec> out(4);
-  double lo[4], width[4];
+  double lo[4], width[4], sum[4] = {0, 0, 0, 0}, sum_sq[4] = {0, 0, 0, 0};
   for (int i = 0; i < 4; ++i) {
     const Quantity& quantity = quantities[i];
     svg::HistogramSpec& h = out[static_cast<std::size_t>(i)];
@@ -295,16 +306,14 @@ std::vector<svg::HistogramSpec> residual_histograms(SQLite::Database& db, const 
     h.x_label = quantity.label;
     h.counts.assign(static_cast<std::size_t>(std::max(1, bins)), 0);
     double a = 0.0, b = 0.0;
-    if (n > 0) {
+    if (n_sample > 0) {
       const double mean = stats.getColumn(1 + 4 * i).getDouble() * quantity.scale;
       const double mean_sq = stats.getColumn(2 + 4 * i).getDouble() * quantity.scale * quantity.scale;
       const double sigma = std::sqrt(std::max(0.0, mean_sq - mean * mean));
-      const double rms = std::sqrt(std::max(0.0, mean_sq));
       // The view: the data, but no more than four standard deviations about the mean, so that
       // a few gross mismatches do not squeeze the bulk into one bin.
       a = std::max(stats.getColumn(3 + 4 * i).getDouble() * quantity.scale, mean - 4.0 * sigma);
       b = std::min(stats.getColumn(4 + 4 * i).getDouble() * quantity.scale, mean + 4.0 * sigma);
-      h.note = fmt::format("{} pairs, mean {:.3g}, RMS {:.3g}", n, mean, rms);
     }
     svg::widen(a, b, quantity.min_span, 0.02);
     lo[i] = a;
@@ -312,20 +321,28 @@ std::vector<svg::HistogramSpec> residual_histograms(SQLite::Database& db, const 
     h.lo = a;
     h.bin_width = width[i];
   }
-  if (n == 0) return out;
-  // Second pass: stream the pairs and bin them.
+  // Second pass: stream all pairs, bin them and sum for the exact mean and RMS.
   SQLite::Statement pairs(db, kPairs);
   pairs.bind(1, run.info.run_id);
+  long long n = 0;
   while (pairs.executeStep()) {
+    ++n;
     for (int i = 0; i < 4; ++i) {
       svg::HistogramSpec& h = out[static_cast<std::size_t>(i)];
       const double v = pairs.getColumn(i).getDouble() * quantities[i].scale;
+      sum[i] += v;
+      sum_sq[i] += v * v;
       const double bin = std::floor((v - lo[i]) / width[i]);
       const double last = static_cast<double>(h.counts.size() - 1);
       if (bin < 0.0) ++h.below;
       if (bin > last) ++h.above;
       ++h.counts[static_cast<std::size_t>(std::clamp(bin, 0.0, last))];
     }
+  }
+  for (int i = 0; i < 4 && n > 0; ++i) {
+    const double count = static_cast<double>(n);
+    out[static_cast<std::size_t>(i)].note =
+        fmt::format("{} pairs, mean {:.3g}, RMS {:.3g}", n, sum[i] / count, std::sqrt(sum_sq[i] / count));
   }
   return out;
 }

@@ -23,9 +23,10 @@ std::string opt(const std::optional<double>& value, int decimals, const char* no
 std::string deg(double angle_rad, int decimals) { return svg::fixed(rad_to_deg(angle_rad), decimals); }
 
 // A two-column row of a key-value table; `key` names the value for machine checks.
-std::string kv(const char* key, const std::string& label, const std::string& value, const std::string& unit) {
-  return fmt::format(R"(<tr><th>{}</th><td class="num" data-key="{}">{}</td><td>{}</td></tr>)", escape(label), key,
-                     escape(value), escape(unit));
+std::string kv(const char* key, const std::string& label, const std::string& value, const std::string& unit,
+               bool text = false) {
+  return fmt::format(R"(<tr><th>{}</th><td class="{}" data-key="{}">{}</td><td>{}</td></tr>)", escape(label),
+                     text ? "text" : "num", key, escape(value), escape(unit));
 }
 
 std::string header_row(std::initializer_list<const char*> names) {
@@ -46,16 +47,16 @@ std::string percent(std::int64_t part, std::int64_t whole) {
 std::string run_information_table(const RunData& run) {
   const RunInfo& i = run.info;
   std::string out = R"(<table class="kv run-info">)";
-  out += kv("recording", "recording", i.recording_name, "");
-  out += kv("recording_dir", "recording directory", i.recording_dir, "");
-  out += kv("checksum", "recording checksum (FNV-1a 64)", i.recording_checksum, "");
+  out += kv("recording", "recording", i.recording_name, "", true);
+  out += kv("recording_dir", "recording directory", i.recording_dir, "", true);
+  out += kv("checksum", "recording checksum (FNV-1a 64)", i.recording_checksum, "", true);
   out += kv("seed", "seed", std::to_string(i.seed), "");
   out += kv("cycles", "cycles", std::to_string(i.cycles), fmt::format("x {} sensors", run.sensors.size()));
   out += kv("cycle_time", "cycle time", num(i.cycle_time_s, 4), "s");
   out += kv("duration", "duration", num(i.cycle_time_s * i.cycles, 1), "s");
-  out += kv("level", "compared level", i.level, "");
-  out += kv("rcsim_version", "rcsim version", i.rcsim_version, "");
-  out += kv("created", "stored", i.created_utc, "UTC");
+  out += kv("level", "compared level", i.level, "", true);
+  out += kv("rcsim_version", "rcsim version", i.rcsim_version, "", true);
+  out += kv("created", "stored", i.created_utc, "UTC", true);
   return out + "</table>";
 }
 

@@ -58,9 +58,9 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
   const double cx = 0.5 * (bounds.x_lo + bounds.x_hi), cy = 0.5 * (bounds.y_lo + bounds.y_hi);
   const double x_lo = cx - 0.5 * span, x_hi = cx + 0.5 * span, y_lo = cy - 0.5 * span, y_hi = cy + 0.5 * span;
 
-  const double left = 58.0, top = 44.0, size = spec.size_px;
+  const double left = 58.0, top = 30.0 + 14.0 * static_cast<double>(spec.notes.size()), size = spec.size_px;
   const double right = left + size, bottom = top + size;
-  const int width_px = static_cast<int>(right + 16.0), height_px = static_cast<int>(bottom + 84.0);
+  const int width_px = static_cast<int>(right + 16.0), height_px = static_cast<int>(bottom + 104.0);
   // Screen: x (forward) up, y (left) to the left.
   const LinearScale sx{y_hi, y_lo, left, right}, sy{x_lo, x_hi, bottom, top};
   const auto px = [&](const Vec2& p_V) { return fmt::format("{},{}", coord(sx(p_V.y())), coord(sy(p_V.x()))); };
@@ -70,7 +70,9 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
                      width_px, height_px, escape(spec.title));
   out += fmt::format(R"(<rect class="bg" x="0" y="0" width="{}" height="{}" fill="#fff"/>)", width_px, height_px);
   out += fmt::format(R"(<text x="8" y="16" class="title">{}</text>)", escape(spec.title));
-  if (!spec.note.empty()) out += fmt::format(R"(<text x="8" y="32" class="note">{}</text>)", escape(spec.note));
+  for (std::size_t i = 0; i < spec.notes.size(); ++i) {
+    out += fmt::format(R"(<text x="8" y="{}" class="note">{}</text>)", 31 + 14 * i, escape(spec.notes[i]));
+  }
 
   // Axes with a metre grid.
   const Ticks tx = nice_ticks(x_lo, x_hi, 8), ty = nice_ticks(y_lo, y_hi, 8);
@@ -106,7 +108,8 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
     constexpr int kArcSegments = 32;
     for (int i = 0; i <= kArcSegments; ++i) {
       const double a = -s.azimuth_half_rad + 2.0 * s.azimuth_half_rad * i / kArcSegments;
-      points += " " + px(transform_point(s.X_VS, {s.max_range_m * std::cos(a), s.max_range_m * std::sin(a)}));
+      points += ' ';
+      points += px(transform_point(s.X_VS, {s.max_range_m * std::cos(a), s.max_range_m * std::sin(a)}));
     }
     out += fmt::format(R"(<polygon class="fov" points="{}" fill="#2b8a3e" fill-opacity="0.06" stroke="#2b8a3e" stroke-opacity="0.5" stroke-dasharray="5 4"/>)",
                        points);
@@ -115,7 +118,10 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
   out += R"(<g class="boxes">)";
   for (const auto& box : spec.boxes) {
     std::string points;
-    for (const Vec2& c : box_corners_V(box)) points += (points.empty() ? "" : " ") + px(c);
+    for (const Vec2& c : box_corners_V(box)) {
+      if (!points.empty()) points += ' ';
+      points += px(c);
+    }
     out += fmt::format(R"(<polygon class="box" points="{}" fill="#868e96" fill-opacity="0.18" stroke="{}" stroke-width="{}"/>)",
                        points, box.in_merge_pair ? "#862e9c" : "#495057", box.in_merge_pair ? "2" : "1.2");
     const Vec2 c = box.X_VO.translation();
@@ -168,9 +174,9 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
   out += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#555"/>)", coord(left),
                      coord(top), coord(size), coord(size));
 
-  // Legend under the axis label.
-  const double ly = bottom + 54.0, ly2 = bottom + 74.0;
-  const double l0 = left + 8.0, l1 = left + 150.0, l2 = left + 300.0;
+  // Legend under the axis label, three rows.
+  const double ly = bottom + 54.0, ly2 = bottom + 72.0, ly3 = bottom + 90.0;
+  const double l0 = left + 8.0, l1 = left + 160.0, l2 = left + 310.0;
   out += R"(<g class="legend-block">)";
   out += fmt::format(R"(<circle cx="{}" cy="{}" r="4.5" fill="{}"/><text x="{}" y="{}" class="legend">recorded target</text>)",
                      coord(l0), coord(ly - 4), kRecordedColour, coord(l0 + 10), coord(ly));
@@ -181,11 +187,11 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
                      coord(l2 - 8), coord(ly - 4), coord(l2 + 6), coord(ly - 4), coord(l2 + 10), coord(ly));
   out += fmt::format(R"(<circle cx="{}" cy="{}" r="7" fill="none" stroke="#862e9c" stroke-width="1.5"/><text x="{}" y="{}" class="legend">merge artefact</text>)",
                      coord(l0), coord(ly2 - 4), coord(l0 + 10), coord(ly2));
-  out += fmt::format(R"(<rect x="{}" y="{}" width="12" height="8" fill="#868e96" fill-opacity="0.18" stroke="#495057"/><text x="{}" y="{}" class="legend">annotated box</text>)",
-                     coord(l1 - 6), coord(ly2 - 8), coord(l1 + 10), coord(ly2));
-  out += fmt::format(R"(<polygon points="{},{} {},{} {},{}" fill="#2b8a3e" fill-opacity="0.15" stroke="#2b8a3e" stroke-dasharray="3 2"/><text x="{}" y="{}" class="legend">sensor and field of view</text>)",
-                     coord(l2 - 8), coord(ly2), coord(l2 + 6), coord(ly2 - 4), coord(l2 + 6), coord(ly2 + 4),
-                     coord(l2 + 10), coord(ly2));
+  out += fmt::format(R"(<polygon points="{},{} {},{} {},{}" fill="#2b8a3e" stroke="#111" stroke-width="0.8"/><text x="{}" y="{}" class="legend">sensor, with its field of view (dashed)</text>)",
+                     coord(l1 + 6), coord(ly2 - 4), coord(l1 - 5), coord(ly2 - 9), coord(l1 - 5), coord(ly2 + 1),
+                     coord(l1 + 10), coord(ly2));
+  out += fmt::format(R"(<rect x="{}" y="{}" width="12" height="8" fill="#868e96" fill-opacity="0.18" stroke="#495057"/><text x="{}" y="{}" class="legend">annotated box; purple outline: shares a range-speed cell with another</text>)",
+                     coord(l0 - 6), coord(ly3 - 8), coord(l0 + 10), coord(ly3));
   out += "</g>";
   out += "</svg>";
   return out;

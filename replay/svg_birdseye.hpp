@@ -37,9 +37,9 @@ struct BirdsEyeLink {  // an assigned recorded-simulated pair of the pictured cy
 
 struct BirdsEyeSpec {
   std::string title;
-  std::string note;
+  std::vector<std::string> notes;  // lines under the title
   int trace_cycles = 0;  // how many earlier cycles the traces cover
-  int size_px = 560;     // width of the square plot area
+  int size_px = 500;     // width of the square plot area
   std::vector<BirdsEyeBox> boxes;
   std::vector<BirdsEyeSensor> sensors;
   std::vector<BirdsEyeTarget> targets;

@@ -73,7 +73,12 @@ std::string plot_svg(const PlotSpec& spec) {
     x_lo = 0.0, x_hi = 1.0, y_lo = 0.0, y_hi = 1.0;
   }
   widen(x_lo, x_hi, 1e-3, 0.0);
-  widen(y_lo, y_hi, 1.0, 0.06);
+  if (spec.y_from_zero) {
+    y_lo = 0.0;
+    y_hi = n_points == 0 ? 1.0 : std::max(y_hi * 1.08, 1e-3);
+  } else {
+    widen(y_lo, y_hi, 1.0, 0.06);
+  }
   const Frame f{kMarginLeft, kMarginTop, spec.width_px - kMarginRight, spec.height_px - kMarginBottom};
   const Ticks tx = nice_ticks(x_lo, x_hi, 8), ty = nice_ticks(y_lo, y_hi, 5);
   const LinearScale sx{x_lo, x_hi, f.left, f.right}, sy{y_lo, y_hi, f.bottom, f.top};
@@ -94,8 +99,8 @@ std::string plot_svg(const PlotSpec& spec) {
     if (it->dots) {
       out += fmt::format(R"(<circle cx="{}" cy="12" r="3" fill="{}"/>)", coord(legend_x + 8), it->colour);
     } else {
-      out += fmt::format(R"(<line x1="{}" y1="12" x2="{}" y2="12" stroke="{}" stroke-width="2"/>)", coord(legend_x + 1),
-                         coord(legend_x + 15), it->colour);
+      out += fmt::format(R"(<line x1="{}" y1="12" x2="{}" y2="12" stroke="{}" stroke-width="2"{}/>)", coord(legend_x + 1),
+                         coord(legend_x + 15), it->colour, it->dashed ? R"( stroke-dasharray="4 2")" : "");
     }
     legend_x -= 14.0;
   }
@@ -123,8 +128,8 @@ std::string plot_svg(const PlotSpec& spec) {
       out += fmt::format(R"(<path class="series dots" d="{}" stroke="{}" stroke-width="4" stroke-linecap="round" fill="none"/>)",
                          d, s.colour);
     } else {
-      out += fmt::format(R"(<path class="series line" d="{}" stroke="{}" stroke-width="1.4" stroke-linejoin="round" fill="none"/>)",
-                         d, s.colour);
+      out += fmt::format(R"(<path class="series line" d="{}" stroke="{}" stroke-width="{}" stroke-linejoin="round" fill="none"{}/>)",
+                         d, s.colour, s.dashed ? "1.6" : "2.2", s.dashed ? R"( stroke-dasharray="6 3")" : "");
     }
   }
   out += "</svg>";

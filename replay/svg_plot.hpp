@@ -14,6 +14,7 @@ struct PlotSeries {
   std::string label;
   std::string colour;
   bool dots = false;                              // dots (a scatter) instead of a line
+  bool dashed = false;
   std::vector<std::pair<double, double>> points;  // (x, y); a NaN y breaks a line
 };
 
@@ -23,6 +24,7 @@ struct PlotSpec {
   std::string y_label;
   std::string note;     // small text under the title, e.g. how the series was thinned
   int width_px = 600, height_px = 250;
+  bool y_from_zero = false;  // for quantities that cannot be negative
   std::vector<PlotSeries> series;
 };
 
@@ -35,7 +37,7 @@ struct HistogramSpec {
   std::vector<long long> counts;     // the first and last bins include what lies beyond them
   long long below = 0, above = 0;    // how many of those were clamped into the end bins
   std::string note;
-  int width_px = 420, height_px = 230;
+  int width_px = 600, height_px = 230;
 };
 
 std::string histogram_svg(const HistogramSpec& spec);

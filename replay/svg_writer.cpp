@@ -22,6 +22,16 @@ std::string escape(std::string_view text) {
   return out;
 }
 
+std::string shorten(std::string_view text, std::size_t max_chars) {
+  std::size_t chars = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if ((static_cast<unsigned char>(text[i]) & 0xC0) == 0x80) continue;  // a continuation byte
+    if (chars == max_chars) return std::string(text.substr(0, i)) + "\u2026";
+    ++chars;
+  }
+  return std::string(text);
+}
+
 std::string coord(double value) {
   std::string text = fmt::format("{:.1f}", value);
   if (text == "-0.0") text = "0.0";

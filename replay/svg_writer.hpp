@@ -11,6 +11,9 @@ namespace rcsim::replay::svg {
 // (& < > " '). Every string that came from a recording or the database goes through this.
 std::string escape(std::string_view text);
 
+// At most `max_chars` characters (UTF-8 code points) of `text`, with an ellipsis if cut.
+std::string shorten(std::string_view text, std::size_t max_chars);
+
 // A coordinate in SVG user units: one decimal, no "-0".
 std::string coord(double value);
 

@@ -1,13 +1,43 @@
-// Placeholder while the replay harness (issue 4) is written.
-#include <stdexcept>
+// rcsim report REPORT.sqlite -o REPORT.html [--run ID ...]: the validation report a person reads.
+#include <iostream>
 
 #include "cli/commands.hpp"
+#include "replay/html_report.hpp"
 
 namespace rcsim::cli {
 
+namespace {
+
+struct ReportArgs {
+  std::string db_path;
+  std::string html_path;
+  replay::HtmlReportOptions options;
+};
+
+}  // namespace
+
 void add_report_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("report", "(not built yet)");
-  cmd->callback([] { throw std::runtime_error("rcsim report is not available in this build yet"); });
+  auto args = std::make_shared<ReportArgs>();
+  auto* cmd = app.add_subcommand("report", "write the HTML validation report of runs stored by rcsim replay");
+  cmd->add_option("REPORT_DB", args->db_path, "report database (rcsim-report, SQLite)")->required();
+  cmd->add_option("-o,--output", args->html_path, "HTML file to write (self-contained)")->required();
+  cmd->add_option("--run", args->options.run_ids, "run id to report (repeatable); default: the last --last runs");
+  cmd->add_option("--last", args->options.last_runs, "without --run: how many of the latest runs to report")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-points", args->options.max_points, "points per time series (longer runs are thinned)")
+      ->check(CLI::Range(100, 100000))
+      ->capture_default_str();
+  cmd->add_option("--pictures", args->options.pictures, "bird's-eye pictures per run")
+      ->check(CLI::Range(0, 20))
+      ->capture_default_str();
+  cmd->add_option("--trace-cycles", args->options.trace_cycles, "earlier cycles drawn as fading traces")
+      ->check(CLI::Range(0, 50))
+      ->capture_default_str();
+  cmd->callback([args] {
+    replay::write_html_report_file(args->db_path, args->html_path, args->options);
+    std::cerr << "rcsim report: wrote " << args->html_path << '\n';
+  });
 }
 
 }  // namespace rcsim::cli
