@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
-# The main job on a bundled scene: set up, build, simulate the paper's situation 1 with both
-# sensors and write the tracked target list to out/front_approach.csv.
+# The main job on the bundled recordings: set up and build, replay every recording of
+# recordings_synthetic/ (import, re-simulate, compare per cycle) into the SQLite report
+# out/report.sqlite, then write the HTML validation report out/report.html.
+# Runs accumulate in the database (rcsim never deletes a report); the HTML shows this batch.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh build
 mkdir -p out
-./build/bin/rcsim simulate docs/examples/front_approach.json --seed 1 -o out/front_approach.csv
-echo "== wrote out/front_approach.csv ($(($(wc -l < out/front_approach.csv) - 1)) targets); first rows:"
-head -n 6 out/front_approach.csv
+runs=0
+for recording in recordings_synthetic/*/; do
+  [ -f "$recording/recording.json" ] || continue
+  ./build/bin/rcsim replay "$recording" --db out/report.sqlite --seed 1
+  runs=$((runs + 1))
+done
+./build/bin/rcsim report out/report.sqlite -o out/report.html --last "$runs"
+echo "== open out/report.html in a browser (or query out/report.sqlite with sqlite3)"
