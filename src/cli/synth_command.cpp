@@ -1,13 +1,96 @@
-// Placeholder until the signal-level reference lands (issue 3); replaced by its real command.
-#include <stdexcept>
+// rcsim synth SCENE.json -o RECORDING_DIR: the signal-level reference simulation into a recording
+// (docs/synth.md), optionally with a bird's-eye SVG of its targets against another target list.
+#include <charconv>
+#include <filesystem>
+#include <memory>
+#include <string>
 
 #include "cli/commands.hpp"
+#include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+#include "io/recording.hpp"
+#include "scene/scene.hpp"
+#include "synth/reference_simulator.hpp"
+#include "synth/svg_plot.hpp"
 
 namespace rcsim::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SynthArgs {
+  std::string scene_path;
+  std::string output;
+  std::string seed = "0";
+  std::string svg;
+  std::string svg_compare;
+  double svg_time_s = -1.0;
+};
+
+std::uint64_t parse_seed(const std::string& text) {
+  std::uint64_t seed = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), seed);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    throw InputError("--seed", "", "'" + text + "' is not a whole number in 0..18446744073709551615");
+  }
+  return seed;
+}
+
+void require_parent_directory(const std::string& path, const std::string& what) {
+  const fs::path target = fs::absolute(path).lexically_normal();
+  const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
+  if (!fs::is_directory(parent)) throw InputError(path, "", what + ": the parent directory does not exist");
+}
+
+void run_synth(const SynthArgs& args) {
+  const std::uint64_t seed = parse_seed(args.seed);
+  if (args.output.empty()) throw InputError("-o", "", "an output recording directory is required");
+  require_parent_directory(args.output, "output recording directory");
+  if (!args.svg.empty()) require_parent_directory(args.svg, "SVG file");
+  if (!args.svg_compare.empty() && !fs::is_regular_file(args.svg_compare)) {
+    throw InputError(args.svg_compare, "", "no such target list file");
+  }
+
+  const Scene scene = load_scene_file(args.scene_path, ModelLibrary::builtin());
+  const nlohmann::json scene_json = parse_json_file(args.scene_path);
+  synth::RecordingInfo info;
+  const fs::path out = fs::absolute(args.output).lexically_normal();
+  info.name = out.filename().empty() ? out.parent_path().filename().string() : out.filename().string();
+  if (scene_json.contains("description") && scene_json["description"].is_string()) {
+    info.description = scene_json["description"].get<std::string>();
+  }
+  info.scene_file = fs::path(args.scene_path).filename().string();
+
+  const synth::SynthConfig config;
+  const Recording recording = synth::make_recording(scene, config, seed, info);
+  if (!args.svg.empty()) {
+    synth::SvgOptions options;
+    options.time_s = args.svg_time_s;
+    options.compare_path = args.svg_compare;
+    options.title = info.name;
+    const std::string svg = synth::birds_eye_svg(recording, options);
+    AtomicFileWriter file(args.svg);
+    file.stream() << svg;
+    file.commit();
+  }
+  write_recording(args.output, recording);
+}
+
+}  // namespace
 
 void add_synth_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("synth", "signal-level reference simulation into a recording (not built yet)");
-  cmd->callback([] { throw std::runtime_error("rcsim synth is not available in this build yet"); });
+  auto args = std::make_shared<SynthArgs>();
+  auto* cmd = app.add_subcommand("synth", "Signal-level reference simulation of a scene into a recording");
+  cmd->add_option("scene", args->scene_path, "Scene file (rcsim-scene, JSON)")->required();
+  cmd->add_option("-o,--output", args->output, "Recording directory to write (atomically)")->required();
+  cmd->add_option("--seed", args->seed, "Seed of every random draw (receiver noise, clutter, annotation)")
+      ->capture_default_str();
+  cmd->add_option("--svg", args->svg, "Also write a bird's-eye SVG of the targets (last 10 cycles before --svg-time)");
+  cmd->add_option("--svg-compare", args->svg_compare,
+                  "Target list CSV (rcsim simulate output) drawn against the reference in the SVG");
+  cmd->add_option("--svg-time", args->svg_time_s, "Time of the SVG snapshot in s (default: the last cycle)");
+  cmd->callback([args] { run_synth(*args); });
 }
 
 }  // namespace rcsim::cli
