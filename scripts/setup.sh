@@ -8,7 +8,7 @@ shift || true
 
 packages=(cmake ninja-build g++ ccache pkg-config libeigen3-dev libboost-dev libsqlite3-dev libcli11-dev
           nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libsqlitecpp-dev chromium fonts-dejavu-core)
+          libsqlitecpp-dev chromium fonts-dejavu-core tshark)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,13 +1,107 @@
-// Placeholder while live UDP playback (issue 5) is written; replaced by the real command.
-#include <stdexcept>
+// rcsim listen: the reference client of `rcsim stream` (docs/stream.md).
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
 
 #include "cli/commands.hpp"
+#include "common/atomic_file.hpp"
+#include "stream/listener.hpp"
+#include "stream/streamer.hpp"
 
 namespace rcsim::cli {
+namespace {
+
+struct ListenArgs {
+  std::uint16_t port = 0;
+  std::string bind;
+  std::string group;
+  std::string interface;
+  std::string subscribe;
+  std::string messages;
+  std::string sensors;
+  std::string print = "simulated";
+  std::string format = "csv";
+  std::string output;
+  std::string truth_output;
+  std::string pcap;
+  double idle_timeout_s = 0.0;
+  bool keep_going = false;
+};
+
+std::uint32_t sensor_mask(const std::string& list) {
+  std::uint32_t mask = 0;
+  std::stringstream items(list);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    std::size_t used = 0;
+    int index = -1;
+    try {
+      index = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || index < 0 || index > 31) {
+      throw std::invalid_argument("--sensors '" + list + "': expected sensor indices 0..31 separated by commas");
+    }
+    mask |= 1u << index;
+  }
+  return mask;
+}
+
+void run_listen(const ListenArgs& args) {
+  stream::ListenOptions options;
+  options.port = args.port;
+  options.bind_address = args.bind;
+  options.group = args.group;
+  options.group_interface = args.interface;
+  options.subscribe = args.subscribe;
+  options.print = args.print == "recorded" ? stream::MessageType::recorded_targets : stream::MessageType::simulated_targets;
+  if (args.messages.empty()) {
+    options.messages = stream::message_bit(options.print) | (args.truth_output.empty() ? 0u : stream::kTruthBit);
+  } else {
+    options.messages = stream::parse_message_mask(args.messages);
+  }
+  options.sensor_mask = args.sensors.empty() ? 0u : sensor_mask(args.sensors);
+  options.format = args.format == "jsonl" ? TargetListFormat::Jsonl : TargetListFormat::Csv;
+  options.truth_output = args.truth_output;
+  options.pcap_output = args.pcap;
+  options.idle_timeout_s = args.idle_timeout_s;
+  options.stop_at_end = !args.keep_going;
+  options.handle_signals = true;
+
+  std::optional<AtomicFileWriter> file;
+  if (!args.output.empty() && args.output != "-") file.emplace(args.output);
+  std::ostream& out = file ? file->stream() : std::cout;
+  stream::Listener listener(options, out, std::cerr);
+  const stream::ListenSummary summary = listener.run();
+  if (file) file->commit();
+  std::cerr << summary.line() << std::endl;
+}
+
+}  // namespace
 
 void add_listen_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("listen", "(not built yet)");
-  cmd->callback([] { throw std::runtime_error("rcsim listen is not available in this build yet"); });
+  auto args = std::make_shared<ListenArgs>();
+  auto* cmd = app.add_subcommand("listen", "Receive an rcsim stream and print its target lists as rcsim simulate does");
+  cmd->add_option("--port", args->port, "UDP port to receive on (0: any free port, printed at start)")->capture_default_str();
+  cmd->add_option("--bind", args->bind, "Local address (default 127.0.0.1; 0.0.0.0 with --group)");
+  cmd->add_option("--group", args->group, "Multicast group to join (IPv4)");
+  cmd->add_option("--interface", args->interface, "IPv4 address of the interface to join the group on (e.g. 127.0.0.1)");
+  cmd->add_option("--subscribe", args->subscribe, "Subscribe at a streamer's control port [HOST:]PORT instead of waiting passively");
+  cmd->add_option("--messages", args->messages, "What to subscribe to: simulated,recorded,truth (default: what is printed or written)");
+  cmd->add_option("--sensors", args->sensors, "Subscribe to these sensor indices only, e.g. 0,1");
+  cmd->add_option("--print", args->print, "Which target lists to print: simulated | recorded")
+      ->check(CLI::IsMember({"simulated", "recorded"}))
+      ->capture_default_str();
+  cmd->add_option("--format", args->format, "csv | jsonl")->check(CLI::IsMember({"csv", "jsonl"}))->capture_default_str();
+  cmd->add_option("-o,--output", args->output, "Output file (written atomically at the end); stdout if omitted");
+  cmd->add_option("--truth-output", args->truth_output, "Write the ground truth (ego and object boxes) to this CSV file");
+  cmd->add_option("--pcap", args->pcap, "Write every datagram received to this pcap file (for Wireshark/tshark)");
+  cmd->add_option("--idle-timeout-s", args->idle_timeout_s, "End after this long without a datagram (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--keep-going", args->keep_going, "Do not end at the end-of-stream datagram");
+  cmd->callback([args] { run_listen(*args); });
 }
 
 }  // namespace rcsim::cli

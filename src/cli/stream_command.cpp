@@ -1,13 +1,119 @@
-// Placeholder while live UDP playback (issue 5) is written; replaced by the real command.
-#include <stdexcept>
+// rcsim stream SCENE.json|RECORDING_DIR: live UDP playback (docs/stream.md, schemas/udp-stream.md).
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
 
 #include "cli/commands.hpp"
+#include "common/input_error.hpp"
+#include "stream/streamer.hpp"
 
 namespace rcsim::cli {
+namespace {
+
+struct StreamArgs {
+  std::string input;
+  std::vector<std::string> to;
+  std::string control;
+  std::string speed = "1";
+  bool stepped = false;
+  std::string messages;
+  std::string level = "tracks";
+  std::uint64_t seed = 0;
+  bool no_noise = false;
+  int wait_clients = 0;
+  double client_timeout_s = 5.0;
+  std::size_t max_clients = 16;
+  double late_ms = 2.0;
+  int ttl = 1;
+  std::string multicast_interface;
+  int from_cycle = 0;
+  bool hold = false;
+  std::size_t queue_cycles = 64;
+  int realtime = 0;
+};
+
+void run_stream(const StreamArgs& args) {
+  stream::SourceOptions source_options;
+  source_options.simulation.level = args.level == "detections" ? OutputLevel::detections : OutputLevel::tracks;
+  source_options.simulation.seed = args.seed;
+  source_options.simulation.noise = !args.no_noise;
+  const auto source = stream::open_source(args.input, source_options);
+
+  stream::StreamOptions options;
+  options.destinations = args.to;
+  options.control = args.control;
+  options.speed = stream::parse_speed(args.speed);
+  options.stepped = args.stepped;
+  const std::uint32_t available = source->available_messages();
+  options.destination_messages = args.messages.empty() ? (available & (stream::kSimulatedBit | stream::kRecordedBit))
+                                                       : stream::parse_message_mask(args.messages);
+  if ((options.destination_messages & ~available) != 0) {
+    throw InputError(args.input, "--messages", "a scene has no recorded target lists (stream a recording directory for those)");
+  }
+  options.wait_clients = args.wait_clients;
+  options.client_timeout_s = args.client_timeout_s;
+  options.max_clients = args.max_clients;
+  options.late_tolerance = std::chrono::nanoseconds(static_cast<std::int64_t>(args.late_ms * 1e6));
+  options.multicast_ttl = args.ttl;
+  options.multicast_interface = args.multicast_interface;
+  options.first_cycle = args.from_cycle;
+  options.hold_at_end = args.hold;
+  options.handle_signals = true;
+  options.queue_cycles = args.queue_cycles;
+  options.realtime_priority = args.realtime;
+
+  stream::Streamer streamer(*source, options, std::cerr);
+  std::string sensors;
+  for (const auto& id : source->sensor_ids()) sensors += (sensors.empty() ? "" : ", ") + id;
+  std::cerr << fmt::format("rcsim stream: {}: {} cycles, sensors {}; speed {}{}", args.input, source->cycle_count(), sensors,
+                           args.speed, args.stepped ? ", stepped" : "");
+  for (const auto& to : args.to) std::cerr << "; to " << to;
+  if (streamer.control_port() != 0) std::cerr << "; control port " << streamer.control_port();
+  std::cerr << std::endl;
+  const stream::StreamSummary summary = streamer.run();
+  std::cerr << summary.line() << std::endl;
+}
+
+}  // namespace
 
 void add_stream_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("stream", "(not built yet)");
-  cmd->callback([] { throw std::runtime_error("rcsim stream is not available in this build yet"); });
+  auto args = std::make_shared<StreamArgs>();
+  auto* cmd = app.add_subcommand("stream", "Play a scene or a recording live over UDP, paced against a steady clock");
+  cmd->add_option("input", args->input, "Scene file (rcsim-scene) or recording directory (rcsim-recording)")
+      ->required()
+      ->check(CLI::ExistingPath);
+  cmd->add_option("--to", args->to, "Destination HOST:PORT, unicast or multicast (repeatable)");
+  cmd->add_option("--control", args->control,
+                  "Control port [HOST:]PORT where clients subscribe, pause, resume, step and seek (HOST defaults to 127.0.0.1)");
+  cmd->add_option("--speed", args->speed, "1 real time, 10 ten times, max as fast as possible")->capture_default_str();
+  cmd->add_flag("--stepped", args->stepped, "Start paused: a client's STEP lets cycles out (RESUME plays paced)");
+  cmd->add_option("--messages", args->messages,
+                  "What --to destinations get: simulated,recorded,truth (default: the target lists the input has)");
+  cmd->add_option("--level", args->level, "tracks | detections")->check(CLI::IsMember({"tracks", "detections"}))->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Seed of every random draw")->capture_default_str();
+  cmd->add_flag("--no-noise", args->no_noise, "Turn every random draw off");
+  cmd->add_option("--wait-clients", args->wait_clients, "Hold the first cycle until this many clients have subscribed")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--client-timeout-s", args->client_timeout_s, "Drop a client not heard from for this long")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-clients", args->max_clients, "Most clients subscribed at once")->capture_default_str();
+  cmd->add_option("--late-ms", args->late_ms, "A cycle sent later than this after its deadline counts as late")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--ttl", args->ttl, "Multicast hop limit")->check(CLI::Range(0, 255))->capture_default_str();
+  cmd->add_option("--multicast-interface", args->multicast_interface, "IPv4 address of the interface multicast leaves from");
+  cmd->add_option("--from-cycle", args->from_cycle, "First cycle to send (earlier ones are simulated, not sent)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--hold", args->hold, "After the last cycle keep the control port open (clients may seek back); stop with Ctrl-C");
+  cmd->add_option("--queue-cycles", args->queue_cycles, "How many cycles the simulation may run ahead of the schedule")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
+      ->capture_default_str();
+  cmd->add_option("--realtime", args->realtime,
+                  "Run the sending thread with SCHED_FIFO at this priority (1..99; needs CAP_SYS_NICE): steadier pacing on busy machines")
+      ->check(CLI::Range(0, 99));
+  cmd->callback([args] { run_stream(*args); });
 }
 
 }  // namespace rcsim::cli

@@ -1,0 +1,67 @@
+#pragma once
+// rcsim listen: the reference client of the UDP stream. Receives passively (a --to destination
+// of the streamer, unicast or a multicast group) or subscribes at a control port; decodes,
+// reassembles fragments, tracks loss, duplicates and reordering per sender from the sequence
+// numbers, and prints the target lists in exactly the format of `rcsim simulate`.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "io/target_list_writer.hpp"
+#include "stream/wire_format.hpp"
+
+namespace rcsim::stream {
+
+struct ListenOptions {
+  std::uint16_t port = 0;                 // 0: any free port (reported in the log)
+  std::string bind_address;               // default 127.0.0.1, or 0.0.0.0 with a group
+  std::string group;                      // multicast group to join (IPv4)
+  std::string group_interface;            // IPv4 address of the interface to join on; empty: the system's choice
+  std::string subscribe;                  // [HOST:]PORT of a streamer's control port
+  std::uint32_t messages = kSimulatedBit; // what to subscribe to
+  std::uint32_t sensor_mask = 0;          // 0: every sensor
+  MessageType print = MessageType::simulated_targets;  // which target lists go to the output
+  TargetListFormat format = TargetListFormat::Csv;
+  std::string truth_output;  // CSV of the ground truth messages, if given
+  std::string pcap_output;   // every datagram received, as a pcap file, if given
+  double idle_timeout_s = 0.0;  // > 0: end after this long without a datagram
+  bool stop_at_end = true;      // end at the first END datagram
+  bool handle_signals = false;
+  double keepalive_s = 1.0;
+};
+
+struct ListenSummary {
+  std::uint64_t datagrams = 0, bytes = 0, sources = 0;
+  std::uint64_t malformed = 0;  // datagrams refused by the decoder, plus messages whose fragments disagree
+  std::array<std::uint64_t, kDecodeErrorCount> malformed_by_reason{};
+  std::uint64_t messages = 0, fragmented_messages = 0, target_lists = 0, rows = 0, truth_messages = 0;
+  std::uint64_t replies = 0, late_flagged = 0;
+  std::uint64_t lost = 0, duplicates = 0, reordered = 0, incomplete = 0;
+  bool end_received = false;
+  EndOfStream end;
+  bool interrupted = false, idle = false;
+  std::string line() const;
+};
+
+class Listener {
+ public:
+  Listener(const ListenOptions& options, std::ostream& out, std::ostream& log);
+  ~Listener();
+  Listener(const Listener&) = delete;
+  Listener& operator=(const Listener&) = delete;
+
+  std::uint16_t port() const;  // bound port, valid after construction
+  ListenSummary run();
+  void stop();  // thread-safe
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Rows of one target list in the `rcsim simulate` format (schemas/target-list.md), appended.
+void append_target_rows(std::string& out, TargetListFormat format, std::int64_t timestamp_ns, const TargetListMessage& list);
+
+}  // namespace rcsim::stream

@@ -1,0 +1,96 @@
+#pragma once
+// The receiving side's bookkeeping: loss, duplicates and reordering from the datagram sequence
+// numbers, and fragments put back together into whole messages (schemas/udp-stream.md).
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <span>
+#include <variant>
+#include <vector>
+
+#include "stream/wire_format.hpp"
+
+namespace rcsim::stream {
+
+enum class Arrival : std::uint8_t {
+  in_order,   // the next expected sequence number
+  after_gap,  // newer than expected: the numbers in between are (for now) missing
+  late,       // older than the newest, but missing until now: reordered, not lost
+  duplicate,  // seen before (or older than the tracking window)
+};
+
+// Sequence numbers of one stream. Numbers are counted from `first`, the first one seen (or 0
+// when the stream is known to start there: a fresh subscription). Loss at the end of a stream
+// shows once the END datagram (which has the last number) arrives.
+class SequenceTracker {
+ public:
+  // Missing numbers further back than this are given up on (counted lost, no longer tracked),
+  // so that a hostile jump in the numbers cannot make the set grow without bound.
+  static constexpr std::uint64_t kWindow = 1u << 16;
+
+  explicit SequenceTracker(std::optional<std::uint64_t> first = std::nullopt) : next_(first) {}
+
+  Arrival observe(std::uint64_t sequence);
+  std::uint64_t received() const { return received_; }  // distinct numbers
+  std::uint64_t duplicates() const { return duplicates_; }
+  std::uint64_t reordered() const { return reordered_; }
+  std::uint64_t lost() const { return given_up_ + missing_.size(); }  // missing so far
+  std::optional<std::uint64_t> first() const { return first_; }
+
+ private:
+  std::optional<std::uint64_t> next_;
+  std::optional<std::uint64_t> first_;
+  std::set<std::uint64_t> missing_;
+  std::uint64_t received_ = 0, duplicates_ = 0, reordered_ = 0, given_up_ = 0;
+};
+
+// A whole decoded message.
+using Message = std::variant<TargetListMessage, GroundTruthMessage>;
+struct CompleteMessage {
+  Header header;  // of the first fragment (fragment_index 0)
+  Message message;
+};
+
+// Puts fragments together by message number. Fragments that do not agree with the others of
+// their message (another type, cycle, sensor, total, or a gap in the item indices) make the
+// message malformed; messages that stay incomplete too long are dropped and counted.
+class Reassembler {
+ public:
+  // A partial message is given up once this many newer message numbers have been seen.
+  static constexpr std::uint32_t kMaxAge = 1024;
+
+  enum class Status : std::uint8_t { complete, pending, malformed, duplicate_fragment };
+  struct Result {
+    Status status = Status::pending;
+    DecodeError error = DecodeError::none;
+    std::optional<CompleteMessage> message;
+  };
+
+  // `header` decoded without error, of a target-list or ground-truth datagram; `payload` is the
+  // datagram after the header.
+  Result add(const Header& header, std::span<const std::uint8_t> payload);
+  // Gives up every partial message (at the end of the stream); returns how many.
+  std::uint64_t flush();
+
+  std::uint64_t incomplete() const { return incomplete_; }  // given up without all fragments
+  std::uint64_t fragmented_completed() const { return fragmented_completed_; }
+  std::size_t pending() const { return partial_.size(); }
+
+ private:
+  struct Partial {
+    Header first_header;
+    bool have_first = false;
+    std::vector<std::optional<std::vector<std::uint8_t>>> fragments;
+    std::size_t received = 0;
+    MessageType type{};
+  };
+  Result assemble(Partial& partial);
+  void expire(std::uint32_t newest);
+
+  std::map<std::uint32_t, Partial> partial_;
+  std::optional<std::uint32_t> newest_;
+  std::uint64_t incomplete_ = 0, fragmented_completed_ = 0;
+};
+
+}  // namespace rcsim::stream

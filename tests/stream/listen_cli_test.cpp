@@ -1,0 +1,90 @@
+// `rcsim listen` and `rcsim stream` as a user runs them: what listen prints over loopback is
+// byte-identical to what `rcsim simulate -o` writes; SIGTERM stops cleanly; bad input refused.
+#include <gtest/gtest.h>
+
+#include "stream_test_support.hpp"
+
+namespace rcsim::stream {
+namespace {
+
+using namespace std::chrono_literals;
+namespace fs = std::filesystem;
+
+const std::string kBinary = RCSIM_BINARY;
+const std::string kScene = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/front_approach.json";
+
+class ListenCli : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = testing::temp_dir("cli"); }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+// Runs `rcsim listen` (port 0, read back from its log), then `rcsim stream --speed max` to it.
+void stream_and_listen(const fs::path& dir, const std::string& format, const std::string& scene) {
+  const fs::path out = dir / ("listen." + format), log = dir / "listen.err";
+  testing::Child listener = testing::spawn({kBinary, "listen", "--port", "0", "--format", format, "-o", out.string()},
+                                           dir / "listen.out", log);
+  ASSERT_GT(listener.pid, 0);
+  const std::string port = testing::listening_port(testing::wait_for_text(log, "listening on"));
+  ASSERT_FALSE(port.empty()) << testing::read_file(log);
+  testing::Child streamer = testing::spawn({kBinary, "stream", scene, "--to", "127.0.0.1:" + port, "--speed", "max", "--seed", "11"},
+                                           dir / "stream.out", dir / "stream.err");
+  EXPECT_EQ(streamer.wait(), 0) << testing::read_file(dir / "stream.err");
+  ASSERT_EQ(listener.wait(), 0) << testing::read_file(log);
+  const std::string stream_log = testing::read_file(dir / "stream.err");
+  EXPECT_NE(stream_log.find("rcsim stream: 101 cycles, 203 datagrams"), std::string::npos) << stream_log;
+  const std::string listen_log = testing::read_file(log);
+  EXPECT_NE(listen_log.find(" 0 lost, 0 duplicates, 0 reordered, 0 incomplete, 0 malformed"), std::string::npos) << listen_log;
+  EXPECT_NE(listen_log.find("end of stream: the sender sent 203 datagrams"), std::string::npos) << listen_log;
+}
+
+TEST_F(ListenCli, PrintsExactlyWhatSimulateWritesCsvAndJsonl) {
+  for (const std::string format : {"csv", "jsonl"}) {
+    stream_and_listen(dir_, format, kScene);
+    const fs::path simulated = dir_ / ("simulate." + format);
+    testing::Child simulate = testing::spawn({kBinary, "simulate", kScene, "--seed", "11", "--format", format, "-o", simulated.string()},
+                                             dir_ / "simulate.out", dir_ / "simulate.err");
+    ASSERT_EQ(simulate.wait(), 0);
+    const std::string expected = testing::read_file(simulated);
+    EXPECT_GT(expected.size(), 5000u);
+    EXPECT_EQ(testing::read_file(dir_ / ("listen." + format)), expected) << format;
+  }
+}
+
+TEST_F(ListenCli, StreamStopsCleanlyOnSigtermWithAOneLineSummary) {
+  testing::Child streamer = testing::spawn({kBinary, "stream", kScene, "--to", "127.0.0.1:9", "--speed", "1"}, dir_ / "out", dir_ / "err");
+  testing::wait_for_text(dir_ / "err", "rcsim stream: ");
+  std::this_thread::sleep_for(300ms);
+  ::kill(streamer.pid, SIGTERM);
+  EXPECT_EQ(streamer.wait(), 0);
+  const std::string log = testing::read_file(dir_ / "err");
+  const std::size_t last = log.rfind("rcsim stream: stopped, ");
+  ASSERT_NE(last, std::string::npos) << log;
+  const std::string line = log.substr(last);
+  EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << "one line";
+  for (const char* part : {" cycles, ", " datagrams, ", " bytes, ", " late cycles"}) EXPECT_NE(line.find(part), std::string::npos) << part;
+}
+
+TEST_F(ListenCli, BadArgumentsAreRefusedWithAMessage) {
+  const auto run = [this](const std::vector<std::string>& args) {
+    testing::Child c = testing::spawn(args, dir_ / "out", dir_ / "err");
+    const int code = c.wait();
+    return std::make_pair(code, testing::read_file(dir_ / "err"));
+  };
+  auto [code, err] = run({kBinary, "stream", kScene});
+  EXPECT_NE(code, 0);
+  EXPECT_NE(err.find("--to"), std::string::npos) << err;
+  std::tie(code, err) = run({kBinary, "stream", kScene, "--to", "127.0.0.1:5000", "--speed", "0"});
+  EXPECT_NE(code, 0);
+  EXPECT_NE(err.find("--speed"), std::string::npos) << err;
+  std::tie(code, err) = run({kBinary, "stream", kScene, "--to", "127.0.0.1:5000", "--messages", "recorded"});
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(err.find("--messages"), std::string::npos) << err;
+  std::tie(code, err) = run({kBinary, "stream", kScene, "--to", "nohost.invalid:5000"});
+  EXPECT_NE(code, 0);
+  EXPECT_NE(err.find("nohost.invalid"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace rcsim::stream
