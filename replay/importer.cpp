@@ -101,6 +101,9 @@ ImportedScene import_recording(const Recording& rec, const ModelLibrary& library
   out.effects = options.effects;
   out.ego = ego_trajectory(rec, out.time_offset_s);
   out.sensors = rec.sensors;
+  if (!options.sensor_type_override.empty()) {
+    for (auto& sensor : out.sensors) sensor.type = options.sensor_type_override;
+  }
   for (std::size_t i = 0; i < rec.objects.size(); ++i) {
     const RecordingObject& object = rec.objects[i];
     if (!library.contains(object.object_class)) {

@@ -16,6 +16,9 @@ struct ImportOptions {
   double smoothing_half_window_s = 0.5;  // ±0.5 s: about 25 boxes at 25 Hz
   double max_gap_s = 0.5;  // a longer hole in an object's annotation is refused, not bridged
   Effects effects{true, true, true};  // a real drive has clutter, multiple reflections, occlusion
+  // When set, every sensor is simulated with this configuration (a built-in name or a file path)
+  // instead of the type the recording names: to compare sensor configurations on one drive.
+  std::string sensor_type_override;
 };
 
 struct ImportedObject {

@@ -145,8 +145,8 @@ void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported
   run_id_ = db_.getLastInsertRowid();
 
   SQLite::Statement sensor(db_, "INSERT INTO run_sensors VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  for (std::size_t i = 0; i < rec.sensors.size(); ++i) {
-    const RecordingSensor& s = rec.sensors[i];
+  for (std::size_t i = 0; i < imported.sensors.size(); ++i) {
+    const RecordingSensor& s = imported.sensors[i];  // with the type actually simulated
     sensor.bind(1, run_id_);
     sensor.bind(2, static_cast<int>(i));
     sensor.bind(3, s.id);

@@ -1,6 +1,7 @@
 #pragma once
 // Command-line options shared by rcsim import and rcsim replay.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@ struct ImportArgs {
   double smoothing_half_window_s = replay::ImportOptions{}.smoothing_half_window_s;
   double max_gap_s = replay::ImportOptions{}.max_gap_s;
   std::string effects = "clutter,multibounce,occlusion";
+  std::string sensor;
 };
 
 inline void add_import_options(CLI::App& cmd, ImportArgs& args) {
@@ -25,6 +27,9 @@ inline void add_import_options(CLI::App& cmd, ImportArgs& args) {
   cmd.add_option("--effects", args.effects,
                  "effects of the re-simulation, comma-separated from clutter,multibounce,occlusion, or none")
       ->capture_default_str();
+  cmd.add_option("--sensor", args.sensor,
+                 "simulate every sensor with this configuration (built-in name or rcsim-sensor file) instead of "
+                 "the recording's");
 }
 
 inline replay::ImportOptions import_options(const ImportArgs& args) {
@@ -32,6 +37,11 @@ inline replay::ImportOptions import_options(const ImportArgs& args) {
   options.smoothing_half_window_s = args.smoothing_half_window_s;
   options.max_gap_s = args.max_gap_s;
   options.effects = {};
+  if (!args.sensor.empty()) {
+    // A file named on the command line is relative to the working directory, not the recording.
+    const bool is_path = args.sensor.find('/') != std::string::npos || args.sensor.ends_with(".json");
+    options.sensor_type_override = is_path ? std::filesystem::absolute(args.sensor).string() : args.sensor;
+  }
   std::string rest = args.effects;
   while (!rest.empty() && rest != "none") {
     const auto comma = rest.find(',');

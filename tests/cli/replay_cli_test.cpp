@@ -82,6 +82,33 @@ TEST_F(ReplayCli, RunsAccumulateAndTheSameSeedRepeatsExactly) {
   EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), 1);
 }
 
+TEST_F(ReplayCli, AnotherSensorConfigurationIsStoredWithItsRun) {
+  const fs::path rec = recording(2.0);
+  const std::string db = (dir_ / "r.sqlite").string();
+  std::string config = read_file(fs::path(RCSIM_SOURCE_DIR) / "src/sensor/sensors/srr24.json");
+  const std::string six_db = "\"detection_threshold_db\": 6.0";
+  const auto threshold = config.find(six_db);
+  ASSERT_NE(threshold, std::string::npos);
+  config.replace(threshold, six_db.size(), "\"detection_threshold_db\": 18.0");
+  std::ofstream(dir_ / "srr24_18db.json") << config;
+  ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db).exit_code, 0);
+  const auto r = run_rcsim("replay " + rec.string() + " --db " + db + " --sensor " + (dir_ / "srr24_18db.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  SQLite::Database d(db);
+  SQLite::Statement q(d, "SELECT count(*) FROM run_sensors WHERE run_id = 2 AND configuration LIKE ? AND type LIKE ?");
+  q.bind(1, "%\"detection_threshold_db\": 18.0%");
+  q.bind(2, "%srr24_18db.json");
+  ASSERT_TRUE(q.executeStep());
+  EXPECT_EQ(q.getColumn(0).getInt(), 2);
+  const auto simulated = [&](int run) {
+    SQLite::Statement t(d, "SELECT targets_simulated FROM summaries WHERE run_id = ?");
+    t.bind(1, run);
+    t.executeStep();
+    return t.getColumn(0).getInt();
+  };
+  EXPECT_LT(simulated(2), simulated(1));  // a higher threshold detects less
+}
+
 TEST_F(ReplayCli, ImportWritesALoadableScene) {
   const fs::path rec = recording(2.0);
   const fs::path scene = dir_ / "scene.json";
