@@ -1,4 +1,6 @@
 // rcsim replay RECORDING_DIR --db REPORT.sqlite: import, re-simulate, compare per cycle, store.
+#include <csignal>
+#include <cstdlib>
 #include <fmt/format.h>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -56,6 +58,27 @@ nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, c
           {"wall_s", s.total_wall_s}};
 }
 
+// For the interruption test: with RCSIM_TEST_KILL_AFTER_CYCLES=N in the environment the process
+// kills itself (SIGKILL, no clean-up of any kind) after storing N sensor cycles, i.e. in the
+// middle of the run's transaction, exactly like a replay killed from outside.
+class KillAfterCycles final : public replay::ReplaySink {
+ public:
+  KillAfterCycles(replay::ReplaySink& inner, long cycles) : inner_(inner), remaining_(cycles) {}
+  void begin_run(const Recording& r, const replay::ImportedScene& i, const Scene& s,
+                 const replay::ReplayOptions& o) override {
+    inner_.begin_run(r, i, s, o);
+  }
+  void add_cycle(const replay::CycleComparison& c) override {
+    inner_.add_cycle(c);
+    if (--remaining_ == 0) std::raise(SIGKILL);
+  }
+  void end_run(const replay::ReplaySummary& s) override { inner_.end_run(s); }
+
+ private:
+  replay::ReplaySink& inner_;
+  long remaining_;
+};
+
 void run_replay(const ReplayArgs& args) {
   const Recording recording = read_recording(args.recording_dir);
   replay::ReplayOptions options;
@@ -65,7 +88,10 @@ void run_replay(const ReplayArgs& args) {
   options.association_gate_m = args.gate_m;
   const auto db = replay::open_report_database(args.db_path, true);
   replay::ReportWriter writer(*db);
-  const replay::ReplaySummary summary = replay::replay_recording(recording, options, writer);
+  const char* kill_after = std::getenv("RCSIM_TEST_KILL_AFTER_CYCLES");
+  KillAfterCycles killer(writer, kill_after ? std::atol(kill_after) : 0);
+  replay::ReplaySink& sink = kill_after ? static_cast<replay::ReplaySink&>(killer) : writer;
+  const replay::ReplaySummary summary = replay::replay_recording(recording, options, sink);
   if (args.json) {
     std::cout << summary_json(writer.run_id(), recording, summary).dump(2) << '\n';
   } else {
