@@ -28,6 +28,18 @@ double detectable_range_m(const SensorConfig& config, const ObjectModel& model) 
   return std::min(config.fov.max_range_m, std::max(0.0, margin_db / law.reference_slope_db_per_m));
 }
 
+// The fields both target kinds share (RecordedTarget, ReportedTarget).
+template <typename Target>
+ComparedTarget compared(const Target& target) {
+  ComparedTarget t;
+  t.track_id = target.id;
+  t.range_m = target.range_m;
+  t.azimuth_rad = target.azimuth_rad;
+  t.range_rate_mps = target.range_rate_mps;
+  t.amplitude_db = target.amplitude_db;
+  return t;
+}
+
 struct Accumulators {
   double gospa_sum = 0.0, ospa_sum = 0.0, localisation_sum = 0.0, missed_sum = 0.0, false_sum = 0.0;
   long long sensor_cycles = 0;
@@ -149,25 +161,9 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
         }
       }
       for (std::size_t i = cursor; i < cycle_end; ++i) {
-        const RecordedTarget& r = rec.targets[i];
-        if (r.sensor != static_cast<int>(s)) continue;
-        ComparedTarget t;
-        t.track_id = r.id;
-        t.range_m = r.range_m;
-        t.azimuth_rad = r.azimuth_rad;
-        t.range_rate_mps = r.range_rate_mps;
-        t.amplitude_db = r.amplitude_db;
-        cycle.recorded.push_back(t);
+        if (rec.targets[i].sensor == static_cast<int>(s)) cycle.recorded.push_back(compared(rec.targets[i]));
       }
-      for (const ReportedTarget& r : simulation.sensor_state(s).reported) {
-        ComparedTarget t;
-        t.track_id = r.id;
-        t.range_m = r.range_m;
-        t.azimuth_rad = r.azimuth_rad;
-        t.range_rate_mps = r.range_rate_mps;
-        t.amplitude_db = r.amplitude_db;
-        cycle.simulated.push_back(t);
-      }
+      for (const ReportedTarget& r : simulation.sensor_state(s).reported) cycle.simulated.push_back(compared(r));
       const std::vector<metrics::MergePair> pairs = metrics::merge_pairs(in_view, merge);
       cycle.merge_pairs.clear();
       for (const auto& p : pairs) cycle.merge_pairs.emplace_back(in_view[p.box_a].object, in_view[p.box_b].object);

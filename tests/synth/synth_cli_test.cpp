@@ -9,33 +9,17 @@
 #include <string>
 #include <unistd.h>
 
+#include "cli/run_rcsim.hpp"
 #include "io/recording.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code;
-  std::string output;
-};
+using Result = rcsim::testing::CommandResult;
 
-Result run(const std::string& args) {
-  const std::string command = std::string(RCSIM_BINARY) + " " + args + " 2>&1";
-  Result result{0, {}};
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-  result.exit_code = WEXITSTATUS(pclose(pipe));
-  return result;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+Result run(const std::string& args) { return rcsim::testing::run_rcsim(args); }
+std::string read(const fs::path& p) { return rcsim::testing::read_file(p); }
 
 const std::string kScenes = std::string(RCSIM_SOURCE_DIR) + "/recordings_synthetic/scenes/";
 
