@@ -3,8 +3,7 @@
 // neighbouring lanes, each surging back and forth around the ego (its arc distance to the ego
 // oscillates between about 5 m behind and 45 m ahead), so that there is always traffic in view;
 // thirty cars are parked along the inner edge. The targets are the reflection-center model's
-// own, the boxes carry
-// annotation noise (3 cm, 0.5°).
+// own; objects are annotated while within 60 m of the ego, with annotation noise (3 cm, 0.5°).
 //   usage: rcsim_make_long_recording OUTPUT_DIR [DURATION_S=3600] [SEED=1]
 #include <cmath>
 #include <cstdlib>
@@ -93,7 +92,7 @@ int main(int argc, char** argv) {
     add("parked" + std::to_string(i + 1), "passenger_car",
         ring_trajectory({radius_m, radius_m * (2 * kPi * i / 30.0 + 0.05), 0.0}, duration_s));
   }
-  const Recording rec = replay::model_recording(scene, "long_ring_drive", seed, {0.03, deg_to_rad(0.5)});
+  const Recording rec = replay::model_recording(scene, "long_ring_drive", seed, {0.03, deg_to_rad(0.5), 60.0});
   write_recording(argv[1], rec);
   std::cout << rec.cycle_count() << " cycles, " << rec.targets.size() << " targets, " << rec.objects.size()
             << " objects written to " << argv[1] << '\n';

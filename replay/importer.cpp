@@ -43,17 +43,21 @@ ImportedObject import_object(const Recording& rec, std::size_t index, double t0_
   out.width_m = object.width_m;
 
   std::vector<double> t_s, x_m, y_m, yaw_rad, speed_mps;
+  // Present over the annotated spans, widened by half a cycle so that a cycle whose time carries
+  // rounding still sees the object at both ends.
+  const double half_cycle_s = 0.5 * rec.cycle_time_s;
+  out.presence.push_back({boxes.front().t_s - t0_s - half_cycle_s, 0.0});
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const AnnotatedBox& b = boxes[i];
     if (i > 0) {
       const double gap_s = b.t_s - boxes[i - 1].t_s;
       if (gap_s > options.max_gap_s) {
-        throw InputError(boxes_file(rec), fmt::format("lines {} and {}", boxes[i - 1].line, b.line),
-                         fmt::format("object '{}' is not annotated for {:.3f} s ({} s to {} s), more than the {} s "
-                                     "the importer bridges; split it into two objects or raise --max-gap-s",
-                                     object.id, gap_s, boxes[i - 1].t_s, b.t_s, options.max_gap_s));
-      }
-      if (gap_s > 1.5 * rec.cycle_time_s) {
+        warnings.push_back(fmt::format("{}: lines {} and {}: object '{}' not annotated for {:.3f} s; absent from the "
+                                       "scene in between",
+                                       boxes_file(rec), boxes[i - 1].line, b.line, object.id, gap_s));
+        out.presence.back().until_s = boxes[i - 1].t_s - t0_s + half_cycle_s;
+        out.presence.push_back({b.t_s - t0_s - half_cycle_s, 0.0});
+      } else if (gap_s > 1.5 * rec.cycle_time_s) {
         warnings.push_back(fmt::format("{}: lines {} and {}: object '{}' not annotated for {:.3f} s; interpolated",
                                        boxes_file(rec), boxes[i - 1].line, b.line, object.id, gap_s));
       }
@@ -81,10 +85,7 @@ ImportedObject import_object(const Recording& rec, std::size_t index, double t0_
     s.yaw_rate_radps = yaw_fit[i].slope_per_s;
     out.trajectory.push_back(s);
   }
-  // Present over the annotated span, widened by half a cycle so that a cycle whose time carries
-  // rounding still sees the object at both ends.
-  out.present_from_s = t_s.front() - 0.5 * rec.cycle_time_s;
-  out.present_until_s = t_s.back() + 0.5 * rec.cycle_time_s;
+  out.presence.back().until_s = t_s.back() + half_cycle_s;
   return out;
 }
 
@@ -151,8 +152,7 @@ Scene build_scene(const ImportedScene& in, const ModelLibrary& library, const st
                                    e.what()));
     }
     object.trajectory = Trajectory(o.trajectory);
-    object.present_from_s = o.present_from_s;
-    object.present_until_s = o.present_until_s;
+    object.presence = o.presence;
     scene.objects.push_back(std::move(object));
   }
   return scene;
@@ -190,8 +190,10 @@ void write_scene_file(const std::string& path, const ImportedScene& in) {
       j["width_m"] = o.width_m;
       trajectory.push_back(std::move(j));
     }
-    objects.push_back({{"id", o.id}, {"model", o.model}, {"present_from_s", o.present_from_s},
-                       {"present_until_s", o.present_until_s}, {"trajectory", std::move(trajectory)}});
+    Json presence = Json::array();
+    for (const TimeInterval& i : o.presence) presence.push_back({i.from_s, i.until_s});
+    objects.push_back({{"id", o.id}, {"model", o.model}, {"present_s", std::move(presence)},
+                       {"trajectory", std::move(trajectory)}});
   }
   scene["objects"] = std::move(objects);
   AtomicFileWriter file(path);

@@ -2,7 +2,7 @@
 // Recording -> scene (rcsim import, and the first step of rcsim replay): the ego log becomes the
 // ego trajectory as it is; each annotated object gets the library model its class names, scaled
 // to its annotated length and width, and a trajectory through its smoothed annotated boxes
-// (annotation_smoothing.hpp); it takes part only over the span of its annotation.
+// (annotation_smoothing.hpp); it takes part only over the spans of its annotation.
 #include <string>
 #include <vector>
 
@@ -14,7 +14,9 @@ namespace rcsim::replay {
 
 struct ImportOptions {
   double smoothing_half_window_s = 0.5;  // ±0.5 s: about 25 boxes at 25 Hz
-  double max_gap_s = 0.5;  // a longer hole in an object's annotation is refused, not bridged
+  // A hole in an object's annotation up to this long is bridged by interpolation; a longer one
+  // means the object was out of sight: it is absent from the scene in between.
+  double max_gap_s = 0.5;
   Effects effects{true, true, true};  // a real drive has clutter, multiple reflections, occlusion
   // When set, every sensor is simulated with this configuration (a built-in name or a file path)
   // instead of the type the recording names: to compare sensor configurations on one drive.
@@ -25,7 +27,7 @@ struct ImportedObject {
   std::string id;
   std::string model;  // the class
   double length_m = 0.0, width_m = 0.0;
-  double present_from_s = 0.0, present_until_s = 0.0;
+  std::vector<TimeInterval> presence;  // the spans of its annotation, ± half a cycle
   std::vector<TrajectorySample> trajectory;
 };
 

@@ -15,7 +15,6 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
   for (const auto& s : scene.sensors) {
     rec.sensors.push_back({s.id, s.config.name, s.X_VS.x_m, s.X_VS.y_m, s.X_VS.yaw_rad});
   }
-  for (const auto& o : scene.objects) rec.objects.push_back({o.id, o.model_name, o.model.length_m, o.model.width_m});
   rec.boxes.resize(scene.objects.size());
   SimulationOptions options;
   options.seed = seed;
@@ -29,6 +28,7 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       if (!scene.objects[o].present_at(t_s)) continue;
       const BodyState& s = simulation.snapshot().objects[o];
+      if ((s.X_WB.translation() - ego.X_WB.translation()).norm() > noise.max_range_m) continue;
       AnnotatedBox box;
       box.t_s = t_s;
       box.x_m = s.X_WB.x_m + noise.position_sigma_m * annotation.normal();
@@ -44,7 +44,18 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
       }
     }
   }
-  return rec;
+  // Objects never annotated are not listed (a recording lists what was annotated).
+  Recording listed = std::move(rec);
+  rec = Recording{};
+  std::vector<std::vector<AnnotatedBox>> boxes = std::move(listed.boxes);
+  listed.boxes.clear();
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    if (boxes[o].empty()) continue;
+    const SceneObject& object = scene.objects[o];
+    listed.objects.push_back({object.id, object.model_name, object.model.length_m, object.model.width_m});
+    listed.boxes.push_back(std::move(boxes[o]));
+  }
+  return listed;
 }
 
 }  // namespace rcsim::replay

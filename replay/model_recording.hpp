@@ -5,6 +5,7 @@
 // model replayed against itself with the same seed must agree) and the replay benchmark's
 // hour-long recording.
 #include <cstdint>
+#include <limits>
 
 #include "io/recording.hpp"
 #include "scene/scene.hpp"
@@ -14,6 +15,9 @@ namespace rcsim::replay {
 struct AnnotationNoise {
   double position_sigma_m = 0.0;
   double yaw_sigma_rad = 0.0;
+  // Objects are annotated only while their centre is this close to the ego vehicle (a labelling
+  // tool annotates what is in sight).
+  double max_range_m = std::numeric_limits<double>::infinity();
 };
 
 Recording model_recording(const Scene& scene, const std::string& name, std::uint64_t seed,

@@ -21,7 +21,7 @@ inline void add_import_options(CLI::App& cmd, ImportArgs& args) {
                  "half width of the local quadratic smoothing of annotated boxes (0: none)")
       ->check(CLI::Range(0.0, 60.0))
       ->capture_default_str();
-  cmd.add_option("--max-gap-s", args.max_gap_s, "longest hole in an object's annotation that is bridged")
+  cmd.add_option("--max-gap-s", args.max_gap_s, "longest hole in an object's annotation that is bridged; during a longer one the object is absent")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd.add_option("--effects", args.effects,

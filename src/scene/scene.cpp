@@ -42,6 +42,43 @@ ObjectModel model_for(const JsonField& object, const ModelLibrary& library, cons
   }
 }
 
+// Either present_from_s / present_until_s (one interval, either end open) or present_s: a list of
+// [from_s, until_s] pairs in increasing, non-overlapping order.
+std::vector<TimeInterval> parse_presence(const JsonField& o) {
+  std::vector<TimeInterval> presence;
+  if (o.has("present_s")) {
+    if (o.has("present_from_s") || o.has("present_until_s")) {
+      o.fail("present_s", "give either present_s or present_from_s/present_until_s, not both");
+    }
+    const auto intervals = o.array("present_s");
+    if (intervals.empty()) o.fail("present_s", "needs at least one [from_s, until_s] interval");
+    for (std::size_t i = 0; i < intervals.size(); ++i) {
+      const nlohmann::json& pair = intervals[i].json();
+      if (!pair.is_array() || pair.size() != 2 || !pair[0].is_number() || !pair[1].is_number()) {
+        intervals[i].fail("must be [from_s, until_s] with two numbers");
+      }
+      const TimeInterval interval{pair[0].get<double>(), pair[1].get<double>()};
+      if (!std::isfinite(interval.from_s) || !std::isfinite(interval.until_s) || interval.until_s < interval.from_s) {
+        intervals[i].fail(fmt::format("[{}, {}] is not an interval", interval.from_s, interval.until_s));
+      }
+      if (!presence.empty() && interval.from_s <= presence.back().until_s) {
+        intervals[i].fail("intervals must be in increasing order and must not overlap");
+      }
+      presence.push_back(interval);
+    }
+    return presence;
+  }
+  if (o.has("present_from_s") || o.has("present_until_s")) {
+    const TimeInterval interval{o.number_or("present_from_s", -std::numeric_limits<double>::infinity()),
+                                o.number_or("present_until_s", std::numeric_limits<double>::infinity())};
+    if (interval.until_s < interval.from_s) {
+      o.fail("present_until_s", fmt::format("{} s is before present_from_s {} s", interval.until_s, interval.from_s));
+    }
+    presence.push_back(interval);
+  }
+  return presence;
+}
+
 }  // namespace
 
 SensorConfig sensor_config_for_type(const std::string& type, const std::string& base_dir) {
@@ -138,7 +175,7 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
   std::set<std::string> object_ids;
   if (root.has("objects")) {
     for (const auto& o : root.array("objects")) {
-      o.expect_only({"id", "model", "trajectory", "present_from_s", "present_until_s"});
+      o.expect_only({"id", "model", "trajectory", "present_from_s", "present_until_s", "present_s"});
       SceneObject object;
       object.id = o.string("id");
       if (!object_ids.insert(object.id).second) o.fail("id", "duplicate object id \"" + object.id + "\"");
@@ -162,12 +199,7 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
         }
       }
       object.trajectory = Trajectory(samples);
-      object.present_from_s = o.number_or("present_from_s", object.present_from_s);
-      object.present_until_s = o.number_or("present_until_s", object.present_until_s);
-      if (object.present_until_s < object.present_from_s) {
-        o.fail("present_until_s", fmt::format("{} s is before present_from_s {} s", object.present_until_s,
-                                              object.present_from_s));
-      }
+      object.presence = parse_presence(o);
       scene.objects.push_back(std::move(object));
     }
   }

@@ -23,16 +23,26 @@ struct MountedSensor {
   Pose2 X_VS;  // sensor pose in the ego vehicle frame
 };
 
+struct TimeInterval {
+  double from_s = 0.0;
+  double until_s = 0.0;
+};
+
 struct SceneObject {
   std::string id;
   std::string model_name;
   ObjectModel model;  // scaled to the object's size
   Trajectory trajectory;
-  // The object takes part in the scene only within these times (imported recordings: the span
-  // of its annotation); always by default.
-  double present_from_s = -std::numeric_limits<double>::infinity();
-  double present_until_s = std::numeric_limits<double>::infinity();
-  bool present_at(double t_s) const { return t_s >= present_from_s && t_s <= present_until_s; }
+  // The object takes part in the scene only within these closed time intervals (imported
+  // recordings: the spans of its annotation); empty: always.
+  std::vector<TimeInterval> presence;
+  bool present_at(double t_s) const {
+    if (presence.empty()) return true;
+    for (const TimeInterval& i : presence) {
+      if (t_s >= i.from_s && t_s <= i.until_s) return true;
+    }
+    return false;
+  }
 };
 
 struct Scene {

@@ -30,7 +30,8 @@ TEST(Importer, AnnotationNoiseDoesNotTurnIntoYawRatesOrSpeeds) {
   EXPECT_LT(std::sqrt(yaw_rate_sq / n), 0.05);
   EXPECT_LT(std::sqrt(position_sq / n), 0.05);  // less than the 7 cm of the raw 2-D noise
   EXPECT_DOUBLE_EQ(imported.objects[0].length_m, scene.objects[0].model.length_m);
-  EXPECT_NEAR(imported.objects[0].present_from_s, -0.02, 1e-12);
+  ASSERT_EQ(imported.objects[0].presence.size(), 1u);
+  EXPECT_NEAR(imported.objects[0].presence[0].from_s, -0.02, 1e-12);
 }
 
 TEST(Importer, BuildsASceneWithScaledModelsAndShiftedTimes) {
@@ -58,10 +59,11 @@ TEST(Importer, WrittenSceneLoadsBack) {
   fs::remove(path);
   EXPECT_EQ(loaded.objects.size(), 2u);
   EXPECT_EQ(loaded.cycle_count(), scene.cycle_count());
-  EXPECT_NEAR(loaded.objects[1].present_until_s, imported.objects[1].present_until_s, 1e-12);
+  ASSERT_EQ(loaded.objects[1].presence.size(), 1u);
+  EXPECT_NEAR(loaded.objects[1].presence[0].until_s, imported.objects[1].presence[0].until_s, 1e-12);
 }
 
-TEST(Importer, RefusesUnknownClassesAndLongGaps) {
+TEST(Importer, RefusesUnknownClassesAndSplitsLongGaps) {
   const Scene scene = testing::two_cars_scene(2.0);
   Recording rec = testing::model_recording(scene, 1);
   rec.dir = "rec";
@@ -76,13 +78,21 @@ TEST(Importer, RefusesUnknownClassesAndLongGaps) {
   }
   Recording gap = rec;
   auto& boxes = gap.boxes[0];
-  boxes.erase(boxes.begin() + 10, boxes.begin() + 30);  // 0.8 s without annotation
-  EXPECT_THROW(import_recording(gap, testing::library(), {}), InputError);
+  boxes.erase(boxes.begin() + 10, boxes.begin() + 30);  // 0.8 s without annotation: out of sight
+  const ImportedScene split = import_recording(gap, testing::library(), {});
+  ASSERT_EQ(split.warnings.size(), 1u);
+  EXPECT_NE(split.warnings[0].find("absent"), std::string::npos);
+  const Scene scene_split = build_scene(split, testing::library(), "");
+  ASSERT_EQ(scene_split.objects[0].presence.size(), 2u);
+  EXPECT_TRUE(scene_split.objects[0].present_at(0.36));
+  EXPECT_FALSE(scene_split.objects[0].present_at(0.8));
+  EXPECT_TRUE(scene_split.objects[0].present_at(1.2));
   ImportOptions lenient;
   lenient.max_gap_s = 1.0;
   const ImportedScene bridged = import_recording(gap, testing::library(), lenient);
   ASSERT_EQ(bridged.warnings.size(), 1u);
-  EXPECT_NE(bridged.warnings[0].find("'left'"), std::string::npos);
+  EXPECT_NE(bridged.warnings[0].find("interpolated"), std::string::npos);
+  EXPECT_EQ(bridged.objects[0].presence.size(), 1u);
 }
 
 }  // namespace
