@@ -40,6 +40,10 @@ inline Pose2 compose(const Pose2& X_AB, const Pose2& X_BC) {
   return {p.x(), p.y(), X_AB.yaw_rad + X_BC.yaw_rad};
 }
 
+// Planar cross product a x b (the z component): positive when b lies counter-clockwise of a,
+// within a half turn.
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
 // Planar cross product of a scalar angular rate with a vector: omega x r.
 inline Vec2 cross_rate(double rate_radps, const Vec2& r) { return {-rate_radps * r.y(), rate_radps * r.x()}; }
 

@@ -20,16 +20,11 @@ VisibilityFunction::VisibilityFunction(double center_rad, double full_halfwidth_
       nowhere_beyond_(full_halfwidth_rad + falloff_rad < kPi) {}
 
 double VisibilityFunction::operator()(double alpha_rad) const {
-  return from_unit_direction(std::cos(alpha_rad), std::sin(alpha_rad));
+  return from_direction(std::cos(alpha_rad), std::sin(alpha_rad));
 }
 
-double VisibilityFunction::from_unit_direction(double ux, double uy) const {
-  // cos and sin of (alpha - center) from the unit direction.
-  const double cos_delta = ux * cos_center_ + uy * sin_center_;
-  if (everywhere_ || cos_delta >= cos_full_edge_) return 1.0;
-  if (nowhere_beyond_ && cos_delta <= cos_zero_edge_) return 0.0;
-  const double sin_delta = uy * cos_center_ - ux * sin_center_;
-  const double delta_rad = std::abs(std::atan2(sin_delta, cos_delta));
+double VisibilityFunction::falloff_value(double cos_delta, double sin_delta) const {
+  const double delta_rad = std::abs(angle_of_unit_vector_rad(cos_delta, sin_delta));
   if (falloff_rad_ <= 0.0) return delta_rad <= full_halfwidth_rad_ ? 1.0 : 0.0;
   const double x = std::clamp((delta_rad - full_halfwidth_rad_) / falloff_rad_, 0.0, 1.0);
   return 0.5 * (1.0 + std::cos(kPi * x));  // raised-cosine fall-off
@@ -37,6 +32,13 @@ double VisibilityFunction::from_unit_direction(double ux, double uy) const {
 
 Vec2 PlaneReflector::arc_point_O(double angle_rad) const {
   return center_O + radius_m * Vec2(std::cos(angle_rad), std::sin(angle_rad));
+}
+
+void PlaneReflector::set_arc(double start_angle_rad, double span_angle_rad) {
+  start_rad = start_angle_rad;
+  span_rad = span_angle_rad;
+  u_start_O = Vec2(std::cos(start_rad), std::sin(start_rad));
+  u_end_O = Vec2(std::cos(start_rad + span_rad), std::sin(start_rad + span_rad));
 }
 
 bool PlaneReflector::covers_direction(double angle_rad) const {
@@ -84,8 +86,7 @@ PlaneReflector plane_from_chord(std::string name, const Vec2& from_O, const Vec2
   const double apex_rad = std::atan2(normal.y(), normal.x());
   // Half-chord at most the radius; for sagitta > radius (more than a half circle) widen the span.
   const double half_rad = sagitta_m > radius_m ? kPi - half_span_rad : half_span_rad;
-  plane.start_rad = apex_rad - half_rad;
-  plane.span_rad = 2.0 * half_rad;
+  plane.set_arc(apex_rad - half_rad, 2.0 * half_rad);
   plane.ercs = ercs;
   return plane;
 }

@@ -1,9 +1,12 @@
 #pragma once
 // Reflection-center object models (paper section II): point reflection centers with a continuous
 // visibility function of the impinging angle, and plane reflectors (circle sectors).
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "common/angles.hpp"
 #include "common/pose2.hpp"
 
 namespace rcsim {
@@ -22,10 +25,43 @@ class VisibilityFunction {
   double falloff_rad() const { return falloff_rad_; }
 
   double operator()(double alpha_rad) const;
-  // The same for the unit direction (ux, uy) in the object frame; trigonometry only in the fall-off.
-  double from_unit_direction(double ux, double uy) const;
+
+  // Where the direction (dx, dy) to the sensor, of any length, falls: where the function is 1,
+  // where it is 0, or in the fall-off between. The sensor cycle asks this of every point reflector
+  // in range, so 1 and 0 are decided on squares, without normalizing. In the fall-off come cos and
+  // sin of (alpha - center) for falloff_value(). A zero direction (sensor on the reflector) has
+  // no impinging angle: zero.
+  struct Zone {
+    enum Kind : std::uint8_t { one, zero, falloff } kind = zero;
+    double cos_delta = 1.0;
+    double sin_delta = 0.0;
+  };
+  Zone zone(double dx, double dy) const {
+    const double norm2 = dx * dx + dy * dy;
+    if (!(norm2 > 0.0)) return {Zone::zero};
+    const double k = dx * cos_center_ + dy * sin_center_;  // |d| cos(alpha - center)
+    if (everywhere_ || cos_at_least(k, norm2, cos_full_edge_)) return {Zone::one};
+    if (nowhere_beyond_ && !cos_at_least(k, norm2, cos_zero_edge_)) return {Zone::zero};
+    const double inv_norm = 1.0 / std::sqrt(norm2);
+    return {Zone::falloff, k * inv_norm, (dy * cos_center_ - dx * sin_center_) * inv_norm};
+  }
+  // The value in the fall-off zone (the raised cosine: two library calls).
+  double falloff_value(double cos_delta, double sin_delta) const;
+  // zone() and falloff_value() together.
+  double from_direction(double dx, double dy) const {
+    const Zone z = zone(dx, dy);
+    if (z.kind == Zone::falloff) return falloff_value(z.cos_delta, z.sin_delta);
+    return z.kind == Zone::one ? 1.0 : 0.0;
+  }
 
  private:
+  // Is cos(delta) = k / sqrt(norm2) at least cos_edge? The sign of k, then k^2 against
+  // cos_edge^2 norm2.
+  static bool cos_at_least(double k, double norm2, double cos_edge) {
+    const double bound2 = cos_edge * cos_edge * norm2;
+    return cos_edge >= 0.0 ? (k >= 0.0 && k * k >= bound2) : (k >= 0.0 || k * k <= bound2);
+  }
+
   double center_rad_, full_halfwidth_rad_, falloff_rad_;
   double cos_center_, sin_center_;
   double cos_full_edge_, cos_zero_edge_;  // cos of the angles where it leaves 1 and reaches 0
@@ -51,10 +87,26 @@ struct PlaneReflector {
   double start_rad = 0.0;
   double span_rad = 0.0;
   double ercs = 1.0;
+  // Unit directions from the centre to the arc's ends; set with start_rad and span_rad by set_arc.
+  Vec2 u_start_O = Vec2::UnitX();
+  Vec2 u_end_O = Vec2::UnitX();
 
+  // Sets start_rad, span_rad (in [0, 2 pi]) and the arc-end directions together.
+  void set_arc(double start_angle_rad, double span_angle_rad);
   Vec2 arc_point_O(double angle_rad) const;
-  // Is the direction (from the circle centre, in the object frame) inside the sector?
+  // Is the direction (from the circle centre, in the object frame) inside the sector? The arc
+  // ends count as inside.
   bool covers_direction(double angle_rad) const;
+  // The same for a direction vector of any positive length, by cross products with the arc-end
+  // directions (no atan2): the sensor cycle asks this of every plane reflector in range.
+  bool covers_direction(const Vec2& d_O) const {
+    const double ccw_of_start = cross(u_start_O, d_O);  // >= 0: d at most a half turn past the start
+    const double cw_of_end = cross(d_O, u_end_O);       // >= 0: the end at most a half turn past d
+    if (span_rad <= kPi) return ccw_of_start >= 0.0 && cw_of_end >= 0.0;
+    if (span_rad >= kTwoPi) return true;
+    // Wider than a half turn: outside only strictly inside the gap from the end round to the start.
+    return ccw_of_start >= 0.0 || cw_of_end >= 0.0;
+  }
 };
 
 struct ObjectModel {

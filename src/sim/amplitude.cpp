@@ -1,11 +1,14 @@
 #include "sim/amplitude.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace rcsim {
 
-double amplitude_to_db(double amplitude) { return 20.0 * std::log10(amplitude); }
-double db_to_amplitude(double level_db) { return std::pow(10.0, level_db / 20.0); }
+// Through the natural exp and log (20 log10 a = (20 / ln 10) ln a), each faster than pow and log10.
+double amplitude_to_db(double amplitude) { return (20.0 / std::numbers::ln10) * std::log(amplitude); }
+double db_to_amplitude(double level_db) { return std::exp((std::numbers::ln10 / 20.0) * level_db); }
+double power_to_db(double power) { return (10.0 / std::numbers::ln10) * std::log(power); }
 
 double reference_range_amplitude(const AmplitudeLaw& law, double range_m) {
   return db_to_amplitude(law.reference_level_db - law.reference_slope_db_per_m * range_m);  // eq. (1)
@@ -16,15 +19,14 @@ void compute_echoes(const AmplitudeLaw& law, const MonopulseAntenna& antenna, co
   for (std::size_t i = 0; i < ideal.size(); ++i) {
     const auto& t = ideal[i];
     const double weight = reference_range_amplitude(law, t.range_m) * t.ercs;  // A_ref^R(R_n) ERCS_n, eq. (8)
-    const AntennaPointers h = antenna.pattern(t.azimuth_rad);                 // eq. (6)
-    Echo e;
+    const AntennaPointers h = antenna.pattern(t.sin_azimuth, t.cos_azimuth);  // eq. (6)
+    Echo& e = out.emplace_back();  // built in place: a copy from the stack stalls on store forwarding
     e.range_m = t.range_m;
     e.range_rate_mps = t.range_rate_mps;
     e.sum_pointer = weight * h.sum;
     e.delta_pointer = weight * h.delta;
     e.amplitude = magnitude(e.sum_pointer);  // eqs. (2)-(3): A^phi = |H_sum|
     e.ideal_index = static_cast<int>(i);
-    out.push_back(e);
   }
 }
 

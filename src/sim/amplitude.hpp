@@ -9,6 +9,8 @@ namespace rcsim {
 // L{A} = 20 log10 |A / A0| dB (paper III-B).
 double amplitude_to_db(double amplitude);
 double db_to_amplitude(double level_db);
+// The same level from the squared amplitude |A|^2 = power: 10 log10(power), no square root.
+double power_to_db(double power);
 
 // Paper eq. (1): the range-dependent amplitude of the reference reflector, linear (A0 = 1):
 // L{A_ref^R(R)} = (26.5 - 0.75 R/m) dB with the srr24 values.

@@ -8,18 +8,9 @@
 namespace rcsim {
 
 MonopulseAntenna::MonopulseAntenna(const AntennaGeometry& geometry)
-    : length_factor_(kPi * geometry.dipole_length_wavelengths), spacing_factor_(kPi * geometry.element_spacing_wavelengths) {}
-
-AntennaPointers MonopulseAntenna::pattern(double azimuth_rad) const {
-  const double sin_phi = std::sin(azimuth_rad);
-  const double x = length_factor_ * sin_phi;
-  const double si = std::abs(x) < 1e-8 ? 1.0 - x * x / 6.0 : std::sin(x) / x;
-  const double element = si * std::cos(azimuth_rad);
-  // 1/2 (1 +- exp(j 2u)) = exp(j u) cos u  and  -j exp(j u) sin u, with u = pi d/lambda sin phi.
-  const double u = spacing_factor_ * sin_phi;
-  const std::complex<double> phase(std::cos(u), std::sin(u));
-  return {element * std::cos(u) * phase, element * std::sin(u) * std::complex<double>(0.0, -1.0) * phase};
-}
+    : length_factor_(kPi * geometry.dipole_length_wavelengths),
+      spacing_factor_(kPi * geometry.element_spacing_wavelengths),
+      equal_factors_(length_factor_ == spacing_factor_) {}
 
 double MonopulseAntenna::additive_sensing_ratio(const AntennaPointers& pointers) {
   const double d = magnitude(pointers.delta);
@@ -35,7 +26,8 @@ double MonopulseAntenna::absolute_azimuth_from_asr(double asr) const {
 
 double MonopulseAntenna::estimate_azimuth(const AntennaPointers& pointers) const {
   const double magnitude_rad = absolute_azimuth_from_asr(additive_sensing_ratio(pointers));
-  const double phase_term = (pointers.delta * std::conj(pointers.sum)).imag();
+  // Im(H_delta conj(H_sum)), without the full complex product.
+  const double phase_term = pointers.delta.imag() * pointers.sum.real() - pointers.delta.real() * pointers.sum.imag();
   return phase_term < 0.0 ? magnitude_rad : -magnitude_rad;
 }
 

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/amplitude.hpp"
+
 namespace rcsim {
 
 void add_measurement_noise(const MeasurementNoise& noise, double threshold_db, Rng& rng, Detections& detections) {
   for (auto& d : detections) {
-    const double ratio = std::pow(10.0, (threshold_db - d.amplitude_db) / 20.0);  // A_th / A
+    const double ratio = db_to_amplitude(threshold_db - d.amplitude_db);  // A_th / A
     d.range_m += noise_sigma(noise.range_sigma_at_threshold_m, noise.range_sigma_min_m, ratio) * rng.normal();
     d.range_rate_mps +=
         noise_sigma(noise.range_rate_sigma_at_threshold_mps, noise.range_rate_sigma_min_mps, ratio) * rng.normal();

@@ -5,43 +5,84 @@
 
 namespace rcsim {
 
-void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitude, Echoes& echoes,
-                           ResolutionCells& out) {
+void ResolutionCellBuffers::reserve(std::size_t echoes) {
+  by_amplitude.reserve(echoes);
+  by_range.reserve(echoes);
+  range_position.reserve(echoes);
+  members.reserve(echoes);
+}
+
+void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitude, const Echoes& echoes,
+                           ResolutionCellBuffers& buffers, ResolutionCells& out) {
   out.clear();
-  std::sort(echoes.begin(), echoes.end(), [](const Echo& a, const Echo& b) {
+  auto& by_amplitude = buffers.by_amplitude;
+  auto& by_range = buffers.by_range;
+  auto& members = buffers.members;
+  by_amplitude.clear();
+  for (std::size_t i = 0; i < echoes.size(); ++i) {
+    by_amplitude.push_back({echoes[i].amplitude, echoes[i].ideal_index, static_cast<int>(i)});
+  }
+  std::sort(by_amplitude.begin(), by_amplitude.end(), [](const auto& a, const auto& b) {
     if (a.amplitude != b.amplitude) return a.amplitude > b.amplitude;
     return a.ideal_index < b.ideal_index;  // a total order: same input, same cells
   });
+  // A cell's candidates are its centre's neighbours in range: O(n log n) per cycle, not O(n^2).
+  by_range.clear();
+  for (std::size_t r = 0; r < by_amplitude.size(); ++r) {
+    by_range.push_back({echoes[static_cast<std::size_t>(by_amplitude[r].echo)].range_m, static_cast<int>(r)});
+  }
+  std::sort(by_range.begin(), by_range.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; });
+  buffers.range_position.resize(by_range.size());
+  for (std::size_t p = 0; p < by_range.size(); ++p) {
+    buffers.range_position[static_cast<std::size_t>(by_range[p].rank)] = static_cast<int>(p);
+  }
+
   const double half_range_m = 0.5 * cell.range_cell_m;
   const double half_rate_mps = 0.5 * cell.range_rate_cell_mps;
-  // Taken echoes are marked by a negative ideal index, restored at the end.
-  for (std::size_t i = 0; i < echoes.size(); ++i) {
-    if (echoes[i].ideal_index < 0) continue;
-    const Echo& centre = echoes[i];
+  // Gathers the echo at by_range[p] if it is free and within half a cell of the centre.
+  const auto gather = [&](std::size_t p, const Echo& centre) {
+    const int rank = by_range[p].rank;
+    const int echo = by_amplitude[static_cast<std::size_t>(rank)].echo;
+    if (echo < 0) return;
+    const Echo& e = echoes[static_cast<std::size_t>(echo)];
+    if (std::abs(e.range_m - centre.range_m) > half_range_m ||
+        std::abs(e.range_rate_mps - centre.range_rate_mps) > half_rate_mps) {
+      return;
+    }
+    members.push_back(rank);
+  };
+  for (std::size_t i = 0; i < by_amplitude.size(); ++i) {
+    if (by_amplitude[i].echo < 0) continue;  // already in a cell
+    const Echo& centre = echoes[static_cast<std::size_t>(by_amplitude[i].echo)];
+    // Out from the centre's place in range order, over a window twice the cell (so that rounding
+    // cannot leave a member out); the exact test is in gather.
+    const double reach_m = 2.0 * half_range_m;
+    const auto centre_p = static_cast<std::size_t>(buffers.range_position[i]);
+    members.clear();
+    for (std::size_t p = centre_p; p-- > 0 && by_range[p].range_m >= centre.range_m - reach_m;) gather(p, centre);
+    for (std::size_t p = centre_p; p < by_range.size() && by_range[p].range_m <= centre.range_m + reach_m; ++p) {
+      gather(p, centre);
+    }
+    if (members.size() > 1) std::sort(members.begin(), members.end());  // strongest first: sums in a fixed order
     ResolutionCellSum c;
     c.strongest_ideal_index = centre.ideal_index;
     double weighted_range = 0.0, weighted_rate = 0.0;
-    for (std::size_t j = i; j < echoes.size(); ++j) {
-      Echo& e = echoes[j];
-      if (e.ideal_index < 0) continue;
-      if (std::abs(e.range_m - centre.range_m) > half_range_m ||
-          std::abs(e.range_rate_mps - centre.range_rate_mps) > half_rate_mps) {
-        continue;
-      }
+    for (const int r : members) {
+      auto& rank = by_amplitude[static_cast<std::size_t>(r)];
+      const Echo& e = echoes[static_cast<std::size_t>(rank.echo)];
       c.amplitude_upper += e.amplitude;
       weighted_range += e.amplitude * e.range_m;
       weighted_rate += e.amplitude * e.range_rate_mps;
       c.sum_pointer += e.sum_pointer;
       c.delta_pointer += e.delta_pointer;
       ++c.member_count;
-      e.ideal_index = -1 - e.ideal_index;
+      rank.echo = -1;
     }
     if (c.amplitude_upper < threshold_amplitude) continue;  // paper III-C: no entry for this cell
     c.range_m = weighted_range / c.amplitude_upper;         // eqs. (4)-(5)
     c.range_rate_mps = weighted_rate / c.amplitude_upper;
     out.push_back(c);
   }
-  for (auto& e : echoes) e.ideal_index = -1 - e.ideal_index;
 }
 
 }  // namespace rcsim

@@ -1,16 +1,39 @@
 #pragma once
 // Limited resolution (paper III-C): clustering of echoes into range x range-rate cells.
+#include <vector>
+
 #include "sensor/sensor_config.hpp"
 #include "sim/stage_types.hpp"
 
 namespace rcsim {
 
+// Buffers of form_resolution_cells, kept by the caller so that a cycle allocates nothing.
+struct ResolutionCellBuffers {
+  struct Rank {
+    double amplitude;
+    int ideal_index;
+    int echo;  // position in the echoes; -1 once the echo belongs to a cell
+  };
+  struct Nearest {
+    double range_m;
+    int rank;  // position in by_amplitude
+  };
+  std::vector<Rank> by_amplitude;    // the order in which echoes are taken: strongest first
+  std::vector<Nearest> by_range;     // nearest first
+  std::vector<int> range_position;   // of each rank in by_range
+  std::vector<int> members;          // ranks of one cell's members
+
+  void reserve(std::size_t echoes);
+};
+
 // Strongest echo first: it defines the centre of a cell of range_cell_m x range_rate_cell_mps;
 // every remaining echo within half a cell of that centre in both dimensions joins it. The cell's
 // upper amplitude bound A_cell^u is the sum of its members' amplitudes; a cell whose bound is
 // below `threshold_amplitude` yields no entry. Range and range rate are the amplitude-weighted
-// means, eqs. (4)-(5); the sum and delta pointers add up. Sorts `echoes` (strongest first).
-void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitude, Echoes& echoes,
-                           ResolutionCells& out);
+// means, eqs. (4)-(5); the sum and delta pointers add up, strongest member first. Ties in
+// amplitude go to the lower ideal index. The echoes stay where they are: echoes[i] still belongs to
+// ideal target i afterwards.
+void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitude, const Echoes& echoes,
+                           ResolutionCellBuffers& buffers, ResolutionCells& out);
 
 }  // namespace rcsim

@@ -21,6 +21,7 @@ SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflect
   const std::size_t capacity = reflector_capacity * static_cast<std::size_t>(model.mount.config.multibounce.max_order);
   ideal.reserve(capacity);
   echoes.reserve(capacity);
+  cell_buffers.reserve(capacity);
   cells.reserve(capacity);
   detections.reserve(capacity + 64);
   reported.reserve(static_cast<std::size_t>(model.mount.config.tracker.max_tracks));
@@ -47,7 +48,7 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   compute_echoes(config.amplitude, model.antenna, state.ideal, state.echoes);
   if (model.options.level == OutputLevel::ideal) return;
   // echoes => resolution cells, strongest first, upper amplitude bound          (eqs. (4)-(5))
-  form_resolution_cells(config.resolution, model.threshold_amplitude, state.echoes, state.cells);
+  form_resolution_cells(config.resolution, model.threshold_amplitude, state.echoes, state.cell_buffers, state.cells);
   // cells => detections: pointer noise, monopulse angle, resulting amplitude    (eqs. (7)-(8))
   estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
   // detections => those whose amplitude passes the threshold                    (III-B)

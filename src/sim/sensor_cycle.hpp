@@ -8,6 +8,7 @@
 #include "scene/scene.hpp"
 #include "sim/antenna.hpp"
 #include "sim/ideal_targets.hpp"
+#include "sim/resolution_cells.hpp"
 #include "sim/stage_types.hpp"
 #include "sim/tracking.hpp"
 
@@ -39,6 +40,7 @@ struct SensorCycleState {
   SensorKinematics kinematics;
   IdealTargets ideal;
   Echoes echoes;
+  ResolutionCellBuffers cell_buffers;
   ResolutionCells cells;
   Detections detections;
   ReportedTargets reported;

@@ -1,6 +1,7 @@
 #pragma once
 // The typed result of each stage of the sensor cycle (STYLE.md):
 // IdealTargets -> Echoes -> ResolutionCells -> Detections -> (tracker) -> ReportedTargets.
+#include <cmath>
 #include <complex>
 #include <cstdint>
 #include <vector>
@@ -16,12 +17,22 @@ struct IdealTarget {
   Vec2 p_WT_W = Vec2::Zero();  // reflection point in the world
   double range_m = 0.0;
   double azimuth_rad = 0.0;
+  // sin and cos of azimuth_rad, from the line of sight (the antenna pattern, eq. (6), reads them).
+  double sin_azimuth = 0.0;
+  double cos_azimuth = 1.0;
   double range_rate_mps = 0.0;
   double ercs = 0.0;
   int object_index = -1;
   int reflector_index = -1;  // into the model's points or planes, by kind
   ReflectorKind kind = ReflectorKind::Point;
   int bounce_order = 1;  // 1 direct; k > 1 a back-and-forth duplicate at k times the range
+
+  // Sets azimuth_rad with its sine and cosine.
+  void set_azimuth(double angle_rad) {
+    azimuth_rad = angle_rad;
+    sin_azimuth = std::sin(angle_rad);
+    cos_azimuth = std::cos(angle_rad);
+  }
 };
 using IdealTargets = std::vector<IdealTarget>;
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 
 #include "common/angles.hpp"
 
@@ -44,9 +45,14 @@ Eigen::Vector4d innovation(const Track& track, const Detection& d) {
 }
 
 double mahalanobis2(const KalmanModel& model, const Track& track, const Eigen::Vector4d& nu) {
-  const Eigen::Matrix2d S2 = track.P.topLeftCorner<2, 2>() + model.R.topLeftCorner<2, 2>();
-  const Eigen::Vector2d nu2 = nu.head<2>();
-  return nu2.dot(S2.inverse() * nu2) + nu(2) * nu(2) / (track.P(2, 2) + model.R(2, 2)) +
+  // (range, range rate): S = P + R is symmetric, S^-1 = [s11 -s01; -s01 s00] / det, written out
+  // (through Eigen's 2x2 inverse GCC's vectorizer stalls on store forwarding).
+  const double s00 = track.P(0, 0) + model.R(0, 0);
+  const double s01 = track.P(0, 1) + model.R(0, 1);
+  const double s11 = track.P(1, 1) + model.R(1, 1);
+  const double det = s00 * s11 - s01 * s01;
+  const double range_part = (s11 * nu(0) * nu(0) - 2.0 * s01 * nu(0) * nu(1) + s00 * nu(1) * nu(1)) / det;
+  return range_part + nu(2) * nu(2) / (track.P(2, 2) + model.R(2, 2)) +
          nu(3) * nu(3) / (track.P(3, 3) + model.R(3, 3));
 }
 
@@ -74,6 +80,7 @@ Tracker::Tracker(const TrackerConfig& config, double cycle_time_s) : config_(con
   tracks_.reserve(static_cast<std::size_t>(config.max_tracks));
   candidates_.reserve(static_cast<std::size_t>(config.max_tracks) * 16);
   detection_taken_.reserve(256);
+  detections_by_range_.reserve(256);
 }
 
 void Tracker::predict() {
@@ -87,24 +94,47 @@ void Tracker::predict() {
 void Tracker::associate(const Detections& detections) {
   // Gater: every (track, detection) pair inside the chi-square gate.
   candidates_.clear();
+  detections_by_range_.clear();
+  for (std::size_t j = 0; j < detections.size(); ++j) {
+    detections_by_range_.push_back({detections[j].range_m, static_cast<int>(j)});
+  }
+  std::sort(detections_by_range_.begin(), detections_by_range_.end(),
+            [](const RangeEntry& a, const RangeEntry& b) { return a.range_m < b.range_m; });
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     // For a positive definite S, nu' S^-1 nu >= nu_r^2 / S_rr: the range innovation alone rules
-    // most pairs out exactly, before any solve.
+    // most pairs out exactly, before any solve. Only detections in a window twice that gate are
+    // looked at (so that rounding cannot leave one out), found by bisection: O(n log n), not O(n^2).
     const double range_gate_m2 = config_.gate_chi2 * (tracks_[i].P(0, 0) + model_.R(0, 0));
-    for (std::size_t j = 0; j < detections.size(); ++j) {
-      const double range_innovation_m = detections[j].range_m - tracks_[i].x(0);
+    const double window_m = 2.0 * std::sqrt(range_gate_m2);
+    const double track_range_m = tracks_[i].x(0);
+    auto it = std::lower_bound(detections_by_range_.begin(), detections_by_range_.end(), track_range_m - window_m,
+                               [](const RangeEntry& e, double range_m) { return e.range_m < range_m; });
+    for (; it != detections_by_range_.end() && it->range_m <= track_range_m + window_m; ++it) {
+      const auto j = static_cast<std::size_t>(it->detection);
+      const double range_innovation_m = detections[j].range_m - track_range_m;
       if (range_innovation_m * range_innovation_m > range_gate_m2) continue;
       const Eigen::Vector4d nu = innovation(tracks_[i], detections[j]);
       const double d2 = mahalanobis2(model_, tracks_[i], nu);
       if (d2 <= config_.gate_chi2) candidates_.push_back({d2, static_cast<int>(i), static_cast<int>(j)});
     }
   }
-  // Associator: global nearest neighbour, greedily by distance with a total order.
-  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
-    if (a.distance2 != b.distance2) return a.distance2 < b.distance2;
-    if (a.track != b.track) return a.track < b.track;
-    return a.detection < b.detection;
-  });
+  // Associator: global nearest neighbour, greedily by distance with a total order. When no two
+  // candidates share a track or a detection (the usual case), every one of them is taken whatever
+  // the order, so the sort is skipped. Candidates come track by track: a shared track is adjacent.
+  detection_taken_.assign(detections.size(), 0);
+  bool shared = false;
+  for (std::size_t k = 0; k < candidates_.size(); ++k) {
+    char& seen = detection_taken_[static_cast<std::size_t>(candidates_[k].detection)];
+    shared = shared || seen || (k > 0 && candidates_[k].track == candidates_[k - 1].track);
+    seen = 1;
+  }
+  if (shared) {
+    std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+      if (a.distance2 != b.distance2) return a.distance2 < b.distance2;
+      if (a.track != b.track) return a.track < b.track;
+      return a.detection < b.detection;
+    });
+  }
   detection_taken_.assign(detections.size(), 0);
   for (const auto& c : candidates_) {
     Track& track = tracks_[static_cast<std::size_t>(c.track)];

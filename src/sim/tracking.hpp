@@ -60,6 +60,10 @@ class Tracker {
     int track;
     int detection;
   };
+  struct RangeEntry {
+    double range_m;
+    int detection;
+  };
   void predict();
   void associate(const Detections& detections);
   void initiate(const Detections& detections);
@@ -69,6 +73,7 @@ class Tracker {
   KalmanModel model_;
   std::vector<Track> tracks_;
   std::vector<Candidate> candidates_;
+  std::vector<RangeEntry> detections_by_range_;
   std::vector<char> detection_taken_;
   int next_id_ = 1;
   long long dropped_initiations_ = 0;

@@ -20,11 +20,23 @@ TEST(Amplitude, ReferenceLawByHand) {
   EXPECT_NEAR(amplitude_to_db(reference_range_amplitude(law, 82.0 / 3.0)), 6.0, 1e-12);
 }
 
+TEST(Amplitude, DecibelConversionsByHand) {
+  EXPECT_NEAR(amplitude_to_db(10.0), 20.0, 1e-13);
+  EXPECT_NEAR(amplitude_to_db(0.5), -6.020599913279624, 1e-13);
+  EXPECT_NEAR(db_to_amplitude(-6.0), 0.5011872336272722, 1e-15);
+  EXPECT_NEAR(db_to_amplitude(26.5), 21.134890398366466, 1e-13);
+  // From the squared amplitude: the same level without the square root.
+  for (const double a : {1e-3, 0.5, 1.0, 3.7, 250.0}) {
+    EXPECT_NEAR(power_to_db(a * a), amplitude_to_db(a), 1e-12) << a;
+    EXPECT_NEAR(db_to_amplitude(amplitude_to_db(a)) / a, 1.0, 1e-14) << a;  // a few ulp through exp and log
+  }
+}
+
 TEST(Amplitude, EchoOfReferenceReflectorAtBoresight) {
   const MonopulseAntenna antenna{AntennaGeometry{}};
   IdealTargets ideal(1);
   ideal[0].range_m = 10.0;
-  ideal[0].azimuth_rad = 0.0;
+  ideal[0].set_azimuth(0.0);
   ideal[0].ercs = 1.0;
   Echoes echoes;
   compute_echoes(AmplitudeLaw{}, antenna, ideal, echoes);
@@ -36,7 +48,7 @@ TEST(Amplitude, EchoScalesWithErcsAndAntennaPattern) {
   const MonopulseAntenna antenna{AntennaGeometry{}};
   IdealTargets ideal(1);
   ideal[0].range_m = 10.0;
-  ideal[0].azimuth_rad = deg_to_rad(30.0);
+  ideal[0].set_azimuth(deg_to_rad(30.0));
   ideal[0].ercs = 2.0;
   Echoes echoes;
   compute_echoes(AmplitudeLaw{}, antenna, ideal, echoes);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 
 #include "common/angles.hpp"
 
@@ -57,6 +58,31 @@ TEST(Antenna, SignFollowsPhaseBetweenDeltaAndSum) {
   EXPECT_GT((right.delta * std::conj(right.sum)).imag(), 0.0);
   EXPECT_GT(kAntenna.estimate_azimuth(left), 0.0);
   EXPECT_LT(kAntenna.estimate_azimuth(right), 0.0);
+}
+
+TEST(Antenna, PatternEqualsEquation6WrittenWithComplexExponentials) {
+  // eq. (6) as printed, for the srr24 (L = d = lambda/2: one sine serves both factors) and for a
+  // geometry with L != d; the sensor cycle passes sin and cos of the azimuth from the line of sight.
+  AntennaGeometry other;
+  other.dipole_length_wavelengths = 0.7;
+  other.element_spacing_wavelengths = 0.45;
+  for (const auto& geometry : {AntennaGeometry{}, other}) {
+    const MonopulseAntenna antenna{geometry};
+    for (double deg = -89.0; deg <= 89.0; deg += 0.5) {
+      const double phi = deg_to_rad(deg);
+      const double x = kPi * geometry.dipole_length_wavelengths * std::sin(phi);
+      const double si = x == 0.0 ? 1.0 : std::sin(x) / x;
+      const std::complex<double> turn = std::exp(std::complex<double>(0.0, 2.0 * kPi * geometry.element_spacing_wavelengths * std::sin(phi)));
+      const std::complex<double> sum = si * std::cos(phi) * 0.5 * (1.0 + turn);
+      const std::complex<double> delta = si * std::cos(phi) * 0.5 * (1.0 - turn);
+      const auto h = antenna.pattern(std::sin(phi), std::cos(phi));
+      EXPECT_NEAR(std::abs(h.sum - sum), 0.0, 1e-15) << deg;
+      EXPECT_NEAR(std::abs(h.delta - delta), 0.0, 1e-15) << deg;
+      const auto by_angle = antenna.pattern(phi);
+      EXPECT_EQ(by_angle.sum, h.sum);
+      EXPECT_EQ(by_angle.delta, h.delta);
+    }
+  }
 }
 
 TEST(Antenna, NoSignalGivesBoresightNotNaN) {
