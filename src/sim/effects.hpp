@@ -15,7 +15,7 @@ bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, doubl
 
 // Removes ideal targets whose line of sight passes through another object's box.
 void remove_occluded_targets(const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                             std::span<const BodyState> object_states, IdealTargets& ideal);
+                             std::span<const BodyState> object_states, std::span<const unsigned char> present, IdealTargets& ideal);
 
 // Paper VI: duplicates of each target nearer than max_range_m at k = 2..max_order times its
 // range and range rate (the path runs k times back and forth), same angle, weaker by

@@ -27,8 +27,8 @@ SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS) {
 }
 
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                           std::span<const BodyState> object_states, std::span<const double> bounding_radius_m,
-                           IdealTargets& out) {
+                           std::span<const BodyState> object_states, std::span<const unsigned char> present,
+                           std::span<const double> bounding_radius_m, IdealTargets& out) {
   out.clear();
   const double tan_half = std::tan(fov.azimuth_half_rad);
   const Vec2 p_WS_W = sensor.X_WS.translation();
@@ -70,6 +70,7 @@ void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& senso
 
   // Pass 1: the reflection points that are visible and in view, in object and reflector order.
   for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (!present[i]) continue;  // not part of the scene at this time
     const auto& model = objects[i].model;
     const auto& body = object_states[i];
     // Whole objects out of range are skipped at once (their bounding circle).

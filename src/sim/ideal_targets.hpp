@@ -22,7 +22,8 @@ SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS);
 // point on the line of sight) and ERCS. Appends to `out` after clearing it. `bounding_radius_m`
 // holds each object's ObjectModel::bounding_radius_m(), computed once per scene.
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                           std::span<const BodyState> object_states, std::span<const double> bounding_radius_m,
+                           std::span<const BodyState> object_states, std::span<const unsigned char> present,
+                           std::span<const double> bounding_radius_m,
                            IdealTargets& out);
 
 }  // namespace rcsim

@@ -1,5 +1,7 @@
 #include "sim/sensor_cycle.hpp"
 
+#include <stdexcept>
+
 #include "sim/amplitude.hpp"
 #include "sim/effects.hpp"
 #include "sim/measurement_noise.hpp"
@@ -35,14 +37,18 @@ SceneObjects::SceneObjects(std::span<const SceneObject> objects_in) : objects(ob
 void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_objects, const SceneSnapshot& snapshot,
                       SensorCycleState& state) {
   const auto objects = scene_objects.objects;
+  if (snapshot.objects.size() != objects.size() || snapshot.present.size() != objects.size()) {
+    throw std::logic_error("run_sensor_cycle: the snapshot does not match the scene's objects");
+  }
   const SensorConfig& config = model.mount.config;
   Rng* rng = model.options.noise ? &state.rng : nullptr;
   state.kinematics = sensor_kinematics(snapshot.ego, model.mount.X_VS);
 
   // objects, sensor pose => ideal target list of visible reflection centers     (paper II-B, IV-2/3)
-  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, scene_objects.bounding_radius_m,
+  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.present,
+                        scene_objects.bounding_radius_m,
                         state.ideal);
-  if (model.effects.occlusion) remove_occluded_targets(state.kinematics, objects, snapshot.objects, state.ideal);
+  if (model.effects.occlusion) remove_occluded_targets(state.kinematics, objects, snapshot.objects, snapshot.present, state.ideal);
   if (model.effects.multibounce) add_multibounce_targets(config.multibounce, state.ideal);
   // ideal targets => echoes: amplitude and weighted sum/delta pointers          (eqs. (1)-(3), (6))
   compute_echoes(config.amplitude, model.antenna, state.ideal, state.echoes);

@@ -53,6 +53,7 @@ struct SceneSnapshot {
   double t_s = 0.0;
   BodyState ego;
   std::vector<BodyState> objects;
+  std::vector<unsigned char> present;  // per object: takes part at this time (SceneObject::presence)
 };
 
 // The scene's objects as the sensor cycle reads them; bounding radii computed once.

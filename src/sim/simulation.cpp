@@ -13,6 +13,7 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options) : s
     states_.emplace_back(models_.back(), reflectors, scene.cycle_time_s, options.seed, i);
   }
   snapshot_.objects.resize(scene.objects.size());
+  snapshot_.present.resize(scene.objects.size());
 }
 
 void Simulation::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }
@@ -20,7 +21,10 @@ void Simulation::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }
 void Simulation::run_at(double t_s) {
   snapshot_.t_s = t_s;
   snapshot_.ego = scene_.ego.state_at(t_s);
-  for (std::size_t i = 0; i < scene_.objects.size(); ++i) snapshot_.objects[i] = scene_.objects[i].trajectory.state_at(t_s);
+  for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
+    snapshot_.present[i] = scene_.objects[i].present_at(t_s) ? 1 : 0;
+    snapshot_.objects[i] = scene_.objects[i].trajectory.state_at(t_s);
+  }
   for (std::size_t i = 0; i < models_.size(); ++i) run_sensor_cycle(models_[i], objects_, snapshot_, states_[i]);
 }
 

@@ -191,3 +191,34 @@ TEST(SensorCycle, SidePlaneReflectionPointBarelyMovesWithTheCar) {
 
 }  // namespace
 }  // namespace rcsim
+
+namespace rcsim {
+namespace {
+
+TEST(SensorCyclePresence, AnObjectTakesPartOnlyWhilePresent) {
+  // A pole at 10 m, present only from 0.2 s to 0.4 s; a guide board between it and the sensor,
+  // present only until 0.3 s, hides it while both are there (occlusion on).
+  Scene scene = testing::single_sensor_scene(1.0);
+  scene.effects.occlusion = true;
+  testing::add_object(scene, "pole", "pole", {testing::sample(0, 10.0, 0.0, 0, 0)});
+  scene.objects.back().presence = {{0.2, 0.4}};
+  testing::add_object(scene, "board", "guide_board", {testing::sample(0, 5.0, 0.0, kPi / 2, 0)});
+  scene.objects.back().presence = {{-1.0, 0.3}};
+  SimulationOptions options;
+  options.level = OutputLevel::ideal;
+  options.noise = false;
+  Simulation sim(scene, options);
+  const auto pole_targets = [&](double t_s) {
+    sim.run_at(t_s);
+    int n = 0;
+    for (const auto& t : sim.sensor_state(0).ideal) n += t.object_index == 0;
+    return n;
+  };
+  EXPECT_EQ(pole_targets(0.1), 0);   // not yet present
+  EXPECT_EQ(pole_targets(0.25), 0);  // present, but behind the board
+  EXPECT_EQ(pole_targets(0.35), 1);  // the board has gone
+  EXPECT_EQ(pole_targets(0.5), 0);   // gone itself
+}
+
+}  // namespace
+}  // namespace rcsim
