@@ -8,7 +8,9 @@
 #include <new>
 
 #include "common/angles.hpp"
+#include "io/recording.hpp"
 #include "model/model_library.hpp"
+#include "replay/importer.hpp"
 #include "sim/simulation.hpp"
 
 namespace {
@@ -111,7 +113,77 @@ void BM_SceneCycle(benchmark::State& state) {
   state.counters["reported"] = static_cast<double>(reported) / n;
 }
 
+// The broad phase (sim/culling.hpp) on the 60-second city recording (every sensor, every effect,
+// all its objects): Arg(1) culling on, Arg(0) off. Cycles loop over the whole drive; the
+// output is byte-identical either way (tests/sim/culling_test.cpp).
+void BM_CityDriveCulling(benchmark::State& state) {
+  static const ModelLibrary library = ModelLibrary::builtin();
+  const Recording recording = read_recording(std::string(RCSIM_SOURCE_DIR) + "/recordings_synthetic/city_drive_60s");
+  const replay::ImportedScene imported = import_recording(recording, library, replay::ImportOptions{});
+  const Scene scene = replay::build_scene(imported, library, recording.dir.string());
+  SimulationOptions options;
+  options.seed = 1;
+  options.culling = state.range(0) != 0;
+  Simulation timed(scene, options);
+  const int cycles = timed.cycle_count();
+  for (int k = 0; k < cycles; ++k) timed.run_cycle(k);  // every buffer at its largest
+  const long long before = g_allocations.load();
+  long long k = 0, ideal = 0;
+  for (auto _ : state) {
+    // Loops over the drive; the tracker sees a jump back once per loop (like a dropout).
+    timed.run_cycle(static_cast<int>(k++ % cycles));
+    for (std::size_t s = 0; s < timed.sensor_count(); ++s) ideal += static_cast<long long>(timed.sensor_state(s).ideal.size());
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.counters["allocs_per_cycle"] = benchmark::Counter(static_cast<double>(g_allocations.load() - before) / n);
+  state.counters["ideal_targets"] = static_cast<double>(ideal) / n;
+  state.counters["objects"] = static_cast<double>(scene.objects.size());
+  state.counters["sensors"] = static_cast<double>(scene.sensors.size());
+}
+
+// Dense traffic all round the sensor: 200 parked cars on a 6 m grid within 40 m of the ego in
+// every direction (only those in the +-35 deg wedge can be seen). range(0): culling off (0) / on (1);
+// range(1): effects (clutter, multibounce, occlusion) off (0) / on (1).
+void BM_CarsAllAroundCulling(benchmark::State& state) {
+  static const ModelLibrary library = ModelLibrary::builtin();
+  Scene scene = scene_with_cars(0, state.range(1) != 0, false);
+  int placed = 0;
+  for (int i = -7; i <= 7 && placed < 200; ++i) {
+    for (int j = -7; j <= 7 && placed < 200; ++j) {
+      const double x_m = 6.0 * i, y_m = 5.0 * j;
+      if ((i == 0 && j == 0) || std::hypot(x_m, y_m) > 40.0) continue;
+      TrajectorySample s;
+      s.x_m = x_m;
+      s.y_m = y_m;
+      s.yaw_rad = 0.7 * (i + 2 * j);
+      SceneObject object;
+      object.id = "car" + std::to_string(placed++);
+      object.model_name = "passenger_car";
+      object.model = library.at("passenger_car");
+      object.trajectory = Trajectory({s});
+      scene.objects.push_back(object);
+    }
+  }
+  SimulationOptions options;
+  options.seed = 1;
+  options.culling = state.range(0) != 0;
+  Simulation sim(scene, options);
+  for (int k = 0; k < 50; ++k) sim.run_cycle(k);
+  const long long before = g_allocations.load();
+  long long k = 50;
+  for (auto _ : state) {
+    sim.run_cycle(static_cast<int>(k++ % 1000));
+    benchmark::DoNotOptimize(sim.sensor_state(0).reported.data());
+  }
+  state.counters["allocs_per_cycle"] =
+      benchmark::Counter(static_cast<double>(g_allocations.load() - before) / static_cast<double>(state.iterations()));
+  state.counters["objects"] = static_cast<double>(scene.objects.size());
+  state.counters["ideal_targets"] = static_cast<double>(sim.sensor_state(0).ideal.size());
+}
+
 BENCHMARK(BM_SensorCycle)->Arg(1)->Arg(10)->Arg(100);
+BENCHMARK(BM_CarsAllAroundCulling)->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({1, 1});
+BENCHMARK(BM_CityDriveCulling)->Arg(0)->Arg(1);
 BENCHMARK(BM_SensorCycleAllEffects)->Arg(10);
 BENCHMARK(BM_SceneCycle)->Arg(1)->Arg(10)->Arg(100);
 

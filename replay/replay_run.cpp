@@ -68,6 +68,7 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
   SimulationOptions sim_options;
   sim_options.level = OutputLevel::tracks;
   sim_options.seed = options.seed;
+  sim_options.fidelity = options.fidelity;
   Simulation simulation(scene, sim_options);
   sink.begin_run(rec, imported, scene, options);
 

@@ -12,11 +12,13 @@
 #include "metrics/gospa.hpp"
 #include "metrics/merge_artefacts.hpp"
 #include "replay/importer.hpp"
+#include "sim/fidelity.hpp"
 
 namespace rcsim::replay {
 
 struct ReplayOptions {
   std::uint64_t seed = 0;
+  Fidelity fidelity = Fidelity::full;  // docs/fidelity.md
   ImportOptions import;
   metrics::GospaParameters gospa{2.0, 2.0};
   double association_gate_m = 1.0;  // a target belongs to the nearest box within this distance

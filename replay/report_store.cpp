@@ -30,6 +30,8 @@ std::string sensor_configuration_text(const std::string& type, const std::filesy
 nlohmann::ordered_json parameters_json(const ReplayOptions& options) {
   const auto& e = options.import.effects;
   return {
+      {"fidelity",
+       {{"level", std::string(fidelity_name(options.fidelity))}, {"documentation", "docs/fidelity.md"}}},
       {"gospa",
        {{"cutoff_m", options.gospa.cutoff_m}, {"order_p", options.gospa.order_p}, {"alpha", 2},
         {"frame", "sensor Cartesian (x along boresight)"},

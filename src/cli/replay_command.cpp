@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/fidelity_option.hpp"
 #include "cli/replay_options.hpp"
 #include "io/recording.hpp"
 #include "replay/replay_run.hpp"
@@ -20,6 +21,7 @@ struct ReplayArgs {
   std::string db_path;
   std::int64_t seed = 0;
   bool json = false;
+  std::string fidelity = "full";
   double cutoff_m = 2.0;
   double order_p = 2.0;
   double gate_m = 1.0;
@@ -83,6 +85,7 @@ void run_replay(const ReplayArgs& args) {
   const Recording recording = read_recording(args.recording_dir);
   replay::ReplayOptions options;
   options.seed = static_cast<std::uint64_t>(args.seed);
+  options.fidelity = fidelity_from_arg(args.fidelity);
   options.import = import_options(args.import);
   options.gospa = {args.cutoff_m, args.order_p};
   options.association_gate_m = args.gate_m;
@@ -118,6 +121,7 @@ void add_replay_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the run's summary as JSON");
+  add_fidelity_option(*cmd, args->fidelity);
   cmd->add_option("--gospa-cutoff-m", args->cutoff_m, "GOSPA/OSPA cut-off c")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--gospa-order", args->order_p, "GOSPA/OSPA order p")->check(CLI::Range(1.0, 100.0))->capture_default_str();
   cmd->add_option("--gate-m", args->gate_m, "target-to-object association gate")->check(CLI::PositiveNumber)->capture_default_str();

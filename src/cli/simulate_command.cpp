@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "cli/commands.hpp"
+#include "cli/fidelity_option.hpp"
 #include "common/atomic_file.hpp"
 #include "io/target_list_writer.hpp"
 #include "scene/scene.hpp"
@@ -17,6 +18,8 @@ struct SimulateArgs {
   std::string level = "tracks";
   std::uint64_t seed = 0;
   bool no_noise = false;
+  std::string fidelity = "full";
+  bool no_culling = false;
   std::string format = "csv";
   std::string output;
 };
@@ -30,6 +33,8 @@ void run_simulate(const SimulateArgs& args) {
                                                : OutputLevel::tracks;
   options.seed = args.seed;
   options.noise = !args.no_noise;
+  options.fidelity = fidelity_from_arg(args.fidelity);
+  options.culling = !args.no_culling;
   const auto format = args.format == "jsonl" ? TargetListFormat::Jsonl : TargetListFormat::Csv;
 
   std::optional<AtomicFileWriter> file;
@@ -59,6 +64,8 @@ void add_simulate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of every random draw")->capture_default_str();
   cmd->add_flag("--no-noise", args->no_noise, "Turn every random draw off: outputs follow the equations exactly");
+  add_fidelity_option(*cmd, args->fidelity);
+  cmd->add_flag("--no-culling", args->no_culling, "Visit every object's reflectors (the output is the same; for checking and timing)");
   cmd->add_option("--format", args->format, "csv | jsonl")->check(CLI::IsMember({"csv", "jsonl"}))->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output file (written atomically); stdout if omitted");
   cmd->callback([args] { run_simulate(*args); });

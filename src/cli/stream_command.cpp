@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/fidelity_option.hpp"
 #include "common/input_error.hpp"
 #include "stream/streamer.hpp"
 
@@ -21,6 +22,7 @@ struct StreamArgs {
   std::string level = "tracks";
   std::uint64_t seed = 0;
   bool no_noise = false;
+  std::string fidelity = "full";
   int wait_clients = 0;
   double client_timeout_s = 5.0;
   std::size_t max_clients = 16;
@@ -38,6 +40,7 @@ void run_stream(const StreamArgs& args) {
   source_options.simulation.level = args.level == "detections" ? OutputLevel::detections : OutputLevel::tracks;
   source_options.simulation.seed = args.seed;
   source_options.simulation.noise = !args.no_noise;
+  source_options.simulation.fidelity = fidelity_from_arg(args.fidelity);
   const auto source = stream::open_source(args.input, source_options);
 
   stream::StreamOptions options;
@@ -93,6 +96,7 @@ void add_stream_command(CLI::App& app) {
   cmd->add_option("--level", args->level, "tracks | detections")->check(CLI::IsMember({"tracks", "detections"}))->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of every random draw")->capture_default_str();
   cmd->add_flag("--no-noise", args->no_noise, "Turn every random draw off");
+  add_fidelity_option(*cmd, args->fidelity);
   cmd->add_option("--wait-clients", args->wait_clients, "Hold the first cycle until this many clients have subscribed")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--client-timeout-s", args->client_timeout_s, "Drop a client not heard from for this long")

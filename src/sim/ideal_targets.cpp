@@ -28,8 +28,13 @@ SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS) {
 
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
                            std::span<const BodyState> object_states, std::span<const unsigned char> present,
-                           std::span<const double> bounding_radius_m, IdealTargets& out) {
+                           std::span<const double> bounding_radius_m, IdealTargets& out,
+                           const IdealTargetFilter& filter) {
   out.clear();
+  const CullingBounds* culling = filter.culling;
+  if (culling != nullptr && culling->radius_m.size() != objects.size()) culling = nullptr;  // built for another scene
+  std::vector<unsigned char>* may_occlude = culling != nullptr ? filter.may_occlude : nullptr;
+  if (may_occlude != nullptr) may_occlude->assign(objects.size(), 0);  // keeps its capacity: no allocation
   const double tan_half = std::tan(fov.azimuth_half_rad);
   const Vec2 p_WS_W = sensor.X_WS.translation();
   // R_SW once per cycle, R_WO once per object: no trigonometry per reflector.
@@ -76,7 +81,26 @@ void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& senso
     // Whole objects out of range are skipped at once (their bounding circle).
     const double reach_m = fov.max_range_m + bounding_radius_m[i];
     const Vec2 p_WO_W = body.X_WB.translation();
-    if ((p_WO_W - p_WS_W).squaredNorm() > reach_m * reach_m) continue;
+    const double distance2_m2 = (p_WO_W - p_WS_W).squaredNorm();
+    if (culling != nullptr) {
+      // Broad phase (culling.hpp): the whole reflection circle outside the view wedge by more than
+      // a margin, or too far for any echo of the object to change a cell that passes the threshold.
+      const double margin_m = culling->radius_m[i] + 1e-3 + 1e-9 * std::sqrt(distance2_m2);
+      if (culling->by_view) {
+        const Vec2 p_SO_S = to_sensor(p_WO_W);
+        // Signed distances beyond the wedge's two edges y = +-tan(half) x.
+        if (p_SO_S.y() * culling->cos_half - p_SO_S.x() * culling->sin_half > margin_m ||
+            -p_SO_S.y() * culling->cos_half - p_SO_S.x() * culling->sin_half > margin_m) {
+          continue;
+        }
+      }
+      // Before range culling: a far or faint object still hides what is behind it.
+      const double occlude_reach_m = fov.max_range_m + margin_m;
+      if (may_occlude != nullptr && distance2_m2 <= occlude_reach_m * occlude_reach_m) (*may_occlude)[i] = 1;
+      const double cull_m = culling->by_range ? culling->cull_distance_m[i] : 0.0;
+      if (culling->by_range && distance2_m2 > cull_m * cull_m) continue;
+    }
+    if (distance2_m2 > reach_m * reach_m) continue;
     const double c = std::cos(body.X_WB.yaw_rad), s = std::sin(body.X_WB.yaw_rad);
     const auto to_world = [&](const Vec2& p_O) {
       return Vec2(p_WO_W.x() + c * p_O.x() - s * p_O.y(), p_WO_W.y() + s * p_O.x() + c * p_O.y());
@@ -95,7 +119,7 @@ void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& senso
         if (pending_count == pending.size()) evaluate_pending();
       }
     }
-    for (std::size_t k = 0; k < model.planes.size(); ++k) {
+    for (std::size_t k = 0; filter.planes && k < model.planes.size(); ++k) {
       const auto& plane = model.planes[k];
       const auto p_OT_O = plane_reflection_point_O(plane, p_OS_O);
       if (!p_OT_O) continue;

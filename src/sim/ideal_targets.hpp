@@ -3,6 +3,7 @@
 #include <span>
 
 #include "scene/scene.hpp"
+#include "sim/culling.hpp"
 #include "sim/stage_types.hpp"
 
 namespace rcsim {
@@ -17,13 +18,25 @@ struct SensorKinematics {
 // (the mounting offset adds omega x r to the sensor's velocity).
 SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS);
 
+// What compute_ideal_targets leaves out: plane reflectors (Fidelity::points_only) and the objects
+// the broad phase culls (null: none).
+struct IdealTargetFilter {
+  bool planes = true;
+  const CullingBounds* culling = nullptr;
+  // With culling: set per object to 1 if it is present and can lie on a line of sight to a point
+  // in view (within max range + radius, not culled by the view wedge), else 0. The segment from
+  // the sensor to a target in view lies inside the convex view wedge and within max range, so only
+  // these objects can occlude (remove_occluded_targets). Range culling does not clear it.
+  std::vector<unsigned char>* may_occlude = nullptr;
+};
+
 // Per reflection center of every object: range check, view-field check, visibility check;
 // for each one that passes, range, azimuth, range rate (relative velocity of the reflecting
 // point on the line of sight) and ERCS. Appends to `out` after clearing it. `bounding_radius_m`
-// holds each object's ObjectModel::bounding_radius_m(), computed once per scene.
+// holds each object's reflection_radius_m(), computed once per scene.
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
                            std::span<const BodyState> object_states, std::span<const unsigned char> present,
                            std::span<const double> bounding_radius_m,
-                           IdealTargets& out);
+                           IdealTargets& out, const IdealTargetFilter& filter = {});
 
 }  // namespace rcsim

@@ -40,6 +40,22 @@ void estimate_monopulse_angles(const MonopulseAntenna& antenna, double pointer_n
   }
 }
 
+void estimate_ideal_angles(double angle_sigma_rad, const ResolutionCells& cells, const IdealTargets& ideal, Rng* rng,
+                           Detections& out) {
+  out.clear();
+  const bool noisy = rng != nullptr && angle_sigma_rad > 0.0;
+  for (const auto& c : cells) {
+    const IdealTarget& strongest = ideal[static_cast<std::size_t>(c.strongest_ideal_index)];
+    Detection& d = out.emplace_back();
+    d.range_m = c.range_m;
+    d.range_rate_mps = c.range_rate_mps;
+    d.azimuth_rad = strongest.azimuth_rad + (noisy ? angle_sigma_rad * rng->normal() : 0.0);
+    const double power = std::norm(c.sum_pointer);  // |A|^2, eq. (3) summed over the cell
+    d.amplitude_db = power > 0.0 ? power_to_db(power) : -300.0;
+    d.object_index = strongest.object_index;
+  }
+}
+
 void apply_detection_threshold(double threshold_db, Detections& detections) {
   std::erase_if(detections, [&](const Detection& d) { return d.amplitude_db < threshold_db; });
 }

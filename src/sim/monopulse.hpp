@@ -13,6 +13,12 @@ namespace rcsim {
 void estimate_monopulse_angles(const MonopulseAntenna& antenna, double pointer_noise_sigma,
                                const ResolutionCells& cells, const IdealTargets& ideal, Rng* rng, Detections& out);
 
+// Fidelity::no_monopulse: the same detections without eqs. (7)-(8): the angle is the ideal azimuth of
+// the cell's strongest member plus Gaussian noise of std. dev. angle_sigma_rad (one draw per cell,
+// none without `rng`); the amplitude the magnitude of the cell's noise-free sum pointer.
+void estimate_ideal_angles(double angle_sigma_rad, const ResolutionCells& cells, const IdealTargets& ideal, Rng* rng,
+                           Detections& out);
+
 // The detection decision on the cell's resulting amplitude (paper III-B): keeps detections at or
 // above the threshold.
 void apply_detection_threshold(double threshold_db, Detections& detections);

@@ -10,28 +10,38 @@
 
 namespace rcsim {
 
-SensorModel::SensorModel(const MountedSensor& mount_in, const Effects& effects_in, const SimulationOptions& options_in)
+SensorModel::SensorModel(const MountedSensor& mount_in, const Effects& effects_in, const SimulationOptions& options_in,
+                         std::span<const SceneObject> objects)
     : mount(mount_in),
       antenna(mount_in.config.antenna),
       threshold_amplitude(db_to_amplitude(mount_in.config.amplitude.detection_threshold_db)),
       effects(effects_in),
-      options(options_in) {}
+      options(options_in),
+      // The ideal target list shows every echo: only the view culling (exact) applies there.
+      culling(options_in.culling && !objects.empty()
+                  ? make_culling_bounds(mount_in.config, effects_in, objects, options_in.level != OutputLevel::ideal, true)
+                  : CullingBounds{}) {}
 
 SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflector_capacity, double cycle_time_s, std::uint64_t seed,
                                    std::uint64_t stream)
     : tracker(model.mount.config.tracker, cycle_time_s), rng(seed, stream) {
   const std::size_t capacity = reflector_capacity * static_cast<std::size_t>(model.mount.config.multibounce.max_order);
   ideal.reserve(capacity);
+  may_occlude.reserve(model.culling.radius_m.size());
   echoes.reserve(capacity);
   cell_buffers.reserve(capacity);
   cells.reserve(capacity);
   detections.reserve(capacity + 64);
-  reported.reserve(static_cast<std::size_t>(model.mount.config.tracker.max_tracks));
+  reported.reserve(model.options.fidelity == Fidelity::no_tracking
+                       ? capacity + 64  // every detection is reported
+                       : static_cast<std::size_t>(model.mount.config.tracker.max_tracks));
 }
 
 SceneObjects::SceneObjects(std::span<const SceneObject> objects_in) : objects(objects_in) {
   bounding_radius_m.reserve(objects.size());
-  for (const auto& o : objects) bounding_radius_m.push_back(o.model.bounding_radius_m());
+  // Not ObjectModel::bounding_radius_m(): it samples plane arcs at three points and can miss the
+  // arc's farthest point (then an object just beyond max range + radius was skipped wrongly).
+  for (const auto& o : objects) bounding_radius_m.push_back(reflection_radius_m(o.model));
 }
 
 void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_objects, const SceneSnapshot& snapshot,
@@ -45,10 +55,18 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   state.kinematics = sensor_kinematics(snapshot.ego, model.mount.X_VS);
 
   // objects, sensor pose => ideal target list of visible reflection centers     (paper II-B, IV-2/3)
+  IdealTargetFilter filter;
+  filter.planes = model.options.fidelity != Fidelity::points_only;
+  filter.culling = model.options.culling ? &model.culling : nullptr;
+  filter.may_occlude = &state.may_occlude;
   compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.present,
-                        scene_objects.bounding_radius_m,
-                        state.ideal);
-  if (model.effects.occlusion) remove_occluded_targets(state.kinematics, objects, snapshot.objects, snapshot.present, state.ideal);
+                        scene_objects.bounding_radius_m, state.ideal, filter);
+  // ideal targets => those not hidden behind another object (only objects near the view can hide)
+  if (model.effects.occlusion) {
+    const bool culled = model.options.culling && state.may_occlude.size() == objects.size();
+    remove_occluded_targets(state.kinematics, objects, snapshot.objects, culled ? state.may_occlude : snapshot.present,
+                            state.ideal);
+  }
   if (model.effects.multibounce) add_multibounce_targets(config.multibounce, state.ideal);
   // ideal targets => echoes: amplitude and weighted sum/delta pointers          (eqs. (1)-(3), (6))
   compute_echoes(config.amplitude, model.antenna, state.ideal, state.echoes);
@@ -56,7 +74,11 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   // echoes => resolution cells, strongest first, upper amplitude bound          (eqs. (4)-(5))
   form_resolution_cells(config.resolution, model.threshold_amplitude, state.echoes, state.cell_buffers, state.cells);
   // cells => detections: pointer noise, monopulse angle, resulting amplitude    (eqs. (7)-(8))
-  estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
+  if (model.options.fidelity == Fidelity::no_monopulse) {
+    estimate_ideal_angles(model.options.angle_noise_sigma_rad, state.cells, state.ideal, rng, state.detections);
+  } else {
+    estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
+  }
   // detections => those whose amplitude passes the threshold                    (III-B)
   apply_detection_threshold(config.amplitude.detection_threshold_db, state.detections);
   // detections => with range and range-rate noise of amplitude-dependent variance (III-A)
@@ -65,7 +87,11 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   if (model.effects.clutter && rng != nullptr) add_clutter(config, state.kinematics, *rng, state.detections);
   if (model.options.level == OutputLevel::detections) return;
   // detections => tracked target list, reported after four measurements         (III-E)
-  state.tracker.step(state.detections, state.reported);
+  if (model.options.fidelity == Fidelity::no_tracking) {
+    report_detections_directly(state.detections, state.reported);
+  } else {
+    state.tracker.step(state.detections, state.reported);
+  }
 }
 
 }  // namespace rcsim

@@ -7,6 +7,8 @@
 #include "common/rng.hpp"
 #include "scene/scene.hpp"
 #include "sim/antenna.hpp"
+#include "sim/culling.hpp"
+#include "sim/fidelity.hpp"
 #include "sim/ideal_targets.hpp"
 #include "sim/resolution_cells.hpp"
 #include "sim/stage_types.hpp"
@@ -20,17 +22,23 @@ struct SimulationOptions {
   OutputLevel level = OutputLevel::tracks;
   std::uint64_t seed = 0;
   bool noise = true;  // false: every random draw off (no noise, no clutter)
+  Fidelity fidelity = Fidelity::full;  // docs/fidelity.md
+  double angle_noise_sigma_rad = kNoMonopulseAngleSigmaRad;  // Fidelity::no_monopulse only
+  bool culling = true;  // broad phase (culling.hpp); the output is byte-identical either way
 };
 
 // The immutable model of one mounted sensor.
 struct SensorModel {
-  SensorModel(const MountedSensor& mount, const Effects& effects, const SimulationOptions& options);
+  // `objects`: the scene's objects, for the culling bounds (empty: no culling).
+  SensorModel(const MountedSensor& mount, const Effects& effects, const SimulationOptions& options,
+              std::span<const SceneObject> objects = {});
 
   MountedSensor mount;
   MonopulseAntenna antenna;
   double threshold_amplitude;
   Effects effects;
   SimulationOptions options;
+  CullingBounds culling;
 };
 
 // Everything of one sensor that changes per cycle; buffers keep their capacity between cycles.
@@ -39,6 +47,7 @@ struct SensorCycleState {
 
   SensorKinematics kinematics;
   IdealTargets ideal;
+  std::vector<unsigned char> may_occlude;  // per object, from the broad phase (culling)
   Echoes echoes;
   ResolutionCellBuffers cell_buffers;
   ResolutionCells cells;

@@ -8,7 +8,7 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options) : s
   models_.reserve(scene.sensors.size());
   states_.reserve(scene.sensors.size());
   for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
-    models_.emplace_back(scene.sensors[i], scene.effects, options);
+    models_.emplace_back(scene.sensors[i], scene.effects, options, scene.objects);
     // Each sensor draws from its own stream of the seed: adding a sensor leaves the others' draws alone.
     states_.emplace_back(models_.back(), reflectors, scene.cycle_time_s, options.seed, i);
   }

@@ -192,4 +192,17 @@ void Tracker::step(const Detections& detections, ReportedTargets& reported) {
   }
 }
 
+void report_detections_directly(const Detections& detections, ReportedTargets& reported) {
+  reported.clear();
+  for (std::size_t i = 0; i < detections.size(); ++i) {
+    const Detection& d = detections[i];
+    ReportedTarget& r = reported.emplace_back();
+    r.id = static_cast<int>(i);
+    r.range_m = d.range_m;
+    r.azimuth_rad = d.azimuth_rad;
+    r.range_rate_mps = d.range_rate_mps;
+    r.amplitude_db = d.amplitude_db;
+  }
+}
+
 }  // namespace rcsim

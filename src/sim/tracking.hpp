@@ -44,6 +44,9 @@ double mahalanobis2(const KalmanModel& model, const Track& track, const Eigen::V
 // Joseph-form update (H = I), covariance kept symmetric.
 void kalman_update(const KalmanModel& model, const Detection& detection, Track& track);
 
+// Fidelity::no_tracking: every detection becomes a reported target, id = its row index.
+void report_detections_directly(const Detections& detections, ReportedTargets& reported);
+
 class Tracker {
  public:
   Tracker(const TrackerConfig& config, double cycle_time_s);

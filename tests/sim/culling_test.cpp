@@ -1,0 +1,141 @@
+// The broad phase (sim/culling.hpp) never changes the output: byte-identical target lists with
+// culling on and off, on every example scene, every synthetic recording and random traffic.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <cmath>
+#include <sstream>
+#include <unistd.h>
+
+#include "cli/run_rcsim.hpp"
+#include "io/recording.hpp"
+#include "io/target_list_writer.hpp"
+#include "replay/importer.hpp"
+#include "sim/simulation.hpp"
+#include "test_support.hpp"
+
+namespace rcsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string target_lists(const Scene& scene, OutputLevel level, bool culling, std::uint64_t seed = 3) {
+  SimulationOptions options;
+  options.level = level;
+  options.seed = seed;
+  options.culling = culling;
+  Simulation simulation(scene, options);
+  std::ostringstream out;
+  TargetListWriter writer(out, TargetListFormat::Csv, level);
+  writer.write_header();
+  for (int cycle = 0; cycle < simulation.cycle_count(); ++cycle) {
+    simulation.run_cycle(cycle);
+    for (std::size_t s = 0; s < simulation.sensor_count(); ++s) {
+      writer.write_sensor_cycle(scene, cycle, scene.cycle_time_at(cycle), scene.sensors[s].id, simulation.sensor_state(s));
+    }
+  }
+  return out.str();
+}
+
+void expect_culling_invisible(const Scene& scene, const std::string& name) {
+  for (const OutputLevel level : {OutputLevel::ideal, OutputLevel::detections, OutputLevel::tracks}) {
+    const std::string on = target_lists(scene, level, true);
+    const std::string off = target_lists(scene, level, false);
+    EXPECT_GT(on.size(), 0u);
+    EXPECT_TRUE(on == off) << name << " level " << static_cast<int>(level);
+  }
+  // The srr24's 40 m view range lies inside its detectable range, so the range bound never cuts
+  // there; with a 400 m view range it does (BoundsCullFarAndBehind), and must not change anything.
+  Scene long_range = scene;
+  for (auto& sensor : long_range.sensors) sensor.config.fov.max_range_m = 400.0;
+  for (const OutputLevel level : {OutputLevel::detections, OutputLevel::tracks}) {
+    EXPECT_TRUE(target_lists(long_range, level, true) == target_lists(long_range, level, false))
+        << name << " (400 m view range) level " << static_cast<int>(level);
+  }
+}
+
+TEST(Culling, ExampleScenesByteIdentical) {
+  int scenes = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(RCSIM_SOURCE_DIR) / "docs/examples")) {
+    if (entry.path().extension() != ".json") continue;
+    const Scene scene = load_scene_file(entry.path().string(), testing::library());
+    expect_culling_invisible(scene, entry.path().filename().string());
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 7);
+}
+
+TEST(Culling, SyntheticRecordingsByteIdentical) {
+  int recordings = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic")) {
+    if (!fs::exists(entry.path() / "recording.json")) continue;
+    const Recording recording = read_recording(entry.path());
+    const replay::ImportedScene imported = import_recording(recording, testing::library(), replay::ImportOptions{});
+    const Scene scene = replay::build_scene(imported, testing::library(), recording.dir.string());
+    expect_culling_invisible(scene, recording.name);
+    ++recordings;
+  }
+  EXPECT_GE(recordings, 9);
+}
+
+TEST(Culling, RandomTrafficByteIdentical) {
+  const fs::path dir = fs::temp_directory_path() / ("rcsim_culling_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const char* layouts[] = {"highway", "ring", "intersection"};
+  for (int seed = 1; seed <= 6; ++seed) {
+    const fs::path scene_path = dir / ("traffic_" + std::to_string(seed) + ".json");
+    const std::string layout = layouts[seed % 3];
+    ASSERT_EQ(testing::run_rcsim("traffic --layout " + layout + " --duration-s 8 --seed " + std::to_string(seed) +
+                                 " -o " + scene_path.string())
+                  .exit_code,
+              0);
+    const Scene scene = load_scene_file(scene_path.string(), testing::library());
+    expect_culling_invisible(scene, scene_path.filename().string());
+    // The range bound does cull here (so the 400 m comparison above tests it): some present object
+    // at t = 0 lies beyond its cull distance from the first sensor.
+    const CullingBounds b = make_culling_bounds(scene.sensors[0].config, scene.effects, scene.objects, true, true);
+    const Vec2 p_WE_W = scene.ego.state_at(0.0).X_WB.translation();
+    int beyond = 0;
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      const double d_m = (scene.objects[i].trajectory.state_at(0.0).X_WB.translation() - p_WE_W).norm();
+      if (scene.objects[i].present_at(0.0) && d_m > b.cull_distance_m[i] + 5.0 && d_m < 395.0) ++beyond;
+    }
+    EXPECT_GT(beyond, 0) << layout;
+  }
+  // And through the command line, as a user runs it.
+  const fs::path scene_path = dir / "traffic_1.json";
+  const auto on = testing::run_rcsim("simulate " + scene_path.string() + " --seed 9", false);
+  const auto off = testing::run_rcsim("simulate " + scene_path.string() + " --seed 9 --no-culling", false);
+  ASSERT_EQ(on.exit_code, 0);
+  ASSERT_EQ(off.exit_code, 0);
+  EXPECT_TRUE(on.output == off.output);
+  fs::remove_all(dir);
+}
+
+// The bound culls something where it should: a car far beyond its detectable range and a car
+// behind the sensor produce no ideal targets with culling on at the tracks level.
+TEST(Culling, BoundsCullFarAndBehind) {
+  Scene scene = testing::single_sensor_scene(0.2);
+  const SensorConfig& config = scene.sensors[0].config;
+  const std::vector<SceneObject> objects = [&] {
+    std::vector<SceneObject> v(1);
+    v[0].model = testing::library().at("passenger_car");
+    return v;
+  }();
+  const CullingBounds b = make_culling_bounds(config, scene.effects, objects, true, true);
+  ASSERT_TRUE(b.by_range);
+  ASSERT_EQ(b.cull_distance_m.size(), 1u);
+  // The bound lies beyond the single strongest reflector's detectable range (eq. (1)).
+  const double single_m = (config.amplitude.reference_level_db - config.amplitude.detection_threshold_db +
+                           20.0 * std::log10(objects[0].model.max_ercs())) /
+                          config.amplitude.reference_slope_db_per_m;
+  EXPECT_GT(b.cull_distance_m[0], single_m);
+  EXPECT_LT(b.cull_distance_m[0], 400.0);  // cuts inside a 400 m view range
+  EXPECT_GE(b.radius_m[0], objects[0].model.bounding_radius_m());
+  // Off at the ideal level: only the (exact) view culling.
+  const CullingBounds ideal = make_culling_bounds(config, scene.effects, objects, false, true);
+  EXPECT_FALSE(ideal.by_range);
+}
+
+}  // namespace
+}  // namespace rcsim
