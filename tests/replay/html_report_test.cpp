@@ -56,18 +56,10 @@ void fill_database(const fs::path& dir, const std::string& path) {
   }
 }
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::count_occurrences;
+using testing::read_file;
 
-std::size_t count(const std::string& text, const std::string& needle) {
-  std::size_t n = 0;
-  for (auto pos = text.find(needle); pos != std::string::npos; pos = text.find(needle, pos + needle.size())) ++n;
-  return n;
-}
+std::size_t count(const std::string& text, const std::string& needle) { return count_occurrences(text, needle); }
 
 class HtmlReport : public ::testing::Test {
  protected:

@@ -2,10 +2,18 @@
 // Scenes and model-made recordings for the harness tests.
 #include <filesystem>
 
+#include "cli/run_rcsim.hpp"
 #include "replay/model_recording.hpp"
 #include "test_support.hpp"
 
 namespace rcsim::testing {
+
+// How often needle occurs in text (non-overlapping).
+inline std::size_t count_occurrences(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (auto pos = text.find(needle); pos != std::string::npos; pos = text.find(needle, pos + needle.size())) ++n;
+  return n;
+}
 
 inline Recording model_recording(const Scene& scene, std::uint64_t seed, double position_noise_m = 0.0,
                                  double yaw_noise_rad = 0.0) {
