@@ -13,7 +13,8 @@ Trajectory::Trajectory(const std::vector<TrajectorySample>& samples) {
     const auto& s = samples[i];
     double yaw_rad = s.yaw_rad;
     if (i > 0) yaw_rad = nodes_.back().yaw_rad + angle_difference_rad(s.yaw_rad, nodes_.back().yaw_rad);
-    nodes_.push_back({s.t_s, Vec2(s.x_m, s.y_m), yaw_rad, s.speed_mps, 0.0});
+    nodes_.push_back({s.t_s, Vec2(s.x_m, s.y_m), yaw_rad, s.speed_mps, 0.0,
+                      s.speed_mps * Vec2(std::cos(yaw_rad), std::sin(yaw_rad))});
   }
   // Yaw rates not given are the (central, at the ends one-sided) differences of the unwrapped yaw.
   const std::size_t n = nodes_.size();
@@ -61,8 +62,8 @@ BodyState Trajectory::state_at(double t_s) const {
   // Cubic Hermite basis and its derivative with respect to s.
   const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
   const double d00 = 6 * s2 - 6 * s, d10 = 3 * s2 - 4 * s + 1, d01 = -6 * s2 + 6 * s, d11 = 3 * s2 - 2 * s;
-  const Vec2 va = a.speed_mps * Vec2(std::cos(a.yaw_rad), std::sin(a.yaw_rad));
-  const Vec2 vb = b.speed_mps * Vec2(std::cos(b.yaw_rad), std::sin(b.yaw_rad));
+  const Vec2& va = a.v_W;
+  const Vec2& vb = b.v_W;
   BodyState state;
   const Vec2 p = h00 * a.p_W + h10 * h * va + h01 * b.p_W + h11 * h * vb;
   const double yaw_rad = h00 * a.yaw_rad + h10 * h * a.yaw_rate_radps + h01 * b.yaw_rad + h11 * h * b.yaw_rate_radps;

@@ -39,6 +39,7 @@ class Trajectory {
     double yaw_rad;  // unwrapped along the trajectory
     double speed_mps;
     double yaw_rate_radps;
+    Vec2 v_W;  // speed_mps * (cos yaw, sin yaw), once per node instead of once per evaluation
   };
   BodyState extrapolate(const Node& node, double dt_s) const;
   std::vector<Node> nodes_;

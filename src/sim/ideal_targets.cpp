@@ -28,8 +28,7 @@ SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS) {
 
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
                            std::span<const BodyState> object_states, std::span<const unsigned char> present,
-                           std::span<const double> bounding_radius_m, IdealTargets& out,
-                           const IdealTargetFilter& filter) {
+                           IdealTargets& out, const IdealTargetFilter& filter) {
   out.clear();
   const CullingBounds* culling = filter.culling;
   if (culling != nullptr && culling->radius_m.size() != objects.size()) culling = nullptr;  // built for another scene
@@ -78,8 +77,6 @@ void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& senso
     if (!present[i]) continue;  // not part of the scene at this time
     const auto& model = objects[i].model;
     const auto& body = object_states[i];
-    // Whole objects out of range are skipped at once (their bounding circle).
-    const double reach_m = fov.max_range_m + bounding_radius_m[i];
     const Vec2 p_WO_W = body.X_WB.translation();
     const double distance2_m2 = (p_WO_W - p_WS_W).squaredNorm();
     if (culling != nullptr) {
@@ -97,10 +94,12 @@ void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& senso
       // Before range culling: a far or faint object still hides what is behind it.
       const double occlude_reach_m = fov.max_range_m + margin_m;
       if (may_occlude != nullptr && distance2_m2 <= occlude_reach_m * occlude_reach_m) (*may_occlude)[i] = 1;
+      // Beyond the view range by more than the reflection circle: no reflection point in view.
+      const double reach_m = fov.max_range_m + culling->radius_m[i];
+      if (distance2_m2 > reach_m * reach_m) continue;
       const double cull_m = culling->by_range ? culling->cull_distance_m[i] : 0.0;
       if (culling->by_range && distance2_m2 > cull_m * cull_m) continue;
     }
-    if (distance2_m2 > reach_m * reach_m) continue;
     const double c = std::cos(body.X_WB.yaw_rad), s = std::sin(body.X_WB.yaw_rad);
     const auto to_world = [&](const Vec2& p_O) {
       return Vec2(p_WO_W.x() + c * p_O.x() - s * p_O.y(), p_WO_W.y() + s * p_O.x() + c * p_O.y());

@@ -32,11 +32,10 @@ struct IdealTargetFilter {
 
 // Per reflection center of every object: range check, view-field check, visibility check;
 // for each one that passes, range, azimuth, range rate (relative velocity of the reflecting
-// point on the line of sight) and ERCS. Appends to `out` after clearing it. `bounding_radius_m`
-// holds each object's reflection_radius_m(), computed once per scene.
+// point on the line of sight) and ERCS. Appends to `out` after clearing it. Without
+// filter.culling every reflection center of every present object is visited.
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
                            std::span<const BodyState> object_states, std::span<const unsigned char> present,
-                           std::span<const double> bounding_radius_m,
                            IdealTargets& out, const IdealTargetFilter& filter = {});
 
 }  // namespace rcsim

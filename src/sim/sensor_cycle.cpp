@@ -37,13 +37,6 @@ SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflect
                        : static_cast<std::size_t>(model.mount.config.tracker.max_tracks));
 }
 
-SceneObjects::SceneObjects(std::span<const SceneObject> objects_in) : objects(objects_in) {
-  bounding_radius_m.reserve(objects.size());
-  // Not ObjectModel::bounding_radius_m(): it samples plane arcs at three points and can miss the
-  // arc's farthest point (then an object just beyond max range + radius was skipped wrongly).
-  for (const auto& o : objects) bounding_radius_m.push_back(reflection_radius_m(o.model));
-}
-
 void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_objects, const SceneSnapshot& snapshot,
                       SensorCycleState& state) {
   const auto objects = scene_objects.objects;
@@ -59,8 +52,7 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   filter.planes = model.options.fidelity != Fidelity::points_only;
   filter.culling = model.options.culling ? &model.culling : nullptr;
   filter.may_occlude = &state.may_occlude;
-  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.present,
-                        scene_objects.bounding_radius_m, state.ideal, filter);
+  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.present, state.ideal, filter);
   // ideal targets => those not hidden behind another object (only objects near the view can hide)
   if (model.effects.occlusion) {
     const bool culled = model.options.culling && state.may_occlude.size() == objects.size();

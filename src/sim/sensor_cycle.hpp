@@ -61,15 +61,14 @@ struct SensorCycleState {
 struct SceneSnapshot {
   double t_s = 0.0;
   BodyState ego;
-  std::vector<BodyState> objects;
+  std::vector<BodyState> objects;       // valid where present[i]
   std::vector<unsigned char> present;  // per object: takes part at this time (SceneObject::presence)
 };
 
-// The scene's objects as the sensor cycle reads them; bounding radii computed once.
+// The scene's objects as the sensor cycle reads them.
 struct SceneObjects {
-  explicit SceneObjects(std::span<const SceneObject> objects);
+  explicit SceneObjects(std::span<const SceneObject> objects_in) : objects(objects_in) {}
   std::span<const SceneObject> objects;
-  std::vector<double> bounding_radius_m;
 };
 
 void run_sensor_cycle(const SensorModel& model, const SceneObjects& objects, const SceneSnapshot& snapshot,

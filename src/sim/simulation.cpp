@@ -23,7 +23,8 @@ void Simulation::run_at(double t_s) {
   snapshot_.ego = scene_.ego.state_at(t_s);
   for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
     snapshot_.present[i] = scene_.objects[i].present_at(t_s) ? 1 : 0;
-    snapshot_.objects[i] = scene_.objects[i].trajectory.state_at(t_s);
+    // An absent object takes no part: its state is not needed (and keeps its last value).
+    if (snapshot_.present[i]) snapshot_.objects[i] = scene_.objects[i].trajectory.state_at(t_s);
   }
   for (std::size_t i = 0; i < models_.size(); ++i) run_sensor_cycle(models_[i], objects_, snapshot_, states_[i]);
 }
