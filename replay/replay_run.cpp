@@ -2,11 +2,11 @@
 
 #include <chrono>
 #include <cmath>
-#include <ctime>
 
 #include "common/angles.hpp"
+#include "common/cpu_time.hpp"
 #include "metrics/sensor_view.hpp"
-#include "sim/simulation.hpp"
+#include "replay/simulated_source.hpp"
 
 namespace rcsim::replay {
 
@@ -26,18 +26,6 @@ double detectable_range_m(const SensorConfig& config, const ObjectModel& model) 
   const AmplitudeLaw& law = config.amplitude;
   const double margin_db = law.reference_level_db + 20.0 * std::log10(model.max_ercs()) - law.detection_threshold_db;
   return std::min(config.fov.max_range_m, std::max(0.0, margin_db / law.reference_slope_db_per_m));
-}
-
-// The fields both target kinds share (RecordedTarget, ReportedTarget).
-template <typename Target>
-ComparedTarget compared(const Target& target) {
-  ComparedTarget t;
-  t.track_id = target.id;
-  t.range_m = target.range_m;
-  t.azimuth_rad = target.azimuth_rad;
-  t.range_rate_mps = target.range_rate_mps;
-  t.amplitude_db = target.amplitude_db;
-  return t;
 }
 
 struct Accumulators {
@@ -61,15 +49,16 @@ void classify_targets(std::vector<ComparedTarget>& targets, const std::vector<me
 }  // namespace
 
 ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& options, ReplaySink& sink) {
-  const auto wall_start = std::chrono::steady_clock::now();
   const ModelLibrary library = ModelLibrary::builtin();
   const ImportedScene imported = import_recording(rec, library, options.import);
   const Scene scene = build_scene(imported, library, rec.dir.string());
-  SimulationOptions sim_options;
-  sim_options.level = OutputLevel::tracks;
-  sim_options.seed = options.seed;
-  sim_options.fidelity = options.fidelity;
-  Simulation simulation(scene, sim_options);
+  ModelSource source(scene, model_options(options.seed, options.fidelity));
+  return compare_with_recording(rec, imported, scene, source, options, sink);
+}
+
+ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& imported, const Scene& scene,
+                                     SimulatedSource& source, const ReplayOptions& options, ReplaySink& sink) {
+  const auto wall_start = std::chrono::steady_clock::now();
   sink.begin_run(rec, imported, scene, options);
 
   const std::size_t n_sensors = scene.sensors.size(), n_objects = scene.objects.size();
@@ -100,13 +89,18 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
   std::size_t cursor = 0;  // into rec.targets, which are in cycle order
   CycleComparison cycle;
   std::vector<metrics::BoxInSensor> boxes, in_view;
+  std::vector<BodyState> object_states(n_objects);
   for (int k = 0; k < rec.cycle_count(); ++k) {
     const double t_rec_s = rec.ego[k].t_s;
     const double t_scene_s = t_rec_s - imported.time_offset_s;
-    const std::clock_t cpu_start = std::clock();
-    simulation.run_at(t_scene_s);
-    simulate_cpu_s += static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    const SceneSnapshot& snapshot = simulation.snapshot();
+    const double cpu_start_s = thread_cpu_s();
+    source.run_at(t_scene_s);
+    simulate_cpu_s += thread_cpu_s() - cpu_start_s;
+    // The annotated (smoothed) boxes and the ego at this time, as the scene gives them.
+    const BodyState ego = scene.ego.state_at(t_scene_s);
+    for (std::size_t o = 0; o < n_objects; ++o) {
+      if (scene.objects[o].present_at(t_scene_s)) object_states[o] = scene.objects[o].trajectory.state_at(t_scene_s);
+    }
     const std::size_t cycle_end = [&] {
       std::size_t end = cursor;
       while (end < rec.targets.size() && rec.targets[end].cycle == k) ++end;
@@ -120,7 +114,7 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
       cycle.cycle = k;
       cycle.sensor = static_cast<int>(s);
       cycle.t_s = t_rec_s;
-      cycle.X_WS = compose(snapshot.ego.X_WB, scene.sensors[s].X_VS);
+      cycle.X_WS = compose(ego.X_WB, scene.sensors[s].X_VS);
       cycle.recorded.clear();
       cycle.simulated.clear();
       cycle.objects.clear();
@@ -129,8 +123,8 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
       for (std::size_t o = 0; o < n_objects; ++o) {
         const SceneObject& object = scene.objects[o];
         if (!object.present_at(t_scene_s)) continue;
-        const metrics::BoxInSensor box = metrics::box_in_sensor(static_cast<int>(o), cycle.X_WS, snapshot.ego,
-                                                                snapshot.objects[o], imported.objects[o].length_m,
+        const metrics::BoxInSensor box = metrics::box_in_sensor(static_cast<int>(o), cycle.X_WS, ego, object_states[o],
+                                                                imported.objects[o].length_m,
                                                                 imported.objects[o].width_m);
         const bool visible = std::abs(box.azimuth_rad) <= config.fov.azimuth_half_rad &&
                              box.range_m >= config.fov.min_range_m && box.range_m <= detectable_m[s][o];
@@ -139,16 +133,14 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
         // Boxes for the report's pictures: those near the sensors (an hour-long drive passes many).
         constexpr double kPictureMargin_m = 20.0;
         if (box.range_m <= config.fov.max_range_m + kPictureMargin_m) {
-          const Pose2& X_WO = snapshot.objects[o].X_WB;
+          const Pose2& X_WO = object_states[o].X_WB;
           cycle.objects.push_back({static_cast<int>(o), X_WO.x_m, X_WO.y_m, X_WO.yaw_rad, visible});
         }
       }
-      // Detectability: the model detects the object (a detection whose strongest member is one of
-      // its reflectors, paper III-C/D), before the tracker; then the episodes.
+      // Detectability: the source detects the object (for the model a detection whose strongest
+      // member is one of its reflectors, paper III-C/D), before the tracker; then the episodes.
       std::fill(detectable_now.begin(), detectable_now.end(), 0);
-      for (const Detection& d : simulation.sensor_state(s).detections) {
-        if (d.object_index >= 0) detectable_now[static_cast<std::size_t>(d.object_index)] = 1;
-      }
+      source.mark_detected_objects(s, boxes, options.association_gate_m, detectable_now);
       for (std::size_t o = 0; o < n_objects; ++o) {
         const std::size_t key = s * n_objects + o;
         if (detectable_now[o]) {
@@ -162,9 +154,9 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
         }
       }
       for (std::size_t i = cursor; i < cycle_end; ++i) {
-        if (rec.targets[i].sensor == static_cast<int>(s)) cycle.recorded.push_back(compared(rec.targets[i]));
+        if (rec.targets[i].sensor == static_cast<int>(s)) cycle.recorded.push_back(compared_target(rec.targets[i]));
       }
-      for (const ReportedTarget& r : simulation.sensor_state(s).reported) cycle.simulated.push_back(compared(r));
+      source.append_targets(s, cycle.simulated);
       const std::vector<metrics::MergePair> pairs = metrics::merge_pairs(in_view, merge);
       cycle.merge_pairs.clear();
       for (const auto& p : pairs) cycle.merge_pairs.emplace_back(in_view[p.box_a].object, in_view[p.box_b].object);

@@ -11,6 +11,7 @@
 #include "metrics/distribution_distance.hpp"
 #include "metrics/gospa.hpp"
 #include "metrics/merge_artefacts.hpp"
+#include "metrics/sensor_view.hpp"
 #include "replay/importer.hpp"
 #include "sim/fidelity.hpp"
 
@@ -96,6 +97,27 @@ class ReplaySink {
   virtual void end_run(const ReplaySummary& summary) = 0;
 };
 
+// What is compared against the recording: the reflection-center model at a fidelity level
+// (replay/simulated_source.hpp: ModelSource) or the signal-level reference (ReferenceSource).
+class SimulatedSource {
+ public:
+  virtual ~SimulatedSource() = default;
+  // Runs every sensor at scene time t (times increasing).
+  virtual void run_at(double t_scene_s) = 0;
+  // The target list one sensor reported in the last run_at, appended to `out`.
+  virtual void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const = 0;
+  // Sets detected[object] = 1 for every object with a detection (before tracking) in the last
+  // run_at: the start of a latency episode. `boxes`: the present objects as that sensor sees them.
+  virtual void mark_detected_objects(std::size_t sensor, const std::vector<metrics::BoxInSensor>& boxes, double gate_m,
+                                     std::vector<char>& detected) const = 0;
+};
+
+// rcsim replay: the reflection-center model (options.fidelity) against the recording.
 ReplaySummary replay_recording(const Recording& recording, const ReplayOptions& options, ReplaySink& sink);
+
+// The comparison itself, for any source; `scene` is build_scene(imported); summary.simulate_cpu_s
+// is the CPU time spent in source.run_at.
+ReplaySummary compare_with_recording(const Recording& recording, const ImportedScene& imported, const Scene& scene,
+                                     SimulatedSource& source, const ReplayOptions& options, ReplaySink& sink);
 
 }  // namespace rcsim::replay

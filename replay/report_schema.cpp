@@ -1,5 +1,5 @@
-// The report database schema (`rcsim-report` v1, schemas/report-database.md), applied by
-// report_store.cpp when it creates a database.
+// The report database schema (`rcsim-report` v2, schemas/report-database.md), applied by
+// report_store.cpp when it creates a database; a v1 database gains the bench tables on opening.
 #include "replay/report_store.hpp"
 
 namespace rcsim::replay {
@@ -120,6 +120,41 @@ CREATE TABLE IF NOT EXISTS summaries (
   residual_range_rms_m REAL NOT NULL, residual_azimuth_rms_rad REAL NOT NULL,
   residual_range_rate_rms_mps REAL NOT NULL, residual_amplitude_mean_db REAL NOT NULL,
   simulate_cpu_s REAL NOT NULL, total_wall_s REAL NOT NULL
+) STRICT;
+)SQL";
+
+// Added in version 2: `rcsim bench` (speed against error, replay/bench_run.hpp).
+extern const char* const kBenchSchemaSql;
+const char* const kBenchSchemaSql = R"SQL(
+CREATE TABLE IF NOT EXISTS bench_runs (
+  bench_id INTEGER PRIMARY KEY,
+  seed INTEGER NOT NULL,
+  machine TEXT NOT NULL,                 -- CPU model and logical cores the speeds were measured on
+  parameters TEXT NOT NULL,              -- JSON: metric parameters, timing rule, levels and their meaning
+  rcsim_version TEXT NOT NULL,
+  created_utc TEXT NOT NULL              -- ISO 8601
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS bench_rows (
+  bench_id INTEGER NOT NULL REFERENCES bench_runs(bench_id) ON DELETE CASCADE,
+  recording INTEGER NOT NULL,            -- 0, 1, ...: position of the recording in the bench
+  recording_name TEXT NOT NULL,
+  recording_checksum TEXT NOT NULL,      -- FNV-1a 64, 16 hex digits
+  level TEXT NOT NULL,                   -- reference | noise_floor | full | no_monopulse | points_only | no_tracking
+  sensor_cycles INTEGER NOT NULL,        -- cycles x sensors of the recording
+  cpu_s REAL,                            -- CPU time of the timed simulation passes; NULL for noise_floor
+  sensor_cycles_per_cpu_s REAL,          -- NULL for noise_floor
+  gospa_mean_m REAL NOT NULL,            -- mean over sensor cycles against the recording
+  targets_recorded INTEGER NOT NULL,
+  targets_simulated INTEGER NOT NULL,
+  targets_per_cycle_ratio REAL,          -- simulated / recorded; NULL when nothing was recorded
+  merge_artefacts_recorded INTEGER NOT NULL,
+  merge_artefacts_found INTEGER NOT NULL,     -- recorded artefacts the level also produced (per pair and cycle)
+  merge_artefacts_missed INTEGER NOT NULL,    -- recorded - found
+  merge_artefacts_spurious INTEGER NOT NULL,  -- simulated - found
+  latency_difference_s REAL,             -- mean simulated - recorded confirmation latency; NULL: no paired episode
+  latency_pairs INTEGER NOT NULL,
+  PRIMARY KEY (bench_id, recording, level)
 ) STRICT;
 )SQL";
 

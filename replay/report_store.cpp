@@ -14,6 +14,7 @@
 namespace rcsim::replay {
 
 extern const char* const kReportSchemaSql;
+extern const char* const kBenchSchemaSql;
 
 namespace {
 
@@ -101,12 +102,19 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
       db->exec("PRAGMA journal_mode = WAL");  // persistent: readers never block the writer
       SQLite::Transaction transaction(*db);
       db->exec(kReportSchemaSql);
+      db->exec(kBenchSchemaSql);
       db->exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
       db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
       transaction.commit();
     } else if (application_id != kReportApplicationId) {
       throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
                                              static_cast<std::uint32_t>(application_id), kReportApplicationId));
+    } else if (user_version == 1) {
+      // v1 -> v2: the bench tables are new; nothing else changed.
+      SQLite::Transaction transaction(*db);
+      db->exec(kBenchSchemaSql);
+      db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
+      transaction.commit();
     } else if (user_version != kReportSchemaVersion) {
       throw InputError(path, "", fmt::format("report database schema version {} is not the supported version {}",
                                              user_version, kReportSchemaVersion));

@@ -54,8 +54,9 @@ std::vector<Echo> ReferenceSimulator::echoes_at(std::size_t sensor, double t_s) 
   return propagation_.echoes(state, placed_bodies(t_s), clutter);
 }
 
-void ReferenceSimulator::run_cycle(int cycle) {
-  const double t_s = scene_.cycle_time_at(cycle);
+void ReferenceSimulator::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }
+
+void ReferenceSimulator::run_at(double t_s) {
   for (std::size_t s = 0; s < scene_.sensors.size(); ++s) {
     SensorCycle& out = last_[s];
     out.echoes = echoes_at(s, t_s);                                  // scene => echoes

@@ -35,6 +35,8 @@ class ReferenceSimulator {
   std::size_t sensor_count() const { return scene_.sensors.size(); }
   // Runs cycle k (cycles must be run in order: the trackers carry state).
   void run_cycle(int cycle);
+  // The same at an arbitrary time (replays use the recorded cycle times); times increasing.
+  void run_at(double t_s);
   // The state of one sensor after the last run_cycle.
   const SensorCycle& sensor_cycle(std::size_t sensor) const { return last_[sensor]; }
   // The echoes of one sensor at time t (no processing), for tests and the benchmark.
