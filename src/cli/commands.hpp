@@ -13,5 +13,6 @@ void add_report_command(CLI::App& app);
 void add_stream_command(CLI::App& app);
 void add_listen_command(CLI::App& app);
 void add_traffic_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 
 }  // namespace rcsim::cli
