@@ -100,6 +100,11 @@ ImportedScene import_recording(const Recording& rec, const ModelLibrary& library
   out.duration_s = rec.ego.back().t_s - out.time_offset_s;
   out.cycle_time_s = rec.cycle_time_s;
   out.effects = options.effects;
+  if (const auto declared = rec.source.find("effects");
+      options.effects_from_recording && declared != rec.source.end() && declared->is_object()) {
+    const auto flag = [&](const char* name) { return declared->contains(name) && declared->at(name) == true; };
+    out.effects = {flag("clutter"), flag("multibounce"), flag("occlusion")};
+  }
   out.ego = ego_trajectory(rec, out.time_offset_s);
   out.sensors = rec.sensors;
   if (!options.sensor_type_override.empty()) {

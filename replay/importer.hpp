@@ -18,6 +18,9 @@ struct ImportOptions {
   // means the object was out of sight: it is absent from the scene in between.
   double max_gap_s = 0.5;
   Effects effects{true, true, true};  // a real drive has clutter, multiple reflections, occlusion
+  // When the recording declares the effects of its scene (recording.json source.effects, written
+  // by rcsim synth), those are simulated instead of `effects`.
+  bool effects_from_recording = true;
   // When set, every sensor is simulated with this configuration (a built-in name or a file path)
   // instead of the type the recording names: to compare sensor configurations on one drive.
   std::string sensor_type_override;

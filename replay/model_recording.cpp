@@ -11,7 +11,12 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
   rec.name = name;
   rec.description = "made by the reflection-center model (rcsim), not a measurement";
   rec.cycle_time_s = scene.cycle_time_s;
-  rec.source = {{"generator", "rcsim reflection-center model"}, {"seed", seed}};
+  rec.source = {{"generator", "rcsim reflection-center model"},
+                {"seed", seed},
+                {"effects",
+                 {{"clutter", scene.effects.clutter},
+                  {"multibounce", scene.effects.multibounce},
+                  {"occlusion", scene.effects.occlusion}}}};
   for (const auto& s : scene.sensors) {
     rec.sensors.push_back({s.id, s.config.name, s.X_VS.x_m, s.X_VS.y_m, s.X_VS.yaw_rad});
   }

@@ -28,8 +28,7 @@ std::string sensor_configuration_text(const std::string& type, const std::filesy
   return text.str();
 }
 
-nlohmann::ordered_json parameters_json(const ReplayOptions& options) {
-  const auto& e = options.import.effects;
+nlohmann::ordered_json parameters_json(const ReplayOptions& options, const Effects& e) {
   return {
       {"fidelity",
        {{"level", std::string(fidelity_name(options.fidelity))}, {"documentation", "docs/fidelity.md"}}},
@@ -148,7 +147,7 @@ void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported
   run.bind(6, rec.cycle_count());
   run.bind(7, static_cast<std::int64_t>(options.seed));
   run.bind(8, "tracks");
-  run.bind(9, parameters_json(options).dump());
+  run.bind(9, parameters_json(options, imported.effects).dump());  // the effects actually simulated
   run.bind(10, RCSIM_VERSION);
   run.bind(11, utc_now());
   run.exec();

@@ -12,7 +12,7 @@ namespace rcsim::cli {
 struct ImportArgs {
   double smoothing_half_window_s = replay::ImportOptions{}.smoothing_half_window_s;
   double max_gap_s = replay::ImportOptions{}.max_gap_s;
-  std::string effects = "clutter,multibounce,occlusion";
+  std::string effects;  // empty: the recording's declared effects, else all three
   std::string sensor;
 };
 
@@ -25,8 +25,8 @@ inline void add_import_options(CLI::App& cmd, ImportArgs& args) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd.add_option("--effects", args.effects,
-                 "effects of the re-simulation, comma-separated from clutter,multibounce,occlusion, or none")
-      ->capture_default_str();
+                 "effects of the re-simulation, comma-separated from clutter,multibounce,occlusion, or none; default: "
+                 "those the recording declares (recording.json source.effects), else all three");
   cmd.add_option("--sensor", args.sensor,
                  "simulate every sensor with this configuration (built-in name or rcsim-sensor file) instead of "
                  "the recording's");
@@ -36,12 +36,14 @@ inline replay::ImportOptions import_options(const ImportArgs& args) {
   replay::ImportOptions options;
   options.smoothing_half_window_s = args.smoothing_half_window_s;
   options.max_gap_s = args.max_gap_s;
-  options.effects = {};
   if (!args.sensor.empty()) {
     // A file named on the command line is relative to the working directory, not the recording.
     const bool is_path = args.sensor.find('/') != std::string::npos || args.sensor.ends_with(".json");
     options.sensor_type_override = is_path ? std::filesystem::absolute(args.sensor).string() : args.sensor;
   }
+  if (args.effects.empty()) return options;  // the recording's declared effects, else all three
+  options.effects = {};
+  options.effects_from_recording = false;
   std::string rest = args.effects;
   while (!rest.empty() && rest != "none") {
     const auto comma = rest.find(',');
