@@ -78,8 +78,9 @@ double time_model_pass_cpu_s(const Scene& scene, const Recording& rec, double ti
 std::pair<std::uint64_t, std::uint64_t> reference_seeds(std::uint64_t seed, const Recording& recording) {
   std::uint64_t recorded_seed = 0;
   bool has_seed = false;
-  if (const auto it = recording.source.find("seed"); it != recording.source.end() && it->is_number_unsigned()) {
-    recorded_seed = it->get<std::uint64_t>();
+  if (const auto it = recording.source.find("seed");
+      it != recording.source.end() && it->is_number_integer() && it->get<std::int64_t>() >= 0) {
+    recorded_seed = static_cast<std::uint64_t>(it->get<std::int64_t>());
     has_seed = true;
   }
   std::uint64_t candidate = seed + 1;

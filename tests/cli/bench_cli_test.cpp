@@ -1,0 +1,108 @@
+// rcsim bench as a user runs it: the table, --json (rcsim-bench v1), storage in the report
+// database, determinism of the error columns, and refusals that leave the database alone.
+#include <gtest/gtest.h>
+
+#include <SQLiteCpp/SQLiteCpp.h>
+#include <cstdlib>
+#include <filesystem>
+#include <sys/wait.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/run_rcsim.hpp"
+
+namespace rcsim {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_rcsim;
+
+class BenchCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("rcsim_bench_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  static std::string recording(const std::string& name) {
+    return (fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / name).string();
+  }
+  fs::path dir_;
+};
+
+TEST_F(BenchCli, JsonRowsAndTheSameSeedRepeatsTheErrors) {
+  const std::string args = "bench " + recording("standstill_1m") + " " + recording("two_in_one_cell") +
+                           " --no-reference --levels full,no_monopulse --min-cpu-s 0 --json --seed 4";
+  const auto first = run_rcsim(args, false);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const auto j = nlohmann::json::parse(first.output);
+  EXPECT_EQ(j["format"], "rcsim-bench");
+  EXPECT_EQ(j["version"], 1);
+  EXPECT_TRUE(j["bench_id"].is_null());  // not stored
+  EXPECT_TRUE(j["goals"].is_null());     // no reference, no noise floor
+  ASSERT_EQ(j["rows"].size(), 4u);
+  EXPECT_EQ(j["rows"][0]["recording"], "standstill_1m");
+  EXPECT_EQ(j["rows"][3]["recording"], "two_in_one_cell");
+  EXPECT_EQ(j["rows"][3]["level"], "no_monopulse");
+  // Fig. 10: the full model finds the recorded merge artefacts; without monopulse there are none.
+  EXPECT_GT(j["rows"][2]["merge_artefacts"]["found"].get<int>(), 50);
+  EXPECT_EQ(j["rows"][3]["merge_artefacts"]["found"].get<int>(), 0);
+  EXPECT_EQ(j["rows"][3]["merge_artefacts"]["missed"], j["rows"][3]["merge_artefacts"]["recorded"]);
+  ASSERT_EQ(j["levels"].size(), 2u);
+  EXPECT_EQ(j["levels"][0]["sensor_cycles"].get<long long>(),
+            j["rows"][0]["sensor_cycles"].get<long long>() + j["rows"][2]["sensor_cycles"].get<long long>());
+
+  const auto second = nlohmann::json::parse(run_rcsim(args, false).output);
+  for (std::size_t i = 0; i < 4; ++i) {
+    for (const char* key : {"gospa_mean_m", "targets_simulated", "merge_artefacts", "latency_difference_s"}) {
+      EXPECT_EQ(second["rows"][i][key], j["rows"][i][key]) << i << " " << key;
+    }
+  }
+}
+
+TEST_F(BenchCli, TableWithReferenceGoalsAndStorage) {
+  const std::string db = (dir_ / "report.sqlite").string();
+  const auto r = run_rcsim("bench " + recording("standstill_1m") + " --levels full --min-cpu-s 0 --db " + db);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* text : {"reference", "noise_floor", "full", "all recordings", "goals", "x faster than the reference",
+                           "bench 1 stored in"}) {
+    EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
+  }
+  SQLite::Database d(db);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM bench_rows WHERE bench_id = 1").getInt(), 3);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM bench_rows WHERE level = 'noise_floor' AND cpu_s IS NULL").getInt(), 1);
+  EXPECT_GT(d.execAndGet("SELECT sensor_cycles_per_cpu_s FROM bench_rows WHERE level = 'full'").getDouble(),
+            100.0 * d.execAndGet("SELECT sensor_cycles_per_cpu_s FROM bench_rows WHERE level = 'reference'").getDouble());
+}
+
+TEST_F(BenchCli, RefusalsNameTheInputAndStoreNothing) {
+  const std::string db = (dir_ / "report.sqlite").string();
+  ASSERT_EQ(run_rcsim("bench " + recording("standstill_1m") + " --no-reference --levels full --min-cpu-s 0 --db " + db).exit_code, 0);
+
+  auto r = run_rcsim("bench " + recording("standstill_1m") + " --levels full,fast --db " + db);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--levels"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fast"), std::string::npos) << r.output;
+
+  r = run_rcsim("bench " + recording("standstill_1m") + " " + (dir_ / "missing").string() + " --db " + db);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find((dir_ / "missing").string()), std::string::npos) << r.output;
+
+  r = run_rcsim("bench " + recording("standstill_1m") + " --no-reference --levels none");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("nothing to bench"), std::string::npos) << r.output;
+
+  // No recording named, in a directory without recordings_synthetic/.
+  const fs::path out = dir_ / "out.txt";
+  const int status = std::system(("cd " + dir_.string() + " && " + RCSIM_BINARY + " bench --no-reference > " +
+                                  out.string() + " 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_NE(testing::read_file(out).find("name RECORDING_DIRs"), std::string::npos) << testing::read_file(out);
+
+  SQLite::Database d(db);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM bench_runs").getInt(), 1);
+  EXPECT_EQ(d.execAndGet("PRAGMA integrity_check").getString(), "ok");
+}
+
+}  // namespace
+}  // namespace rcsim
