@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The main job on the bundled recordings: set up and build, replay every recording of
 # recordings_synthetic/ (import, re-simulate, compare per cycle) into the SQLite report
-# out/report.sqlite, then write the HTML validation report out/report.html.
+# out/report.sqlite, bench every fidelity level against the signal-level reference on them
+# (speed against error, docs/bench.md; about two minutes) into the same database, then write the
+# HTML validation report out/report.html. Set RCSIM_SKIP_BENCH=1 to leave the bench out.
 # Runs accumulate in the database (rcsim never deletes a report); the HTML shows this batch.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,5 +15,8 @@ for recording in recordings_synthetic/*/; do
   ./build/bin/rcsim replay "$recording" --db out/report.sqlite --seed 1
   runs=$((runs + 1))
 done
+if [ "${RCSIM_SKIP_BENCH:-0}" != 1 ]; then
+  ./build/bin/rcsim bench --db out/report.sqlite
+fi
 ./build/bin/rcsim report out/report.sqlite -o out/report.html --last "$runs"
 echo "== open out/report.html in a browser (or query out/report.sqlite with sqlite3)"
