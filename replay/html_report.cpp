@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "common/atomic_file.hpp"
+#include "replay/html_report_bench.hpp"
 #include "replay/html_report_data.hpp"
 #include "replay/html_report_figures.hpp"
 #include "replay/html_report_tables.hpp"
@@ -43,6 +44,7 @@ pre { background: #f8f9fa; border: 1px solid #e9ecef; padding: 8px; overflow: au
 details { margin: 4px 0; }
 .swatch { display: inline-block; width: 10px; height: 10px; border-radius: 5px; margin: 0 4px 0 10px; }
 nav ul { columns: 2; }
+tr.default td { background: #fff4e6; }
 )CSS";
 
 void write_run_section(std::ostream& out, SQLite::Database& db, const report::RunData& run,
@@ -90,8 +92,14 @@ void write_run_section(std::ostream& out, SQLite::Database& db, const report::Ru
 
 void write_html_report(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
                        std::ostream& out) {
-  const std::vector<std::int64_t> ids = report::select_runs(db, db_label, options.run_ids, options.last_runs);
+  const std::optional<std::int64_t> bench_id = report::select_bench(db, db_label, options.bench_id);
   const std::size_t all_runs = report::run_ids(db).size();
+  // A bench alone makes a page; with neither runs nor a bench, select_runs says there are no runs.
+  const bool bench_alone = bench_id && all_runs == 0 && options.run_ids.empty();
+  const std::vector<std::int64_t> ids =
+      bench_alone ? std::vector<std::int64_t>{} : report::select_runs(db, db_label, options.run_ids, options.last_runs);
+  const std::optional<report::BenchData> bench =
+      bench_id ? std::optional<report::BenchData>(report::load_bench(db, *bench_id)) : std::nullopt;
   std::vector<report::RunData> runs;
   for (const std::int64_t id : ids) runs.push_back(report::load_run(db, id));
   const int n = static_cast<int>(runs.size());
@@ -103,21 +111,30 @@ void write_html_report(SQLite::Database& db, const std::string& db_label, const 
   out << "<style>" << kStyle << "</style></head><body>\n";
   out << "<h1>rcsim validation report</h1>";
   out << "<p class=\"meta\">Report database <code>" << escape(db_label) << "</code>; "
-      << fmt::format("{} of its {} runs shown; written by rcsim {}.", n, all_runs, RCSIM_VERSION) << "</p>";
-  out << "<p class=\"hint\">Recorded targets are drawn in"
-      << fmt::format(R"(<span class="swatch" style="background:{}"></span>blue, simulated targets in)",
-                     svg::kRecordedColour)
-      << fmt::format(R"(<span class="swatch" style="background:{}"></span>orange.)", svg::kSimulatedColour)
-      << " GOSPA (&alpha; = 2) and OSPA are computed per cycle and sensor in the sensor's Cartesian frame; the "
-         "localisation, missed and false parts are in m^p and add up to GOSPA^p. Residuals are simulated minus "
-         "recorded of the assigned pairs. Latency is the time from when an object becomes detectable to its "
-         "first reported target.</p>\n";
+      << fmt::format("{} of its {} runs shown", n, all_runs);
+  if (bench) out << fmt::format(", and bench {} of its {} benches", bench->info.bench_id, report::bench_ids(db).size());
+  out << fmt::format("; written by rcsim {}.", RCSIM_VERSION) << "</p>";
+  if (!runs.empty()) {
+    out << "<p class=\"hint\">Recorded targets are drawn in"
+        << fmt::format(R"(<span class="swatch" style="background:{}"></span>blue, simulated targets in)",
+                       svg::kRecordedColour)
+        << fmt::format(R"(<span class="swatch" style="background:{}"></span>orange.)", svg::kSimulatedColour)
+        << " GOSPA (&alpha; = 2) and OSPA are computed per cycle and sensor in the sensor's Cartesian frame; the "
+           "localisation, missed and false parts are in m^p and add up to GOSPA^p. Residuals are simulated minus "
+           "recorded of the assigned pairs. Latency is the time from when an object becomes detectable to its "
+           "first reported target.</p>\n";
+  }
   out << "<nav><ul>";
+  if (bench) {
+    out << fmt::format(R"(<li><a href="#bench-{0}">Speed against error</a>: bench {0}, {1} recordings</li>)",
+                       bench->info.bench_id, bench->recordings().size());
+  }
   for (const auto& r : runs) {
     out << fmt::format(R"(<li><a href="#run-{0}">Run {0}</a>: {1}, seed {2}</li>)", r.info.run_id,
                        escape(r.info.recording_name), r.info.seed);
   }
   out << "</ul></nav>\n";
+  if (bench) out << report::bench_section(*bench);
   if (runs.size() > 1) {
     out << "<h2>Runs side by side</h2>" << report::comparison_table(runs) << "\n";
   }

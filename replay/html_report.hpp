@@ -2,11 +2,13 @@
 // rcsim report: one self-contained HTML page (inline SVG and CSS, no scripts, no external
 // files) that a validation engineer reads: per run the summary tables, bird's-eye pictures of
 // chosen cycles, time series, residual histograms, merge-artefact and latency tables, the
-// parameters with their sources, and a side-by-side table when several runs are selected.
+// parameters with their sources, and a side-by-side table when several runs are selected; and,
+// when the database holds a bench of `rcsim bench`, its speed against error (Pareto plot, tables).
 // Every text that came from a recording is HTML-escaped.
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -22,9 +24,11 @@ struct HtmlReportOptions {
   int pictures = 5;      // bird's-eye pictures per run
   int trace_cycles = 5;  // earlier cycles drawn as fading traces
   int histogram_bins = 41;
+  std::optional<std::int64_t> bench_id;  // the bench shown as "Speed against error"; absent: the latest
 };
 
-// Writes the page for the runs selected by `options` (unknown ids: InputError naming `db_label`).
+// Writes the page for the runs and the bench selected by `options` (unknown ids: InputError
+// naming `db_label`). A database with a bench but no runs gives the bench section alone.
 void write_html_report(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
                        std::ostream& out);
 

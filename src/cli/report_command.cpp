@@ -1,4 +1,5 @@
-// rcsim report REPORT.sqlite -o REPORT.html [--run ID ...]: the validation report a person reads.
+// rcsim report REPORT.sqlite -o REPORT.html [--run ID ...] [--bench ID]: the validation report a person
+// reads (docs/report.md).
 #include <iostream>
 
 #include "cli/commands.hpp"
@@ -18,10 +19,13 @@ struct ReportArgs {
 
 void add_report_command(CLI::App& app) {
   auto args = std::make_shared<ReportArgs>();
-  auto* cmd = app.add_subcommand("report", "write the HTML validation report of runs stored by rcsim replay");
+  auto* cmd = app.add_subcommand(
+      "report", "write the HTML validation report of runs stored by rcsim replay and of a bench stored by rcsim bench");
   cmd->add_option("REPORT_DB", args->db_path, "report database (rcsim-report, SQLite)")->required();
   cmd->add_option("-o,--output", args->html_path, "HTML file to write (self-contained)")->required();
   cmd->add_option("--run", args->options.run_ids, "run id to report (repeatable); default: the last --last runs");
+  cmd->add_option("--bench", args->options.bench_id,
+                  "bench id (rcsim bench) shown as speed against error; default: the latest bench, if any");
   cmd->add_option("--last", args->options.last_runs, "without --run: how many of the latest runs to report")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
