@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <nlohmann/json.hpp>
 
+#include "scratch_dir.hpp"
 #include "cli/run_rcsim.hpp"
 
 namespace rcsim {
@@ -16,18 +17,12 @@ namespace {
 namespace fs = std::filesystem;
 using testing::run_rcsim;
 
-class BenchCli : public ::testing::Test {
+class BenchCli : public testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rcsim_bench_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  BenchCli() : ScratchDirTest("bench_cli") {}
   static std::string recording(const std::string& name) {
     return (fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / name).string();
   }
-  fs::path dir_;
 };
 
 TEST_F(BenchCli, JsonRowsAndTheSameSeedRepeatsTheErrors) {

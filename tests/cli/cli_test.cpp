@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "scratch_dir.hpp"
 #include "cli/run_rcsim.hpp"
 
 namespace {
@@ -21,14 +22,9 @@ std::string read(const fs::path& p) { return rcsim::testing::read_file(p); }
 
 const std::string kExamples = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/";
 
-class Cli : public ::testing::Test {
+class Cli : public rcsim::testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rcsim_cli_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  Cli() : ScratchDirTest("cli") {}
 };
 
 TEST_F(Cli, SameSeedByteIdenticalOtherSeedDifferent) {

@@ -10,6 +10,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "scratch_dir.hpp"
 #include "cli/run_rcsim.hpp"
 #include "replay/replay_fixtures.hpp"
 
@@ -20,21 +21,15 @@ namespace fs = std::filesystem;
 using testing::read_file;
 using testing::run_rcsim;
 
-class ReplayCli : public ::testing::Test {
+class ReplayCli : public testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rcsim_replay_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  ReplayCli() : ScratchDirTest("replay_cli") {}
 
   fs::path recording(double duration_s, const std::string& name = "rec") {
     const fs::path path = dir_ / name;
     write_recording(path, testing::model_recording(testing::two_cars_scene(duration_s), 2, 0.03, 0.01));
     return path;
   }
-  fs::path dir_;
 };
 
 std::size_t data_rows(const std::string& csv) {

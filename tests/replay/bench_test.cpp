@@ -9,6 +9,7 @@
 #include "replay/bench_store.hpp"
 #include "replay/report_store.hpp"
 #include "replay/simulated_source.hpp"
+#include "scratch_dir.hpp"
 
 namespace rcsim::replay {
 namespace {
@@ -194,15 +195,9 @@ TEST(BenchRun, GoalsByHand) {
   EXPECT_FALSE(evaluate_goals(rows).evaluable);
 }
 
-class BenchStore : public ::testing::Test {
+class BenchStore : public testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rcsim_bench_store_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  BenchStore() : ScratchDirTest("bench_store") {}
 };
 
 TEST_F(BenchStore, RowsWithNullsAndIncreasingIds) {

@@ -1,3 +1,4 @@
+#include "scratch_dir.hpp"
 #include "replay/replay_run.hpp"
 
 #include <gtest/gtest.h>
@@ -13,20 +14,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ReplayRun : public ::testing::Test {
+class ReplayRun : public testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rcsim_replay_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  ReplayRun() : ScratchDirTest("replay") {}
 
   Recording write_and_read(const Recording& rec, const std::string& name) {
     write_recording(dir_ / name, rec);
     return read_recording(dir_ / name);
   }
-  fs::path dir_;
 };
 
 TEST_F(ReplayRun, ModelAgainstItselfWithTheSameSeedAgreesToFileRounding) {
