@@ -5,6 +5,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <new>
 
 #include "common/angles.hpp"
@@ -12,6 +15,8 @@
 #include "model/model_library.hpp"
 #include "replay/importer.hpp"
 #include "sim/simulation.hpp"
+#include "traffic/scene_writer.hpp"
+#include "traffic/traffic_sim.hpp"
 
 namespace {
 std::atomic<long long> g_allocations{0};
@@ -181,7 +186,41 @@ void BM_CarsAllAroundCulling(benchmark::State& state) {
   state.counters["ideal_targets"] = static_cast<double>(sim.sensor_state(0).ideal.size());
 }
 
+// A 60-second scene of `rcsim traffic` (its defaults: a 4.1 km three-lane highway, 291 vehicles
+// around the ego, two srr24 sensors), simulated directly rather than through a recording (which
+// annotates only what is near the ego): Arg(1) culling on, Arg(0) off; the output is
+// byte-identical either way (tests/sim/culling_test.cpp).
+void BM_TrafficSceneCulling(benchmark::State& state) {
+  static const Scene scene = [] {
+    traffic::TrafficConfig config;
+    config.duration_s = 60.0;
+    config = traffic::resolve_traffic_config(config, ".");
+    Rng rng(config.seed);
+    traffic::TrafficSimulation traffic_sim(config, rng);
+    traffic_sim.run(rng);
+    const auto path = std::filesystem::temp_directory_path() / ("rcsim_bench_traffic_" + std::to_string(::getpid()) + ".json");
+    std::ofstream(path) << traffic::scene_json(traffic_sim);
+    Scene loaded = load_scene_file(path.string(), ModelLibrary::builtin());
+    std::filesystem::remove(path);
+    return loaded;
+  }();
+  SimulationOptions options;
+  options.seed = 1;
+  options.culling = state.range(0) != 0;
+  Simulation sim(scene, options);
+  const int cycles = sim.cycle_count();
+  for (int k = 0; k < cycles; ++k) sim.run_cycle(k);
+  long long k = 0;
+  for (auto _ : state) {
+    sim.run_cycle(static_cast<int>(k++ % cycles));
+    benchmark::DoNotOptimize(sim.sensor_state(0).reported.data());
+  }
+  state.counters["objects"] = static_cast<double>(scene.objects.size());
+  state.counters["sensors"] = static_cast<double>(scene.sensors.size());
+}
+
 BENCHMARK(BM_SensorCycle)->Arg(1)->Arg(10)->Arg(100);
+BENCHMARK(BM_TrafficSceneCulling)->Arg(0)->Arg(1);
 BENCHMARK(BM_CarsAllAroundCulling)->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({1, 1});
 BENCHMARK(BM_CityDriveCulling)->Arg(0)->Arg(1);
 BENCHMARK(BM_SensorCycleAllEffects)->Arg(10);
