@@ -154,26 +154,30 @@ std::vector<BenchLevelSummary> summarise_levels(const std::vector<BenchRow>& row
     it->sensor_cycles += r.sensor_cycles;
     if (r.cpu_s >= 0.0) it->cpu_s = std::max(0.0, it->cpu_s) + r.cpu_s;
     it->gospa_mean_m += r.gospa_mean_m;
+    it->latency_pairs += r.latency_pairs;
     it->merge_recorded += r.merge_recorded;
     it->merge_found += r.merge_found;
     it->merge_missed += r.merge_missed;
     it->merge_spurious += r.merge_spurious;
   }
   for (BenchLevelSummary& l : levels) {
-    int ratio_n = 0, latency_n = 0, floor_n = 0;
-    double ratio_sum = 0.0, latency_sum = 0.0, floor_sum = 0.0;
+    int ratio_n = 0, latency_n = 0;
+    double ratio_sum = 0.0, latency_sum = 0.0, with_floor_sum_m = 0.0, floor_sum_m = 0.0, timed_cycles = 0.0;
     for (const BenchRow& r : rows) {
       if (r.level != l.level) continue;
       if (r.targets_per_cycle_ratio >= 0.0) ratio_sum += r.targets_per_cycle_ratio, ++ratio_n;
       if (r.has_latency) latency_sum += r.latency_difference_s, ++latency_n;
-      const auto f = floor_of.find(r.recording);
-      if (f != floor_of.end() && f->second > 0.0) floor_sum += r.gospa_mean_m / f->second, ++floor_n;
+      if (r.cpu_s >= 0.0) timed_cycles += static_cast<double>(r.sensor_cycles);
+      if (const auto f = floor_of.find(r.recording); f != floor_of.end()) {
+        with_floor_sum_m += r.gospa_mean_m;
+        floor_sum_m += f->second;
+      }
     }
     l.gospa_mean_m /= std::max(1, l.recordings);
     if (ratio_n > 0) l.targets_per_cycle_ratio = ratio_sum / ratio_n;
     if (latency_n > 0) l.has_latency = true, l.latency_difference_s = latency_sum / latency_n;
-    if (floor_n > 0) l.gospa_over_noise_floor = floor_sum / floor_n;
-    if (l.cpu_s > 0.0) l.sensor_cycles_per_cpu_s = static_cast<double>(l.sensor_cycles) / l.cpu_s;
+    if (floor_sum_m > 0.0) l.gospa_over_noise_floor = with_floor_sum_m / floor_sum_m;  // the recordings' counts cancel
+    if (l.cpu_s > 0.0) l.sensor_cycles_per_cpu_s = timed_cycles / l.cpu_s;
   }
   return levels;
 }

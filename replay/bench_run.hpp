@@ -54,19 +54,25 @@ struct BenchRow {
 std::vector<BenchRow> bench_recording(const Recording& recording, int index, const BenchOptions& options,
                                       const std::function<void(const BenchRow&)>& done = {});
 
-// One level over all recordings: cycles per CPU second of the sum, means of the errors.
+// One level over all recordings: cycles per CPU second of the sum, means of the errors. The one
+// summary of a bench: rcsim bench prints it, rcsim report plots and tabulates it.
 struct BenchLevelSummary {
   std::string level;
   int recordings = 0;
   long long sensor_cycles = 0;
-  double cpu_s = -1.0, sensor_cycles_per_cpu_s = -1.0;
+  double cpu_s = -1.0;                    // sum over the timed rows; -1: none timed
+  double sensor_cycles_per_cpu_s = -1.0;  // their sensor cycles / their CPU time
   double gospa_mean_m = 0.0;              // mean over recordings
-  double gospa_over_noise_floor = -1.0;   // mean over recordings of gospa / noise floor; -1: no floor
+  // Mean GOSPA / mean noise floor, both over the recordings that have a noise floor (the plot's
+  // point against its dashed line); -1: no such recording.
+  double gospa_over_noise_floor = -1.0;
   double targets_per_cycle_ratio = -1.0;  // mean over recordings that recorded targets
   long long merge_recorded = 0, merge_found = 0, merge_missed = 0, merge_spurious = 0;
   bool has_latency = false;
   double latency_difference_s = 0.0;      // mean over recordings with paired episodes
+  long long latency_pairs = 0;
 };
+// In the order the levels first appear in `rows`.
 std::vector<BenchLevelSummary> summarise_levels(const std::vector<BenchRow>& rows);
 
 // The goals of issue 7 / docs/bench.md, evaluated on a bench.

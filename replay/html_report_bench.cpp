@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/input_error.hpp"
+#include "replay/bench_run.hpp"
 #include "replay/svg_pareto.hpp"
 #include "replay/svg_writer.hpp"
 
@@ -14,6 +15,7 @@ namespace rcsim::replay::report {
 
 namespace {
 
+using replay::kNoiseFloorLevel;
 using svg::escape;
 
 constexpr const char* kNull = "\u2014";  // em dash: a NULL in the database
@@ -240,54 +242,51 @@ BenchData load_bench(SQLite::Database& db, std::int64_t bench_id) {
 }
 
 BenchSummary summarise_bench(const BenchData& bench, std::optional<int> recording) {
-  std::vector<std::string> levels;
+  // The bench's own summary (replay/bench_run.hpp), so that report and rcsim bench agree.
+  std::vector<replay::BenchRow> rows;
   std::vector<double> floors;
   for (const BenchRow& r : bench.rows) {
     if (recording && r.recording != *recording) continue;
-    if (std::find(levels.begin(), levels.end(), r.level) == levels.end()) levels.push_back(r.level);
     if (r.level == kNoiseFloorLevel) floors.push_back(r.gospa_mean_m);
+    replay::BenchRow c;
+    c.recording = r.recording;
+    c.level = r.level;
+    c.sensor_cycles = r.sensor_cycles;
+    c.cpu_s = r.cpu_s.value_or(-1.0);
+    c.gospa_mean_m = r.gospa_mean_m;
+    c.targets_per_cycle_ratio = r.targets_per_cycle_ratio.value_or(-1.0);
+    c.merge_recorded = r.merge_recorded;
+    c.merge_found = r.merge_found;
+    c.merge_missed = r.merge_missed;
+    c.merge_spurious = r.merge_spurious;
+    c.has_latency = r.latency_difference_s.has_value();
+    c.latency_difference_s = r.latency_difference_s.value_or(0.0);
+    c.latency_pairs = static_cast<int>(r.latency_pairs);
+    rows.push_back(std::move(c));
   }
-  std::sort(levels.begin(), levels.end(), level_before);
+  const auto present = [](double v) { return v >= 0.0 ? std::optional<double>(v) : std::nullopt; };
   BenchSummary summary;
   summary.noise_floor_m = mean(floors);
-  for (const std::string& level : levels) {
+  for (const replay::BenchLevelSummary& s : replay::summarise_levels(rows)) {
     LevelSummary l;
-    l.level = level;
-    std::vector<double> gospa, ratios, latencies, gospa_with_floor, floor_gospa;
-    double cycles_timed = 0.0, cpu_s = 0.0;
-    bool timed = false;
-    for (const BenchRow& r : bench.rows) {
-      if (r.level != level || (recording && r.recording != *recording)) continue;
-      ++l.recordings;
-      l.sensor_cycles += r.sensor_cycles;
-      if (r.cpu_s) {
-        timed = true;
-        cycles_timed += static_cast<double>(r.sensor_cycles);
-        cpu_s += *r.cpu_s;
-      }
-      gospa.push_back(r.gospa_mean_m);
-      if (r.targets_per_cycle_ratio) ratios.push_back(*r.targets_per_cycle_ratio);
-      if (r.latency_difference_s) latencies.push_back(*r.latency_difference_s);
-      if (const BenchRow* floor = noise_floor_row(bench, r.recording)) {
-        gospa_with_floor.push_back(r.gospa_mean_m);
-        floor_gospa.push_back(floor->gospa_mean_m);
-      }
-      l.merge_recorded += r.merge_recorded;
-      l.merge_found += r.merge_found;
-      l.merge_missed += r.merge_missed;
-      l.merge_spurious += r.merge_spurious;
-      l.latency_pairs += r.latency_pairs;
-    }
-    if (timed) {
-      l.cpu_s = cpu_s;
-      l.cycles_per_cpu_s = ratio(cycles_timed, cpu_s);
-    }
-    l.gospa_mean_m = mean(gospa).value_or(std::nan(""));
-    if (!gospa_with_floor.empty()) l.gospa_over_noise_floor = ratio(*mean(gospa_with_floor), *mean(floor_gospa));
-    l.targets_per_cycle_ratio = mean(ratios);
-    l.latency_difference_s = mean(latencies);
+    l.level = s.level;
+    l.recordings = s.recordings;
+    l.sensor_cycles = s.sensor_cycles;
+    l.cpu_s = present(s.cpu_s);
+    l.cycles_per_cpu_s = present(s.sensor_cycles_per_cpu_s);
+    l.gospa_mean_m = s.gospa_mean_m;
+    l.gospa_over_noise_floor = present(s.gospa_over_noise_floor);
+    l.targets_per_cycle_ratio = present(s.targets_per_cycle_ratio);
+    l.merge_recorded = s.merge_recorded;
+    l.merge_found = s.merge_found;
+    l.merge_missed = s.merge_missed;
+    l.merge_spurious = s.merge_spurious;
+    if (s.has_latency) l.latency_difference_s = s.latency_difference_s;
+    l.latency_pairs = s.latency_pairs;
     summary.levels.push_back(std::move(l));
   }
+  std::stable_sort(summary.levels.begin(), summary.levels.end(),
+                   [](const LevelSummary& a, const LevelSummary& b) { return level_before(a.level, b.level); });
   return summary;
 }
 

@@ -63,7 +63,6 @@ struct BenchSummary {
 
 // reference, noise_floor, full, no_monopulse, points_only, no_tracking.
 const std::vector<std::string>& bench_level_order();
-inline constexpr const char* kNoiseFloorLevel = "noise_floor";
 inline constexpr const char* kDefaultLevel = "full";
 
 // All bench ids in the database, ascending.

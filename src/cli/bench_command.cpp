@@ -81,7 +81,8 @@ void print_row(std::ostream& out, const replay::BenchRow& r, double floor_m) {
 }
 
 void print_summary(std::ostream& out, const std::vector<replay::BenchRow>& rows) {
-  out << "\nall recordings (speed: all sensor cycles / all CPU time; errors: mean over recordings)\n";
+  out << "\nall recordings (speed: all timed sensor cycles / all CPU time; errors: mean over recordings; "
+         "/floor: mean GOSPA / mean noise floor)\n";
   out << fmt::format("{:<13} {:>14} {:>9} {:>7} {:>7} {:>18} {:>9}\n", "level", "cycles/CPU s", "GOSPA m", "/floor",
                      "tgt x", "merge fnd/mis/spu", "lat.d s");
   for (const auto& l : replay::summarise_levels(rows)) {
@@ -113,8 +114,10 @@ void print_summary(std::ostream& out, const std::vector<replay::BenchRow>& rows)
                      g.per_recording.size(), met(g.all_within_1_5), misses.empty() ? "" : "; over on " + misses);
 }
 
+// A figure, or null where it does not exist.
+nlohmann::ordered_json optional(bool present, double v) { return present ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); }
+
 nlohmann::ordered_json row_json(const replay::BenchRow& r) {
-  const auto optional = [](bool present, double v) { return present ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
   return {{"recording", r.recording_name},
           {"recording_checksum", fmt::format("{:016x}", r.recording_checksum)},
           {"level", r.level},
@@ -144,12 +147,13 @@ nlohmann::ordered_json bench_json(const replay::BenchOptions& options, const std
     j["levels"].push_back({{"level", l.level},
                            {"recordings", l.recordings},
                            {"sensor_cycles", l.sensor_cycles},
-                           {"sensor_cycles_per_cpu_s", l.sensor_cycles_per_cpu_s < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(l.sensor_cycles_per_cpu_s)},
+                           {"sensor_cycles_per_cpu_s", optional(l.sensor_cycles_per_cpu_s >= 0.0, l.sensor_cycles_per_cpu_s)},
                            {"gospa_mean_m", l.gospa_mean_m},
-                           {"gospa_over_noise_floor", l.gospa_over_noise_floor < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(l.gospa_over_noise_floor)},
-                           {"targets_per_cycle_ratio", l.targets_per_cycle_ratio < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(l.targets_per_cycle_ratio)},
+                           {"gospa_over_noise_floor", optional(l.gospa_over_noise_floor >= 0.0, l.gospa_over_noise_floor)},
+                           {"targets_per_cycle_ratio", optional(l.targets_per_cycle_ratio >= 0.0, l.targets_per_cycle_ratio)},
                            {"merge_artefacts", {{"recorded", l.merge_recorded}, {"found", l.merge_found}, {"missed", l.merge_missed}, {"spurious", l.merge_spurious}}},
-                           {"latency_difference_s", l.has_latency ? nlohmann::ordered_json(l.latency_difference_s) : nlohmann::ordered_json()}});
+                           {"latency_difference_s", optional(l.has_latency, l.latency_difference_s)},
+                           {"latency_pairs", l.latency_pairs}});
   }
   const replay::BenchGoals g = replay::evaluate_goals(rows);
   if (g.evaluable) {

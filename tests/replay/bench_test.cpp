@@ -145,6 +145,8 @@ std::vector<BenchRow> hand_rows() {
   rows[2].latency_difference_s = -0.2;
   rows[6].has_latency = true;
   rows[6].latency_difference_s = 0.1;
+  rows[2].latency_pairs = 2;
+  rows[6].latency_pairs = 1;
   rows[2].merge_recorded = 5, rows[2].merge_found = 3, rows[2].merge_missed = 2, rows[2].merge_spurious = 1;
   rows[6].merge_recorded = 1, rows[6].merge_found = 1, rows[6].merge_missed = 0, rows[6].merge_spurious = 4;
   return rows;
@@ -160,7 +162,7 @@ TEST(BenchRun, LevelSummariesByHand) {
   EXPECT_DOUBLE_EQ(full.cpu_s, 3e-4);
   EXPECT_DOUBLE_EQ(full.sensor_cycles_per_cpu_s, 400.0 / 3e-4);
   EXPECT_DOUBLE_EQ(full.gospa_mean_m, (0.5 + 1.6) / 2);
-  EXPECT_DOUBLE_EQ(full.gospa_over_noise_floor, (0.5 / 0.4 + 1.6 / 1.0) / 2);
+  EXPECT_DOUBLE_EQ(full.gospa_over_noise_floor, ((0.5 + 1.6) / 2) / ((0.4 + 1.0) / 2));
   EXPECT_DOUBLE_EQ(full.targets_per_cycle_ratio, 60.0 / 50.0);  // recording 1 recorded nothing: left out
   EXPECT_TRUE(full.has_latency);
   EXPECT_DOUBLE_EQ(full.latency_difference_s, (-0.2 + 0.1) / 2);
@@ -170,6 +172,7 @@ TEST(BenchRun, LevelSummariesByHand) {
   EXPECT_LT(levels[1].sensor_cycles_per_cpu_s, 0.0);  // noise floor: no speed
   EXPECT_DOUBLE_EQ(levels[0].sensor_cycles_per_cpu_s, 400.0 / 3.0);
   EXPECT_FALSE(levels[3].has_latency);
+  EXPECT_EQ(full.latency_pairs, 3);
 }
 
 TEST(BenchRun, GoalsByHand) {
