@@ -77,7 +77,8 @@ void run_cycles(benchmark::State& state, bool effects) {
   SceneSnapshot snapshot;
   snapshot.ego = scene.ego.state_at(0.0);
   for (const auto& o : scene.objects) snapshot.objects.push_back(o.trajectory.state_at(0.0));
-  snapshot.present.assign(scene.objects.size(), 1);
+  snapshot.visited.assign(scene.objects.size(), 1);
+  for (std::uint32_t i = 0; i < scene.objects.size(); ++i) snapshot.visited_indices.push_back(i);
   SensorCycleState cycle_state(sim.sensor_model(0), 13 * scene.objects.size(), scene.cycle_time_s, 1, 0);
   for (int k = 0; k < 50; ++k) run_sensor_cycle(sim.sensor_model(0), sim.objects(), snapshot, cycle_state);
   const long long before = g_allocations.load();

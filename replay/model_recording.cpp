@@ -32,7 +32,7 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
     rec.ego.push_back({t_s, ego.X_WB.x_m, ego.X_WB.y_m, ego.X_WB.yaw_rad, ego.v_WB_W.norm(), ego.yaw_rate_radps});
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       if (!scene.objects[o].present_at(t_s)) continue;
-      const BodyState& s = simulation.snapshot().objects[o];
+      const BodyState s = simulation.object_state(o);
       if ((s.X_WB.translation() - ego.X_WB.translation()).norm() > noise.max_range_m) continue;
       AnnotatedBox box;
       box.t_s = t_s;

@@ -1,6 +1,7 @@
 #include "scene/trajectory.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "common/angles.hpp"
@@ -71,6 +72,49 @@ BodyState Trajectory::state_at(double t_s) const {
   state.v_WB_W = (d00 * a.p_W + d10 * h * va + d01 * b.p_W + d11 * h * vb) / h;
   state.yaw_rate_radps = (d00 * a.yaw_rad + d10 * h * a.yaw_rate_radps + d01 * b.yaw_rad + d11 * h * b.yaw_rate_radps) / h;
   return state;
+}
+
+Eigen::AlignedBox2d Trajectory::position_bounds(double t0_s, double t1_s) const {
+  Eigen::AlignedBox2d box;  // empty
+  // Extrapolation from a node over dt in [dt0, dt1]: the path has length |speed| |dt| at most.
+  const auto add_extrapolated = [&](const Node& node, double dt0_s, double dt1_s) {
+    const double reach_m = std::abs(node.speed_mps) * std::max(std::abs(dt0_s), std::abs(dt1_s));
+    box.extend(node.p_W - Vec2::Constant(reach_m));
+    box.extend(node.p_W + Vec2::Constant(reach_m));
+  };
+  const Node& first = nodes_.front();
+  const Node& last = nodes_.back();
+  if (nodes_.size() == 1) {
+    add_extrapolated(first, t0_s - first.t_s, t1_s - first.t_s);
+    return box;
+  }
+  if (t0_s < first.t_s) add_extrapolated(first, t0_s - first.t_s, std::min(t1_s, first.t_s) - first.t_s);
+  if (t1_s > last.t_s) add_extrapolated(last, std::max(t0_s, last.t_s) - last.t_s, t1_s - last.t_s);
+  // Segments [a, b] overlapping [t0, t1]: the cubic of state_at in Bezier form has the control
+  // points p_a, p_a + h v_a / 3, p_b - h v_b / 3, p_b; its piece over [u, v] of the segment's
+  // parameter has the control points of the blossom at (u,u,u), (u,u,v), (u,v,v), (v,v,v).
+  auto it = std::upper_bound(nodes_.begin(), nodes_.end(), t0_s, [](double t, const Node& node) { return t < node.t_s; });
+  if (it != nodes_.begin()) --it;
+  for (; it + 1 != nodes_.end() && it->t_s <= t1_s; ++it) {
+    const Node& a = *it;
+    const Node& b = *(it + 1);
+    if (b.t_s < t0_s) continue;
+    const double h_s = b.t_s - a.t_s;
+    const std::array<Vec2, 4> control = {a.p_W, a.p_W + (h_s / 3.0) * a.v_W, b.p_W - (h_s / 3.0) * b.v_W, b.p_W};
+    const auto blossom = [&](double s1, double s2, double s3) {
+      const auto lerp = [](const Vec2& p, const Vec2& q, double s) -> Vec2 { return p + s * (q - p); };
+      const Vec2 q0 = lerp(control[0], control[1], s1), q1 = lerp(control[1], control[2], s1),
+                 q2 = lerp(control[2], control[3], s1);
+      return lerp(lerp(q0, q1, s2), lerp(q1, q2, s2), s3);
+    };
+    const double u = std::clamp((t0_s - a.t_s) / h_s, 0.0, 1.0);
+    const double v = std::clamp((t1_s - a.t_s) / h_s, 0.0, 1.0);
+    box.extend(blossom(u, u, u));
+    box.extend(blossom(u, u, v));
+    box.extend(blossom(u, v, v));
+    box.extend(blossom(v, v, v));
+  }
+  return box;
 }
 
 }  // namespace rcsim

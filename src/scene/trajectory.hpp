@@ -3,6 +3,7 @@
 // from each sample's speed along its yaw) and of yaw (tangents from the yaw rates), so that
 // velocity and yaw rate are the derivatives of the interpolated pose. Before the first and after
 // the last sample the body moves on at that sample's speed and yaw rate (constant turn rate).
+#include <Eigen/Geometry>
 #include <optional>
 #include <vector>
 
@@ -28,6 +29,10 @@ class Trajectory {
   explicit Trajectory(const std::vector<TrajectorySample>& samples);
 
   BodyState state_at(double t_s) const;
+  // A box holding the origin's position over [t0_s, t1_s] (t0_s <= t1_s), for the scene's broad
+  // phase: each Hermite segment's piece lies in the convex hull of its Bezier control points, and a
+  // constant-turn extrapolation stays within speed * |dt| of its node.
+  Eigen::AlignedBox2d position_bounds(double t0_s, double t1_s) const;
   double start_s() const { return nodes_.front().t_s; }
   double end_s() const { return nodes_.back().t_s; }
   std::size_t size() const { return nodes_.size(); }

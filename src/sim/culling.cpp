@@ -11,9 +11,17 @@ namespace {
 constexpr double kMarginDb = 1.0;  // against rounding in the amplitude chain
 }  // namespace
 
+double arc_reach_m(const PlaneReflector& plane) {
+  // |c + r u|^2 = |c|^2 + r^2 + 2 r c.u is largest at u along c and falls off monotonically on
+  // either side: on an arc that does not cover c's direction, the farthest point is an end.
+  const Vec2& c = plane.center_O;
+  if (c.squaredNorm() == 0.0 || plane.covers_direction(c)) return c.norm() + plane.radius_m;
+  return std::max((c + plane.radius_m * plane.u_start_O).norm(), (c + plane.radius_m * plane.u_end_O).norm());
+}
+
 double reflection_radius_m(const ObjectModel& model) {
   double r = model.bounding_radius_m();
-  for (const auto& p : model.planes) r = std::max(r, p.center_O.norm() + p.radius_m);
+  for (const auto& p : model.planes) r = std::max(r, arc_reach_m(p));
   return r;
 }
 

@@ -20,8 +20,11 @@ struct CullingBounds {
   std::vector<double> radius_m;         // per object: circle about its origin holding every reflection point
 };
 
-// A circle about the object origin that holds every reflection point (points and whole plane arcs:
-// |centre| + radius bounds the arc wherever its farthest point lies).
+// The farthest a plane reflector's reflection point (on its arc, plane_reflection_point_O) can lie
+// from the object origin: |centre| + radius if the arc covers the centre's direction, else the
+// farther arc end. Flat sides are arcs of large circles: the whole circle would be far too loose.
+double arc_reach_m(const PlaneReflector& plane);
+// A circle about the object origin that holds every reflection point (points and plane arcs).
 double reflection_radius_m(const ObjectModel& model);
 
 // The range bound, from the amplitude law, eq. (1): A_ref(R) = 10^((L0 - s R) / 20), |H_sum| <= 1.

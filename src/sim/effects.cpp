@@ -29,12 +29,12 @@ bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, doubl
 }
 
 void remove_occluded_targets(const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                             std::span<const BodyState> object_states, std::span<const unsigned char> present,
+                             std::span<const BodyState> object_states, std::span<const unsigned char> candidates,
                              IdealTargets& ideal) {
   const Vec2 p_WS_W = sensor.X_WS.translation();
   std::erase_if(ideal, [&](const IdealTarget& t) {
     for (std::size_t i = 0; i < objects.size(); ++i) {
-      if (static_cast<int>(i) == t.object_index || !present[i]) continue;
+      if (static_cast<int>(i) == t.object_index || !candidates[i]) continue;
       const auto& model = objects[i].model;
       const double reach_m = t.range_m + 0.5 * std::hypot(model.length_m, model.width_m);
       if ((object_states[i].X_WB.translation() - p_WS_W).squaredNorm() > reach_m * reach_m) continue;

@@ -13,9 +13,11 @@ namespace rcsim {
 // Is the segment a -> b blocked by the oriented box of length x width at pose X_WB?
 bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, double length_m, double width_m);
 
-// Removes ideal targets whose line of sight passes through another object's box.
+// Removes ideal targets whose line of sight passes through the box of another object among the
+// candidates (per object: 1 if it can occlude; its state must be valid).
 void remove_occluded_targets(const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                             std::span<const BodyState> object_states, std::span<const unsigned char> present, IdealTargets& ideal);
+                             std::span<const BodyState> object_states, std::span<const unsigned char> candidates,
+                             IdealTargets& ideal);
 
 // Paper VI: duplicates of each target nearer than max_range_m at k = 2..max_order times its
 // range and range rate (the path runs k times back and forth), same angle, weaker by

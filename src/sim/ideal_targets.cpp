@@ -27,7 +27,7 @@ SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS) {
 }
 
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                           std::span<const BodyState> object_states, std::span<const unsigned char> present,
+                           std::span<const BodyState> object_states, std::span<const std::uint32_t> visited,
                            IdealTargets& out, const IdealTargetFilter& filter) {
   out.clear();
   const CullingBounds* culling = filter.culling;
@@ -73,8 +73,7 @@ void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& senso
   };
 
   // Pass 1: the reflection points that are visible and in view, in object and reflector order.
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    if (!present[i]) continue;  // not part of the scene at this time
+  for (const std::size_t i : visited) {
     const auto& model = objects[i].model;
     const auto& body = object_states[i];
     const Vec2 p_WO_W = body.X_WB.translation();

@@ -23,7 +23,7 @@ SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS);
 struct IdealTargetFilter {
   bool planes = true;
   const CullingBounds* culling = nullptr;
-  // With culling: set per object to 1 if it is present and can lie on a line of sight to a point
+  // With culling: set per object to 1 if it is visited and can lie on a line of sight to a point
   // in view (within max range + radius, not culled by the view wedge), else 0. The segment from
   // the sensor to a target in view lies inside the convex view wedge and within max range, so only
   // these objects can occlude (remove_occluded_targets). Range culling does not clear it.
@@ -33,9 +33,9 @@ struct IdealTargetFilter {
 // Per reflection center of every object: range check, view-field check, visibility check;
 // for each one that passes, range, azimuth, range rate (relative velocity of the reflecting
 // point on the line of sight) and ERCS. Appends to `out` after clearing it. Without
-// filter.culling every reflection center of every present object is visited.
+// filter.culling every reflection center of every visited object (ascending indices) is visited.
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                           std::span<const BodyState> object_states, std::span<const unsigned char> present,
+                           std::span<const BodyState> object_states, std::span<const std::uint32_t> visited,
                            IdealTargets& out, const IdealTargetFilter& filter = {});
 
 }  // namespace rcsim

@@ -40,7 +40,7 @@ SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflect
 void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_objects, const SceneSnapshot& snapshot,
                       SensorCycleState& state) {
   const auto objects = scene_objects.objects;
-  if (snapshot.objects.size() != objects.size() || snapshot.present.size() != objects.size()) {
+  if (snapshot.objects.size() != objects.size() || snapshot.visited.size() != objects.size()) {
     throw std::logic_error("run_sensor_cycle: the snapshot does not match the scene's objects");
   }
   const SensorConfig& config = model.mount.config;
@@ -52,11 +52,12 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   filter.planes = model.options.fidelity != Fidelity::points_only;
   filter.culling = model.options.culling ? &model.culling : nullptr;
   filter.may_occlude = &state.may_occlude;
-  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.present, state.ideal, filter);
+  compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.visited_indices, state.ideal,
+                        filter);
   // ideal targets => those not hidden behind another object (only objects near the view can hide)
   if (model.effects.occlusion) {
     const bool culled = model.options.culling && state.may_occlude.size() == objects.size();
-    remove_occluded_targets(state.kinematics, objects, snapshot.objects, culled ? state.may_occlude : snapshot.present,
+    remove_occluded_targets(state.kinematics, objects, snapshot.objects, culled ? state.may_occlude : snapshot.visited,
                             state.ideal);
   }
   if (model.effects.multibounce) add_multibounce_targets(config.multibounce, state.ideal);

@@ -61,8 +61,11 @@ struct SensorCycleState {
 struct SceneSnapshot {
   double t_s = 0.0;
   BodyState ego;
-  std::vector<BodyState> objects;       // valid where present[i]
-  std::vector<unsigned char> present;  // per object: takes part at this time (SceneObject::presence)
+  // The objects the sensors visit, ascending: every object present at this time
+  // (SceneObject::presence), with culling only those within some sensor's reach (SceneCulling).
+  std::vector<std::uint32_t> visited_indices;
+  std::vector<unsigned char> visited;  // per object: 1 where listed in visited_indices
+  std::vector<BodyState> objects;      // valid where visited[i]
 };
 
 // The scene's objects as the sensor cycle reads them.

@@ -12,8 +12,11 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options) : s
     // Each sensor draws from its own stream of the seed: adding a sensor leaves the others' draws alone.
     states_.emplace_back(models_.back(), reflectors, scene.cycle_time_s, options.seed, i);
   }
+  if (options.culling && !models_.empty()) scene_culling_ = SceneCulling(scene, models_.front().culling.radius_m);
+  p_WS_W_.resize(scene.sensors.size());
+  snapshot_.visited_indices.reserve(scene.objects.size());
+  snapshot_.visited.resize(scene.objects.size());
   snapshot_.objects.resize(scene.objects.size());
-  snapshot_.present.resize(scene.objects.size());
 }
 
 void Simulation::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }
@@ -21,12 +24,20 @@ void Simulation::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }
 void Simulation::run_at(double t_s) {
   snapshot_.t_s = t_s;
   snapshot_.ego = scene_.ego.state_at(t_s);
-  for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
-    snapshot_.present[i] = scene_.objects[i].present_at(t_s) ? 1 : 0;
-    // An absent object takes no part: its state is not needed (and keeps its last value).
-    if (snapshot_.present[i]) snapshot_.objects[i] = scene_.objects[i].trajectory.state_at(t_s);
+  // The scene's broad phase: only objects that are present and within some sensor's reach are
+  // evaluated and visited (an absent one takes no part; a skipped state keeps its last value).
+  for (std::size_t i = 0; i < models_.size(); ++i) p_WS_W_[i] = transform_point(snapshot_.ego.X_WB, models_[i].mount.X_VS.translation());
+  for (const std::uint32_t i : snapshot_.visited_indices) snapshot_.visited[i] = 0;
+  scene_culling_.select(t_s, p_WS_W_, scene_.objects, snapshot_.visited_indices);
+  for (const std::uint32_t i : snapshot_.visited_indices) {
+    snapshot_.visited[i] = 1;
+    snapshot_.objects[i] = scene_.objects[i].trajectory.state_at(t_s);
   }
   for (std::size_t i = 0; i < models_.size(); ++i) run_sensor_cycle(models_[i], objects_, snapshot_, states_[i]);
+}
+
+BodyState Simulation::object_state(std::size_t o) const {
+  return snapshot_.visited.at(o) ? snapshot_.objects[o] : scene_.objects[o].trajectory.state_at(snapshot_.t_s);
 }
 
 }  // namespace rcsim

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "scene/scene.hpp"
+#include "sim/scene_culling.hpp"
 #include "sim/sensor_cycle.hpp"
 
 namespace rcsim {
@@ -18,7 +19,10 @@ class Simulation {
   // The same at an arbitrary time (replays use the recorded cycle times).
   void run_at(double t_s);
 
+  // The last cycle's scene; object states only of the visited objects (object_state has all).
   const SceneSnapshot& snapshot() const { return snapshot_; }
+  // Object o's state at the last cycle's time, evaluated now if the broad phase skipped it.
+  BodyState object_state(std::size_t o) const;
   std::size_t sensor_count() const { return models_.size(); }
   const SensorModel& sensor_model(std::size_t i) const { return models_[i]; }
   const SensorCycleState& sensor_state(std::size_t i) const { return states_[i]; }
@@ -29,6 +33,8 @@ class Simulation {
   SceneObjects objects_;
   std::vector<SensorModel> models_;
   std::vector<SensorCycleState> states_;
+  SceneCulling scene_culling_;
+  std::vector<Vec2> p_WS_W_;  // per sensor, this cycle
   SceneSnapshot snapshot_;
 };
 

@@ -96,7 +96,7 @@ class SceneSource final : public CycleSource {
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
       const SceneObject& object = scene_.objects[o];
       if (!object.present_at(frame.t_s)) continue;
-      truth.objects.push_back({static_cast<std::uint32_t>(o), wire_pose(simulation_->snapshot().objects[o]),
+      truth.objects.push_back({static_cast<std::uint32_t>(o), wire_pose(simulation_->object_state(o)),
                                object.model.length_m, object.model.width_m, object.id});
     }
     frame.messages.push_back({MessageType::ground_truth, 0, encode_ground_truth(truth, options_.max_datagram_bytes)});

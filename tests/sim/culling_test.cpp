@@ -11,6 +11,9 @@
 #include "io/recording.hpp"
 #include "io/target_list_writer.hpp"
 #include "replay/importer.hpp"
+#include "common/angles.hpp"
+#include "common/rng.hpp"
+#include "sim/scene_culling.hpp"
 #include "sim/simulation.hpp"
 #include "test_support.hpp"
 
@@ -135,6 +138,84 @@ TEST(Culling, BoundsCullFarAndBehind) {
   // Off at the ideal level: only the (exact) view culling.
   const CullingBounds ideal = make_culling_bounds(config, scene.effects, objects, false, true);
   EXPECT_FALSE(ideal.by_range);
+}
+
+// A flat side is an arc of a large circle: its reach is that of its farther end, not
+// |centre| + radius (which made every car 144 m wide to the broad phase).
+TEST(Culling, ArcReachByHand) {
+  // A 1.5 m chord at x = 2.2 with 1 cm sagitta: circle radius (0.75^2 + 0.01^2) / 0.02 = 28.13 m.
+  const PlaneReflector side = plane_from_chord("front", {2.2, -0.75}, {2.2, 0.75}, 0.01, 1.0);
+  EXPECT_NEAR(side.radius_m, (0.75 * 0.75 + 0.01 * 0.01) / 0.02, 1e-9);
+  // The arc does not face the centre (which lies behind it, at x = 2.21 - 28.13): ends at |(2.2, 0.75)|.
+  EXPECT_NEAR(arc_reach_m(side), std::hypot(2.2, 0.75), 1e-9);
+  // A quarter arc of radius 1 about (3, 0) from 135 deg to 225 deg does not cover the direction
+  // of the centre (0 deg): its ends (3 - 0.7071, +-0.7071) are farthest, 2.3801 m.
+  PlaneReflector quarter;
+  quarter.center_O = {3.0, 0.0};
+  quarter.radius_m = 1.0;
+  quarter.set_arc(0.75 * kPi, 0.5 * kPi);
+  EXPECT_NEAR(arc_reach_m(quarter), std::hypot(3.0 - std::sqrt(0.5), std::sqrt(0.5)), 1e-12);
+  // Turned to face away from the origin (-45 deg .. 45 deg): it covers the centre's direction, 4 m.
+  quarter.set_arc(-0.25 * kPi, 0.5 * kPi);
+  EXPECT_NEAR(arc_reach_m(quarter), 4.0, 1e-12);
+  // Property: no sampled arc point lies farther than the reach, and the farthest comes within 1e-6.
+  Rng rng(5);
+  for (int trial = 0; trial < 500; ++trial) {
+    PlaneReflector p;
+    p.center_O = {rng.uniform(-50.0, 50.0), rng.uniform(-50.0, 50.0)};
+    p.radius_m = rng.uniform(0.1, 100.0);
+    p.set_arc(rng.uniform(-kPi, kPi), rng.uniform(0.0, kTwoPi));
+    const double reach_m = arc_reach_m(p);
+    double farthest_m = 0.0;
+    for (int j = 0; j <= 20000; ++j) {
+      const double d_m = p.arc_point_O(p.start_rad + p.span_rad * j / 20000.0).norm();
+      ASSERT_LE(d_m, reach_m + 1e-9) << "trial " << trial;
+      farthest_m = std::max(farthest_m, d_m);
+    }
+    EXPECT_NEAR(farthest_m, reach_m, 1e-6 * (1.0 + reach_m)) << "trial " << trial;
+  }
+}
+
+// The scene's broad phase: a car beyond every sensor's reach is neither evaluated nor visited,
+// one in reach is, absent ones never are; outside the cycle times every present object is.
+TEST(Culling, SceneCullingSelectsObjectsInReach) {
+  Scene scene = testing::single_sensor_scene(2.0);
+  testing::add_object(scene, "near", "passenger_car", {testing::sample(0, 20, 0, kPi, 0)});
+  testing::add_object(scene, "far", "passenger_car", {testing::sample(0, 500, 0, kPi, 0)});
+  testing::add_object(scene, "arriving", "passenger_car", {testing::sample(0, 80, 0, kPi, 20), testing::sample(2, 40, 0, kPi, 20)});
+  testing::add_object(scene, "gone", "passenger_car", {testing::sample(0, 10, 1, 0, 0)});
+  scene.objects.back().presence = {{0.0, 0.5}};
+  std::vector<double> radius_m;
+  for (const auto& o : scene.objects) radius_m.push_back(reflection_radius_m(o.model));
+  const SceneCulling culling(scene, radius_m);
+  ASSERT_TRUE(culling.enabled());
+  EXPECT_EQ(culling.slice_count(), 4u);  // 1.95 s of cycles in 0.5-s slices
+  const std::vector<Vec2> sensor = {Vec2(0.0, 0.0)};
+  std::vector<std::uint32_t> selected;
+  culling.select(0.0, sensor, scene.objects, selected);
+  // "arriving" sweeps 80 -> 70 m in the first slice, beyond 40 m + its 2.5-m radius + 1 m.
+  EXPECT_EQ(selected, (std::vector<std::uint32_t>{0, 3}));
+  culling.select(1.9, sensor, scene.objects, selected);
+  EXPECT_EQ(selected, (std::vector<std::uint32_t>{0, 2}));
+  // Outside the scene's cycle times there are no slices: every present object.
+  culling.select(5.0, sensor, scene.objects, selected);
+  EXPECT_EQ(selected, (std::vector<std::uint32_t>{0, 1, 2}));
+  // Off: every present object.
+  SceneCulling().select(0.2, sensor, scene.objects, selected);
+  EXPECT_EQ(selected, (std::vector<std::uint32_t>{0, 1, 2, 3}));
+
+  // The simulation evaluates only what was selected, and still answers for every object.
+  SimulationOptions options;
+  Simulation simulation(scene, options);
+  simulation.run_at(0.0);
+  EXPECT_EQ(simulation.snapshot().visited_indices, (std::vector<std::uint32_t>{0, 3}));
+  EXPECT_EQ(simulation.snapshot().visited[1], 0);
+  EXPECT_DOUBLE_EQ(simulation.object_state(1).X_WB.x_m, 500.0);
+  EXPECT_DOUBLE_EQ(simulation.object_state(2).X_WB.x_m, 80.0);
+  options.culling = false;
+  Simulation unculled(scene, options);
+  unculled.run_at(0.0);
+  EXPECT_EQ(unculled.snapshot().visited_indices, (std::vector<std::uint32_t>{0, 1, 2, 3}));
 }
 
 }  // namespace
