@@ -93,7 +93,8 @@ Eigen::AlignedBox2d Trajectory::position_bounds(double t0_s, double t1_s) const 
   // Segments [a, b] overlapping [t0, t1]: the cubic of state_at in Bezier form has the control
   // points p_a, p_a + h v_a / 3, p_b - h v_b / 3, p_b; its piece over [u, v] of the segment's
   // parameter has the control points of the blossom at (u,u,u), (u,u,v), (u,v,v), (v,v,v).
-  auto it = std::upper_bound(nodes_.begin(), nodes_.end(), t0_s, [](double t, const Node& node) { return t < node.t_s; });
+  auto it = std::upper_bound(nodes_.begin(), nodes_.end(), t0_s,
+                             [](double t, const Node& node) { return t < node.t_s; });
   if (it != nodes_.begin()) --it;
   for (; it + 1 != nodes_.end() && it->t_s <= t1_s; ++it) {
     const Node& a = *it;

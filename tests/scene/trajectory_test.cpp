@@ -103,7 +103,8 @@ TEST(Trajectory, PositionBoundsHoldEveryEvaluatedPosition) {
     double t_s = rng.uniform(-5.0, 5.0), x_m = rng.uniform(-1e6, 1e6), y_m = rng.uniform(-100.0, 100.0);
     const int n = 1 + static_cast<int>(rng.uniform(0.0, 6.0));
     for (int i = 0; i < n; ++i) {
-      const double yaw_rad = rng.uniform(-kPi, kPi), speed_mps = rng.uniform(0.0, 1.0) < 0.2 ? 0.0 : rng.uniform(-5.0, 40.0);
+      const double yaw_rad = rng.uniform(-kPi, kPi);
+      const double speed_mps = rng.uniform01() < 0.2 ? 0.0 : rng.uniform(-5.0, 40.0);
       auto s = sample(t_s, x_m, y_m, yaw_rad, speed_mps);
       if (rng.uniform01() < 0.5) s.yaw_rate_radps = rng.uniform(-1.0, 1.0);
       samples.push_back(s);

@@ -182,7 +182,8 @@ TEST(Culling, SceneCullingSelectsObjectsInReach) {
   Scene scene = testing::single_sensor_scene(2.0);
   testing::add_object(scene, "near", "passenger_car", {testing::sample(0, 20, 0, kPi, 0)});
   testing::add_object(scene, "far", "passenger_car", {testing::sample(0, 500, 0, kPi, 0)});
-  testing::add_object(scene, "arriving", "passenger_car", {testing::sample(0, 80, 0, kPi, 20), testing::sample(2, 40, 0, kPi, 20)});
+  testing::add_object(scene, "arriving", "passenger_car",
+                      {testing::sample(0, 80, 0, kPi, 20), testing::sample(2, 40, 0, kPi, 20)});
   testing::add_object(scene, "gone", "passenger_car", {testing::sample(0, 10, 1, 0, 0)});
   scene.objects.back().presence = {{0.0, 0.5}};
   std::vector<double> radius_m;
