@@ -89,7 +89,8 @@ Eigen::AlignedBox2d Trajectory::position_bounds(double t0_s, double t1_s) const 
     return box;
   }
   if (t0_s < first.t_s) add_extrapolated(first, t0_s - first.t_s, std::min(t1_s, first.t_s) - first.t_s);
-  if (t1_s > last.t_s) add_extrapolated(last, std::max(t0_s, last.t_s) - last.t_s, t1_s - last.t_s);
+  // From the last node on (t1 = the last node's time included: no segment holds it alone).
+  if (t1_s >= last.t_s) add_extrapolated(last, std::max(t0_s, last.t_s) - last.t_s, t1_s - last.t_s);
   // Segments [a, b] overlapping [t0, t1]: the cubic of state_at in Bezier form has the control
   // points p_a, p_a + h v_a / 3, p_b - h v_b / 3, p_b; its piece over [u, v] of the segment's
   // parameter has the control points of the blossom at (u,u,u), (u,u,v), (u,v,v), (v,v,v).

@@ -16,6 +16,10 @@ double arc_reach_m(const PlaneReflector& plane) {
   // either side: on an arc that does not cover c's direction, the farthest point is an end.
   const Vec2& c = plane.center_O;
   if (c.squaredNorm() == 0.0 || plane.covers_direction(c)) return c.norm() + plane.radius_m;
+  // A degenerate arc (no span) passes covers_direction for its own direction and the opposite one.
+  if (!(plane.span_rad > 0.0)) {
+    return std::max((c + plane.radius_m * plane.u_start_O).norm(), (c - plane.radius_m * plane.u_start_O).norm());
+  }
   return std::max((c + plane.radius_m * plane.u_start_O).norm(), (c + plane.radius_m * plane.u_end_O).norm());
 }
 

@@ -31,8 +31,9 @@ SceneCulling::SceneCulling(const Scene& scene, std::span<const double> reflectio
   t1_s_ = scene.cycle_time_at(cycles - 1);
   const std::size_t per_slice = std::max<std::size_t>(scene.objects.size(), 1);
   const double span_s = t1_s_ - t0_s_;
-  slice_count_ = std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(span_s / kSliceS)), 1,
-                                         std::max<std::size_t>(kMaxEntries / per_slice, 1));
+  const double max_slices = static_cast<double>(std::max<std::size_t>(kMaxEntries / per_slice, 1));
+  // Clamped as a double, so that a huge span cannot overflow the conversion.
+  slice_count_ = static_cast<std::size_t>(std::clamp(std::ceil(span_s / kSliceS), 1.0, max_slices));
   slice_s_ = span_s > 0.0 ? span_s / static_cast<double>(slice_count_) : 1.0;
   slice_begin_.reserve(slice_count_ + 1);
   for (std::size_t k = 0; k < slice_count_; ++k) {

@@ -84,6 +84,12 @@ TEST(Trajectory, PositionBoundsByHand) {
   EXPECT_DOUBLE_EQ(after.min().x(), -10.0);
   EXPECT_DOUBLE_EQ(after.max().x(), 30.0);
   EXPECT_DOUBLE_EQ(after.max().y(), 20.0);
+  // An instant: exactly at the last node (no segment holds it alone) and at the first.
+  for (const double t_s : {line.end_s(), line.start_s()}) {
+    const auto at = line.position_bounds(t_s, t_s);
+    ASSERT_FALSE(at.isEmpty());
+    EXPECT_EQ(at.squaredExteriorDistance(line.state_at(t_s).X_WB.translation()), 0.0);
+  }
   // A lone node at (5, -1), 2 m/s: over [1, 3] s within 2 * 3 = 6 m.
   const Trajectory lone({sample(0, 5, -1, 0.3, 2)});
   const auto l = lone.position_bounds(1.0, 3.0);
