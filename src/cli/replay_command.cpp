@@ -81,6 +81,23 @@ class KillAfterCycles final : public replay::ReplaySink {
   long remaining_;
 };
 
+// Prints what the import noticed (bridged or split annotation gaps) to stderr, as rcsim import
+// does, before the cycles are compared.
+class PrintImportWarnings final : public replay::ReplaySink {
+ public:
+  explicit PrintImportWarnings(replay::ReplaySink& inner) : inner_(inner) {}
+  void begin_run(const Recording& r, const replay::ImportedScene& i, const Scene& s,
+                 const replay::ReplayOptions& o) override {
+    for (const auto& warning : i.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
+    inner_.begin_run(r, i, s, o);
+  }
+  void add_cycle(const replay::CycleComparison& c) override { inner_.add_cycle(c); }
+  void end_run(const replay::ReplaySummary& s) override { inner_.end_run(s); }
+
+ private:
+  replay::ReplaySink& inner_;
+};
+
 void run_replay(const ReplayArgs& args) {
   const Recording recording = read_recording(args.recording_dir);
   replay::ReplayOptions options;
@@ -93,7 +110,7 @@ void run_replay(const ReplayArgs& args) {
   replay::ReportWriter writer(*db);
   const char* kill_after = std::getenv("RCSIM_TEST_KILL_AFTER_CYCLES");
   KillAfterCycles killer(writer, kill_after ? std::atol(kill_after) : 0);
-  replay::ReplaySink& sink = kill_after ? static_cast<replay::ReplaySink&>(killer) : writer;
+  PrintImportWarnings sink(kill_after ? static_cast<replay::ReplaySink&>(killer) : writer);
   const replay::ReplaySummary summary = replay::replay_recording(recording, options, sink);
   if (args.json) {
     std::cout << summary_json(writer.run_id(), recording, summary).dump(2) << '\n';

@@ -54,6 +54,21 @@ TEST_F(ReplayCli, JsonSummaryAccountsForEveryRecordedTarget) {
   EXPECT_GT(summary["targets_simulated"].get<int>(), 0);
 }
 
+// What the import noticed reaches the user of replay too (stderr), not only of rcsim import.
+TEST_F(ReplayCli, PrintsImportWarnings) {
+  Recording rec = testing::model_recording(testing::two_cars_scene(2.0), 2, 0.03, 0.01);
+  rec.boxes[0].erase(rec.boxes[0].begin() + 10, rec.boxes[0].begin() + 30);  // 0.8 s unannotated
+  const fs::path path = dir_ / "gap";
+  write_recording(path, rec);
+  const auto r = run_rcsim("replay " + path.string() + " --db " + (dir_ / "r.sqlite").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("rcsim: warning: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("absent"), std::string::npos) << r.output;
+  const auto clean = run_rcsim("replay " + recording(2.0).string() + " --db " + (dir_ / "r.sqlite").string());
+  ASSERT_EQ(clean.exit_code, 0) << clean.output;
+  EXPECT_EQ(clean.output.find("warning"), std::string::npos) << clean.output;
+}
+
 TEST_F(ReplayCli, RunsAccumulateAndTheSameSeedRepeatsExactly) {
   const fs::path rec = recording(2.0);
   const std::string db = (dir_ / "r.sqlite").string();
