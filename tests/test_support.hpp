@@ -1,11 +1,14 @@
 #pragma once
 // Small scenes built in code for the stage tests.
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "model/model_library.hpp"
 #include "scene/scene.hpp"
+#include "io/target_list_writer.hpp"
 #include "sensor/sensor_config.hpp"
+#include "sim/simulation.hpp"
 
 namespace rcsim::testing {
 
@@ -47,6 +50,22 @@ inline void add_object(Scene& scene, const std::string& id, const std::string& m
   object.model = library().at(model);
   object.trajectory = Trajectory(samples);
   scene.objects.push_back(object);
+}
+
+// What `rcsim simulate` writes for the scene: every cycle and sensor, one writer.
+inline std::string simulate_rows(const Scene& scene, const SimulationOptions& options,
+                                 TargetListFormat format = TargetListFormat::Csv) {
+  std::ostringstream out;
+  Simulation simulation(scene, options);
+  TargetListWriter writer(out, format, options.level);
+  writer.write_header();
+  for (int k = 0; k < simulation.cycle_count(); ++k) {
+    simulation.run_cycle(k);
+    for (std::size_t s = 0; s < simulation.sensor_count(); ++s) {
+      writer.write_sensor_cycle(scene, k, scene.cycle_time_at(k), scene.sensors[s].id, simulation.sensor_state(s));
+    }
+  }
+  return out.str();
 }
 
 }  // namespace rcsim::testing

@@ -2,19 +2,16 @@
 // culling on and off, on every example scene, every synthetic recording and random traffic.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <cmath>
-#include <sstream>
+#include <filesystem>
 #include <unistd.h>
 
 #include "cli/run_rcsim.hpp"
-#include "io/recording.hpp"
-#include "io/target_list_writer.hpp"
-#include "replay/importer.hpp"
 #include "common/angles.hpp"
 #include "common/rng.hpp"
+#include "io/recording.hpp"
+#include "replay/importer.hpp"
 #include "sim/scene_culling.hpp"
-#include "sim/simulation.hpp"
 #include "test_support.hpp"
 
 namespace rcsim {
@@ -27,17 +24,7 @@ std::string target_lists(const Scene& scene, OutputLevel level, bool culling, st
   options.level = level;
   options.seed = seed;
   options.culling = culling;
-  Simulation simulation(scene, options);
-  std::ostringstream out;
-  TargetListWriter writer(out, TargetListFormat::Csv, level);
-  writer.write_header();
-  for (int cycle = 0; cycle < simulation.cycle_count(); ++cycle) {
-    simulation.run_cycle(cycle);
-    for (std::size_t s = 0; s < simulation.sensor_count(); ++s) {
-      writer.write_sensor_cycle(scene, cycle, scene.cycle_time_at(cycle), scene.sensors[s].id, simulation.sensor_state(s));
-    }
-  }
-  return out.str();
+  return testing::simulate_rows(scene, options);
 }
 
 void expect_culling_invisible(const Scene& scene, const std::string& name) {

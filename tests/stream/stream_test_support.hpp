@@ -15,8 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "io/target_list_writer.hpp"
-#include "sim/simulation.hpp"
+#include "test_support.hpp"
 
 extern char** environ;
 
@@ -24,21 +23,7 @@ namespace rcsim::stream::testing {
 
 namespace fs = std::filesystem;
 
-// What `rcsim simulate` writes for the scene.
-inline std::string simulate_rows(const Scene& scene, const SimulationOptions& options,
-                                 TargetListFormat format = TargetListFormat::Csv) {
-  std::ostringstream out;
-  Simulation simulation(scene, options);
-  TargetListWriter writer(out, format, options.level);
-  writer.write_header();
-  for (int k = 0; k < simulation.cycle_count(); ++k) {
-    simulation.run_cycle(k);
-    for (std::size_t s = 0; s < simulation.sensor_count(); ++s) {
-      writer.write_sensor_cycle(scene, k, scene.cycle_time_at(k), scene.sensors[s].id, simulation.sensor_state(s));
-    }
-  }
-  return out.str();
-}
+using rcsim::testing::simulate_rows;
 
 inline std::string read_file(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
