@@ -110,6 +110,7 @@ ImportedScene import_recording(const Recording& rec, const ModelLibrary& library
   if (!options.sensor_type_override.empty()) {
     for (auto& sensor : out.sensors) sensor.type = options.sensor_type_override;
   }
+  if (!options.calibration_dir.empty()) out.calibration = load_calibration(options.calibration_dir);
   for (std::size_t i = 0; i < rec.objects.size(); ++i) {
     const RecordingObject& object = rec.objects[i];
     if (!library.contains(object.object_class)) {
@@ -136,7 +137,7 @@ Scene build_scene(const ImportedScene& in, const ModelLibrary& library, const st
     MountedSensor sensor;
     sensor.id = s.id;
     try {
-      sensor.config = sensor_config_for_type(s.type, base_dir);
+      sensor.config = calibrated_sensor(in.calibration.get(), sensor_config_for_type(s.type, base_dir));
     } catch (const std::invalid_argument& e) {
       throw InputError((std::filesystem::path(base_dir) / "recording.json").string(),
                        fmt::format("sensors[{}].type", i), e.what());
@@ -150,7 +151,8 @@ Scene build_scene(const ImportedScene& in, const ModelLibrary& library, const st
     object.id = o.id;
     object.model_name = o.model;
     try {
-      object.model = scale_model(object_model_for_name(o.model, library, base_dir), o.length_m, o.width_m);
+      const ObjectModel model = object_model_for_name(o.model, library, base_dir);
+      object.model = scale_model(calibrated_model(in.calibration.get(), model), o.length_m, o.width_m);
     } catch (const std::invalid_argument& e) {
       throw InputError((std::filesystem::path(base_dir) / "recording.json").string(), fmt::format("objects[{}]", i),
                        fmt::format("cannot use model '{}' at {} m x {} m: {}", o.model, o.length_m, o.width_m,

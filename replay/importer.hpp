@@ -3,11 +3,13 @@
 // ego trajectory as it is; each annotated object gets the library model its class names, scaled
 // to its annotated length and width, and a trajectory through its smoothed annotated boxes
 // (annotation_smoothing.hpp); it takes part only over the spans of its annotation.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "io/recording.hpp"
 #include "model/model_library.hpp"
+#include "replay/calibration.hpp"
 #include "scene/scene.hpp"
 
 namespace rcsim::replay {
@@ -24,6 +26,9 @@ struct ImportOptions {
   // When set, every sensor is simulated with this configuration (a built-in name or a file path)
   // instead of the type the recording names: to compare sensor configurations on one drive.
   std::string sensor_type_override;
+  // When set, a calibration directory (rcsim calibrate -o DIR): its sensors and models replace
+  // the ones of the same name.
+  std::string calibration_dir;
 };
 
 struct ImportedObject {
@@ -45,12 +50,14 @@ struct ImportedScene {
   std::vector<RecordingSensor> sensors;
   std::vector<ImportedObject> objects;
   std::vector<std::string> warnings;  // things a person should know (bridged annotation gaps)
+  std::shared_ptr<const Calibration> calibration;  // used by build_scene; null: none
 };
 
 ImportedScene import_recording(const Recording& recording, const ModelLibrary& library, const ImportOptions& options);
 
 // The scene the simulation runs, built without a detour through JSON (an hour-long recording has
-// hundreds of thousands of samples). Sensor types resolve relative to the recording directory.
+// hundreds of thousands of samples). Sensor types resolve relative to the recording directory;
+// the imported scene's calibration, if any, replaces sensors and models of the same name.
 Scene build_scene(const ImportedScene& imported, const ModelLibrary& library, const std::string& base_dir);
 
 // Writes the imported scene as an `rcsim-scene` file, atomically.

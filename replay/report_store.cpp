@@ -61,6 +61,8 @@ nlohmann::ordered_json parameters_json(const ReplayOptions& options, const Effec
        {{"smoothing", "local quadratic regression, tricube weights (W. S. Cleveland, JASA 74, 1979)"},
         {"smoothing_half_window_s", options.import.smoothing_half_window_s},
         {"max_gap_s", options.import.max_gap_s},
+        {"calibration", options.import.calibration_dir.empty() ? nlohmann::ordered_json()
+                                                                 : nlohmann::ordered_json(options.import.calibration_dir)},
         {"effects", {{"clutter", e.clutter}, {"multibounce", e.multibounce}, {"occlusion", e.occlusion}}}}}};
 }
 

@@ -8,6 +8,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/fidelity_option.hpp"
+#include "cli/recording_dirs.hpp"
+#include "cli/replay_options.hpp"
 #include "common/input_error.hpp"
 #include "replay/bench_run.hpp"
 #include "replay/bench_store.hpp"
@@ -25,24 +27,8 @@ struct BenchArgs {
   bool no_reference = false;
   bool json = false;
   double min_timing_cpu_s = replay::BenchOptions{}.min_timing_cpu_s;
+  std::string calibration;
 };
-
-// Without names: every recording directory (with a recording.json) in ./recordings_synthetic.
-std::vector<std::filesystem::path> recording_dirs(const std::vector<std::string>& named) {
-  std::vector<std::filesystem::path> dirs(named.begin(), named.end());
-  if (!dirs.empty()) return dirs;
-  const std::filesystem::path bundled = "recordings_synthetic";
-  if (std::filesystem::is_directory(bundled)) {
-    for (const auto& entry : std::filesystem::directory_iterator(bundled)) {
-      if (std::filesystem::is_regular_file(entry.path() / "recording.json")) dirs.push_back(entry.path());
-    }
-  }
-  if (dirs.empty()) {
-    throw InputError("recordings_synthetic", "", "no recording named and none found here; name RECORDING_DIRs");
-  }
-  std::sort(dirs.begin(), dirs.end());
-  return dirs;
-}
 
 std::vector<Fidelity> parse_levels(const std::string& list) {
   std::vector<Fidelity> levels;
@@ -174,6 +160,7 @@ void run_bench(const BenchArgs& args) {
   options.levels = parse_levels(args.levels);
   options.reference = !args.no_reference;
   options.min_timing_cpu_s = args.min_timing_cpu_s;
+  options.replay.import.calibration_dir = args.calibration;
   if (options.levels.empty() && !options.reference) throw InputError("--levels", args.levels, "nothing to bench: no level and --no-reference");
   // Every recording is read (and refused) before anything is measured or stored.
   std::vector<Recording> recordings;
@@ -219,6 +206,7 @@ void add_bench_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 60.0))
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the table as JSON (rcsim-bench v1, schemas/bench.md); progress goes to stderr");
+  add_calibration_option(*cmd, args->calibration);
   cmd->callback([args] { run_bench(*args); });
 }
 

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   rcsim::cli::add_synth_command(app);
   rcsim::cli::add_traffic_command(app);
   rcsim::cli::add_bench_command(app);
+  rcsim::cli::add_calibrate_command(app);
   rcsim::cli::add_models_command(app);
   try {
     app.parse(argc, argv);

@@ -26,6 +26,7 @@ struct ReplayArgs {
   double order_p = 2.0;
   double gate_m = 1.0;
   ImportArgs import;
+  std::string calibration;
 };
 
 nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, const replay::ReplaySummary& s) {
@@ -104,6 +105,7 @@ void run_replay(const ReplayArgs& args) {
   options.seed = static_cast<std::uint64_t>(args.seed);
   options.fidelity = fidelity_from_arg(args.fidelity);
   options.import = import_options(args.import);
+  options.import.calibration_dir = args.calibration;
   options.gospa = {args.cutoff_m, args.order_p};
   options.association_gate_m = args.gate_m;
   const auto db = replay::open_report_database(args.db_path, true);
@@ -143,6 +145,7 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--gospa-order", args->order_p, "GOSPA/OSPA order p")->check(CLI::Range(1.0, 100.0))->capture_default_str();
   cmd->add_option("--gate-m", args->gate_m, "target-to-object association gate")->check(CLI::PositiveNumber)->capture_default_str();
   add_import_options(*cmd, args->import);
+  add_calibration_option(*cmd, args->calibration);
   cmd->callback([args] { run_replay(*args); });
 }
 

@@ -32,6 +32,14 @@ inline void add_import_options(CLI::App& cmd, ImportArgs& args) {
                  "the recording's");
 }
 
+// --calibration DIR (rcsim replay, rcsim bench): sensors and models fitted by rcsim calibrate.
+inline void add_calibration_option(CLI::App& cmd, std::string& dir) {
+  cmd.add_option("--calibration", dir,
+                 "calibration directory written by rcsim calibrate: its sensors and models replace the built-ins of "
+                 "the same name")
+      ->check(CLI::ExistingDirectory);
+}
+
 inline replay::ImportOptions import_options(const ImportArgs& args) {
   replay::ImportOptions options;
   options.smoothing_half_window_s = args.smoothing_half_window_s;

@@ -11,15 +11,6 @@
 namespace rcsim {
 namespace {
 
-bool looks_like_path(const std::string& name) {
-  return name.find('/') != std::string::npos || name.ends_with(".json");
-}
-
-std::string resolve(const std::string& base_dir, const std::string& name) {
-  const std::filesystem::path p(name);
-  return p.is_absolute() || base_dir.empty() ? name : (std::filesystem::path(base_dir) / p).string();
-}
-
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
@@ -81,10 +72,19 @@ std::vector<TimeInterval> parse_presence(const JsonField& o) {
 
 }  // namespace
 
+bool looks_like_path(const std::string& name) {
+  return name.find('/') != std::string::npos || name.ends_with(".json");
+}
+
+std::string resolve_relative(const std::string& base_dir, const std::string& name) {
+  const std::filesystem::path p(name);
+  return p.is_absolute() || base_dir.empty() ? name : (std::filesystem::path(base_dir) / p).string();
+}
+
 SensorConfig sensor_config_for_type(const std::string& type, const std::string& base_dir) {
   if (is_builtin_sensor_config(type)) return builtin_sensor_config(type);
   if (looks_like_path(type)) {
-    const std::string path = resolve(base_dir, type);
+    const std::string path = resolve_relative(base_dir, type);
     if (!std::filesystem::exists(path)) throw std::invalid_argument("sensor configuration file not found: " + path);
     return load_sensor_config_file(path);
   }
@@ -95,7 +95,7 @@ SensorConfig sensor_config_for_type(const std::string& type, const std::string& 
 ObjectModel object_model_for_name(const std::string& name, const ModelLibrary& library, const std::string& base_dir) {
   if (library.contains(name)) return library.at(name);
   if (looks_like_path(name)) {
-    const std::string path = resolve(base_dir, name);
+    const std::string path = resolve_relative(base_dir, name);
     if (!std::filesystem::exists(path)) throw std::invalid_argument("object model file not found: " + path);
     return load_object_model_file(path);
   }

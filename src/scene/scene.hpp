@@ -59,6 +59,10 @@ struct Scene {
   double cycle_time_at(int cycle) const { return cycle * cycle_time_s; }
 };
 
+// A sensor type or model name that names a file (contains '/' or ends in .json), and its path:
+// relative names are relative to base_dir (the scene file's or recording's directory).
+bool looks_like_path(const std::string& name);
+std::string resolve_relative(const std::string& base_dir, const std::string& name);
 // A sensor `type`: a built-in configuration name or a file path relative to base_dir.
 // Throws std::invalid_argument with a message when neither.
 SensorConfig sensor_config_for_type(const std::string& type, const std::string& base_dir);

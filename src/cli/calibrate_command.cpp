@@ -1,0 +1,121 @@
+// rcsim calibrate [RECORDING_DIR ...] -o DIR: fit the reflectors' ERCS (and, if asked, the
+// amplitude law and the multibounce loss) to recordings, as the paper derives them by inspection
+// of measurements (docs/calibration.md); rcsim replay/bench --calibration DIR use the result.
+#include <cmath>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "cli/recording_dirs.hpp"
+#include "common/input_error.hpp"
+#include "replay/calibration_fit.hpp"
+
+namespace rcsim::cli {
+
+namespace {
+
+struct CalibrateArgs {
+  std::vector<std::string> recordings;
+  std::string output_dir;
+  std::string fit = "ercs,slope";
+  std::int64_t seed = 1;
+  double initial_step_db = replay::CalibrationOptions{}.initial_step_db;
+  double final_step_db = replay::CalibrationOptions{}.final_step_db;
+  bool cross_validate = false;
+};
+
+std::vector<replay::ParameterGroup> parse_groups(const std::string& list) {
+  std::vector<replay::ParameterGroup> groups;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    const auto g = replay::parse_parameter_group(name);
+    if (!g) throw InputError("--fit", name, std::string("unknown parameter group; one of ") + std::string(replay::kParameterGroupNames));
+    if (std::find(groups.begin(), groups.end(), *g) == groups.end()) groups.push_back(*g);
+    start = comma + 1;
+  }
+  return groups;
+}
+
+// A change as a ratio in dB (ERCS) or a difference in the parameter's unit.
+std::string change_text(const replay::CalibrationParameter& p) {
+  if (p.group == replay::ParameterGroup::ercs) return fmt::format("{:+.2f} dB", 20.0 * std::log10(p.value / p.initial));
+  return fmt::format("{:+.3f}", p.value - p.initial);
+}
+
+void print_fits(const std::string& title, const std::vector<replay::RecordingFit>& fits) {
+  std::cout << fmt::format("\n{}\n{:<24} {:>13} {:>13} {:>7}\n", title, "recording", "GOSPA before", "GOSPA after", "ratio");
+  for (const auto& f : fits) {
+    std::cout << fmt::format("{:<24} {:>11.3f} m {:>11.3f} m {:>7.2f}\n", f.recording.substr(0, 24), f.gospa_before_m,
+                             f.gospa_after_m, f.gospa_before_m > 0.0 ? f.gospa_after_m / f.gospa_before_m : 0.0);
+  }
+}
+
+void run_calibrate(const CalibrateArgs& args) {
+  replay::CalibrationOptions options;
+  options.groups = parse_groups(args.fit);
+  options.seed = static_cast<std::uint64_t>(args.seed);
+  options.initial_step_db = args.initial_step_db;
+  options.final_step_db = args.final_step_db;
+  if (options.final_step_db > options.initial_step_db) {
+    throw InputError("--final-step-db", fmt::format("{}", args.final_step_db), "must be at most --initial-step-db");
+  }
+  // Every recording is read (and refused) before the search starts.
+  std::vector<Recording> recordings;
+  for (const auto& dir : recording_dirs(args.recordings)) recordings.push_back(read_recording(dir));
+  if (args.cross_validate && recordings.size() < 2) throw InputError("--cross-validate", "", "needs at least two recordings");
+
+  std::cout << fmt::format("rcsim calibrate: {} recording(s), fitting {}, seed {}\n", recordings.size(), args.fit, options.seed);
+  const auto progress = [](double step_db, double objective, int evaluations) {
+    std::cout << fmt::format("  step {:5.2f} dB: objective {:.4f} after {} evaluations\n", step_db, objective, evaluations);
+    std::cout.flush();
+  };
+  const replay::CalibrationResult result = replay::calibrate(recordings, options, progress);
+
+  std::cout << fmt::format("\n{:<48} {:>10} {:>10} {:>11}\n", "parameter", "initial", "fitted", "change");
+  for (const auto& p : result.parameters) {
+    std::cout << fmt::format("{:<64} {:>10.4g} {:>10.4g} {:>11}\n", p.name, p.initial, p.value, change_text(p));
+  }
+  print_fits(fmt::format("fitted on all {} (objective: mean GOSPA after / before = {:.3f})", recordings.size(),
+                         result.objective_after),
+             result.recordings);
+
+  std::vector<replay::RecordingFit> held_out;
+  if (args.cross_validate) {
+    std::cout << "\nleave-one-out: fitting on all but one recording, in turn\n";
+    held_out = replay::cross_validate(recordings, options, [](const replay::RecordingFit& f) {
+      std::cout << fmt::format("  {}: {:.3f} m -> {:.3f} m\n", f.recording, f.gospa_before_m, f.gospa_after_m);
+      std::cout.flush();
+    });
+    print_fits("held out (each recording with the parameters fitted on the others)", held_out);
+  }
+  replay::write_calibration(args.output_dir, result, options, recordings, args.cross_validate ? &held_out : nullptr);
+  std::cout << fmt::format("\ncalibration written to {}; use it with rcsim replay/bench --calibration {}\n",
+                           args.output_dir, args.output_dir);
+}
+
+}  // namespace
+
+void add_calibrate_command(CLI::App& app) {
+  auto args = std::make_shared<CalibrateArgs>();
+  auto* cmd = app.add_subcommand("calibrate", "fit the reflectors' ERCS (and optionally the amplitude law) to recordings");
+  cmd->add_option("RECORDING_DIR", args->recordings, "recordings (rcsim-recording); default: every one in ./recordings_synthetic");
+  cmd->add_option("-o,--output", args->output_dir, "calibration directory to write (rcsim-calibration)")->required();
+  cmd->add_option("--fit", args->fit, std::string("comma-separated parameter groups: ") + std::string(replay::kParameterGroupNames))
+      ->capture_default_str();
+  cmd->add_option("--seed", args->seed, "seed of the model's random draws during the search")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--initial-step-db", args->initial_step_db, "first search step")
+      ->check(CLI::Range(0.01, 40.0))
+      ->capture_default_str();
+  cmd->add_option("--final-step-db", args->final_step_db, "the step halves while at least this")
+      ->check(CLI::Range(0.01, 40.0))
+      ->capture_default_str();
+  cmd->add_flag("--cross-validate", args->cross_validate,
+                "also fit on all recordings but one, in turn, and report each held-out recording's GOSPA");
+  cmd->callback([args] { run_calibrate(*args); });
+}
+
+}  // namespace rcsim::cli
