@@ -46,6 +46,13 @@ std::shared_ptr<const Calibration> load_calibration(const std::string& dir) {
     if (model.name != name) root.fail("models", path + " holds \"" + model.name + "\", not \"" + name + "\"");
     calibration->models.insert_or_assign(name, std::move(model));
   }
+  if (const auto it = json.find("fitted_on"); it != json.end() && it->is_array()) {  // informational
+    for (const auto& r : *it) {
+      if (r.is_object() && r.contains("checksum") && r["checksum"].is_string()) {
+        calibration->fitted_on_checksums.push_back(r["checksum"].get<std::string>());
+      }
+    }
+  }
   return calibration;
 }
 

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "model/object_model.hpp"
 #include "sensor/sensor_config.hpp"
@@ -19,6 +20,7 @@ struct Calibration {
   std::string source;                           // the directory it was read from ("" if in memory)
   std::map<std::string, SensorConfig> sensors;  // by the configuration's name (srr24, ...)
   std::map<std::string, ObjectModel> models;    // by the model's name (the class)
+  std::vector<std::string> fitted_on_checksums;  // of the recordings it was fitted on (16 hex digits)
 };
 
 // Reads DIR/calibration.json and the sensor and model files it lists; errors name the file and

@@ -13,6 +13,7 @@
 #include "common/input_error.hpp"
 #include "replay/bench_run.hpp"
 #include "replay/bench_store.hpp"
+#include "replay/calibration.hpp"
 #include "replay/report_store.hpp"
 
 namespace rcsim::cli {
@@ -169,6 +170,21 @@ void run_bench(const BenchArgs& args) {
   const std::string machine = replay::machine_description();
   std::ostream& progress = args.json ? std::cerr : std::cout;
   progress << fmt::format("rcsim bench: {} recording(s), seed {}, on {}\n", recordings.size(), options.seed, machine);
+  if (!args.calibration.empty()) {
+    // A calibration fitted on a recording makes that recording's errors in-sample: say so.
+    const auto calibration = replay::load_calibration(args.calibration);
+    const auto& fitted = calibration->fitted_on_checksums;
+    std::string in_sample;
+    for (const Recording& r : recordings) {
+      if (std::find(fitted.begin(), fitted.end(), fmt::format("{:016x}", r.checksum)) != fitted.end()) {
+        if (!in_sample.empty()) in_sample += ", ";
+        in_sample += r.name;
+      }
+    }
+    progress << fmt::format("calibration {}{}\n", args.calibration,
+                            in_sample.empty() ? std::string(": fitted on none of these recordings")
+                                              : ": fitted on " + in_sample + " (their errors are in-sample)");
+  }
   print_row_header(progress);
   std::vector<replay::BenchRow> rows;
   for (std::size_t i = 0; i < recordings.size(); ++i) {
