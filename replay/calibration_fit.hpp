@@ -7,7 +7,9 @@
 // against the recordings as rcsim replay does, comes closest to them in GOSPA.
 //
 // Objective: the mean over recordings of GOSPA / GOSPA with the starting parameters, so that every
-// recording weighs the same. Search: coordinate pattern search, each parameter moved by +-step in
+// recording weighs the same, plus how much further (in |ln|) the count of simulated targets has
+// moved from the recorded count than at the start (GOSPA alone would reward reporting nothing
+// where the model misplaces targets). Search: coordinate pattern search, each parameter moved by +-step in
 // turn and kept where the objective falls; the step halves from initial_step_db to final_step_db.
 // Every random draw comes from one seed (common random numbers), so the objective is a
 // deterministic function of the parameters.
@@ -67,7 +69,7 @@ struct RecordingFit {
 struct CalibrationResult {
   std::vector<CalibrationParameter> parameters;
   std::vector<RecordingFit> recordings;
-  double objective_before = 1.0, objective_after = 1.0;
+  double objective_before = 1.0, objective_after = 1.0;  // mean GOSPA ratio plus count penalty
   int evaluations = 0;  // objective evaluations (each replays the recordings a parameter touches)
   // The fitted rcsim-sensor and rcsim-object-model documents, keyed as CalibrationParameter::document.
   std::map<std::string, nlohmann::ordered_json> documents;
