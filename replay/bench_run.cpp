@@ -13,14 +13,13 @@ namespace rcsim::replay {
 
 namespace {
 
-// Discards the per-cycle comparison; keeps, if asked, the simulated lists as a recording's targets
-// (the noise floor compares against the reference's own lists).
+// Keeps the simulated lists as a recording's targets (the noise floor compares against the
+// reference's own lists); discards the rest of the per-cycle comparison.
 class CollectingSink final : public ReplaySink {
  public:
-  explicit CollectingSink(std::vector<RecordedTarget>* simulated) : simulated_(simulated) {}
+  explicit CollectingSink(std::vector<RecordedTarget>& simulated) : simulated_(&simulated) {}
   void begin_run(const Recording&, const ImportedScene&, const Scene&, const ReplayOptions&) override {}
   void add_cycle(const CycleComparison& c) override {
-    if (simulated_ == nullptr) return;
     for (const ComparedTarget& t : c.simulated) {
       simulated_->push_back({c.t_s, c.cycle, c.sensor, t.track_id, t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db});
     }
@@ -108,7 +107,7 @@ std::vector<BenchRow> bench_recording(const Recording& rec, int index, const Ben
     const auto [seed_a, seed_b] = reference_seeds(options.seed, rec);
     ReplayOptions replay = options.replay;
     std::vector<RecordedTarget> reference_targets;
-    CollectingSink collect(&reference_targets);
+    CollectingSink collect(reference_targets);
     ReferenceSource reference_a(scene, seed_a);
     replay.seed = seed_a;
     const ReplaySummary s = compare_with_recording(rec, imported, scene, reference_a, replay, collect);
@@ -118,7 +117,7 @@ std::vector<BenchRow> bench_recording(const Recording& rec, int index, const Ben
     // The noise floor: reference B against reference A, on the same annotations.
     Recording as_recorded = rec;
     as_recorded.targets = std::move(reference_targets);
-    CollectingSink discard(nullptr);
+    DiscardingSink discard;
     ReferenceSource reference_b(scene, seed_b);
     replay.seed = seed_b;
     add(row_of(rec, index, kNoiseFloorLevel, compare_with_recording(as_recorded, imported, scene, reference_b, replay, discard)));
@@ -129,7 +128,7 @@ std::vector<BenchRow> bench_recording(const Recording& rec, int index, const Ben
     replay.fidelity = level;
     const SimulationOptions sim_options = model_options(options.seed, level);
     ModelSource model(scene, sim_options);
-    CollectingSink discard(nullptr);
+    DiscardingSink discard;
     BenchRow row = row_of(rec, index, fidelity_name(level), compare_with_recording(rec, imported, scene, model, replay, discard));
     set_speed(row, time_model_pass_cpu_s(scene, rec, imported.time_offset_s, sim_options, options.min_timing_cpu_s));
     add(std::move(row));

@@ -97,13 +97,6 @@ int mirror_of(const Json& list, std::size_t i, bool plane) {
   return -1;
 }
 
-class NullSink final : public ReplaySink {
- public:
-  void begin_run(const Recording&, const ImportedScene&, const Scene&, const ReplayOptions&) override {}
-  void add_cycle(const CycleComparison&) override {}
-  void end_run(const ReplaySummary&) override {}
-};
-
 // The recordings, imported once, and the documents under calibration; evaluates GOSPA per
 // recording for the documents' current values.
 class Fitter {
@@ -183,7 +176,7 @@ class Fitter {
     replay.seed = options_.seed;
     replay.fidelity = Fidelity::full;
     ModelSource model(scene, model_options(options_.seed, Fidelity::full));
-    NullSink sink;
+    DiscardingSink sink;
     const ReplaySummary s = compare_with_recording(*e.recording, e.imported, scene, model, replay, sink);
     return {s.gospa_mean_m, std::log((static_cast<double>(s.targets_simulated) + 1.0) /
                                      (static_cast<double>(s.targets_recorded) + 1.0))};

@@ -97,6 +97,14 @@ class ReplaySink {
   virtual void end_run(const ReplaySummary& summary) = 0;
 };
 
+// A sink that keeps nothing: where only the summary counts (bench rows, calibration).
+class DiscardingSink final : public ReplaySink {
+ public:
+  void begin_run(const Recording&, const ImportedScene&, const Scene&, const ReplayOptions&) override {}
+  void add_cycle(const CycleComparison&) override {}
+  void end_run(const ReplaySummary&) override {}
+};
+
 // What is compared against the recording: the reflection-center model at a fidelity level
 // (replay/simulated_source.hpp: ModelSource) or the signal-level reference (ReferenceSource).
 class SimulatedSource {

@@ -20,13 +20,6 @@ Recording bundled(const std::string& name) {
   return read_recording(fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / name);
 }
 
-class NullSink final : public ReplaySink {
- public:
-  void begin_run(const Recording&, const ImportedScene&, const Scene&, const ReplayOptions&) override {}
-  void add_cycle(const CycleComparison&) override {}
-  void end_run(const ReplaySummary&) override {}
-};
-
 TEST(BenchRun, ModelRowsAgreeWithReplayOfTheSameLevelAndSeed) {
   const Recording rec = bundled("standstill_1m");
   BenchOptions options;
@@ -42,7 +35,7 @@ TEST(BenchRun, ModelRowsAgreeWithReplayOfTheSameLevelAndSeed) {
     ReplayOptions replay;
     replay.seed = 3;
     replay.fidelity = *parse_fidelity(row.level);
-    NullSink sink;
+    DiscardingSink sink;
     const ReplaySummary s = replay_recording(rec, replay, sink);
     EXPECT_EQ(row.recording, 7);
     EXPECT_EQ(row.recording_name, "standstill_1m");
@@ -93,7 +86,7 @@ TEST(BenchRun, ReferenceAgainstItselfWithTheSameSeedHasNoError) {
   }
   ASSERT_GT(as_recorded.targets.size(), 20u);
   ReferenceSource again(scene, 11);
-  NullSink sink;
+  DiscardingSink sink;
   const ReplaySummary s = compare_with_recording(as_recorded, imported, scene, again, ReplayOptions{}, sink);
   EXPECT_EQ(s.targets_matched, static_cast<long long>(as_recorded.targets.size()));
   EXPECT_DOUBLE_EQ(s.gospa_mean_m, 0.0);

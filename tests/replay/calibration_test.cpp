@@ -119,11 +119,7 @@ TEST_F(CalibrationFiles, AWrittenCalibrationReplaysExactlyAsFitted) {
   replay::ReplayOptions replay_options;
   replay_options.seed = 5;
   replay_options.import.calibration_dir = out;
-  class Discard final : public replay::ReplaySink {
-    void begin_run(const Recording&, const replay::ImportedScene&, const Scene&, const replay::ReplayOptions&) override {}
-    void add_cycle(const replay::CycleComparison&) override {}
-    void end_run(const replay::ReplaySummary&) override {}
-  } sink;
+  replay::DiscardingSink sink;
   EXPECT_EQ(replay::replay_recording(recordings[0], replay_options, sink).gospa_mean_m, result.recordings[0].gospa_after_m);
   replay_options.import.calibration_dir.clear();
   EXPECT_EQ(replay::replay_recording(recordings[0], replay_options, sink).gospa_mean_m, result.recordings[0].gospa_before_m);
