@@ -213,6 +213,10 @@ BenchGoals evaluate_goals(const std::vector<BenchRow>& rows) {
     p.recording = r.recording_name;
     p.ratio = floor->gospa_mean_m > 0.0 ? r.gospa_mean_m / floor->gospa_mean_m : (r.gospa_mean_m > 0.0 ? 1e300 : 1.0);
     p.within_1_5 = p.ratio <= 1.5;
+    const auto ref = std::find_if(rows.begin(), rows.end(), [&](const BenchRow& f) {
+      return f.recording == r.recording && f.level == kReferenceLevel;
+    });
+    if (ref != rows.end() && floor->gospa_mean_m > 0.0) p.reference_ratio = ref->gospa_mean_m / floor->gospa_mean_m;
     g.all_within_1_5 = g.all_within_1_5 && p.within_1_5;
     g.per_recording.push_back(p);
   }

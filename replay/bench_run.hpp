@@ -88,6 +88,9 @@ struct BenchGoals {
     std::string recording;
     double ratio = 0.0;             // full's GOSPA / noise floor
     bool within_1_5 = false;
+    // The same for the reference on the imported scene: what a perfect model of the reference,
+    // fed the same annotations, would get (the floor leaves the annotation errors out).
+    double reference_ratio = 0.0;
   };
   std::vector<PerRecording> per_recording;
   bool all_within_1_5 = false;

@@ -184,6 +184,8 @@ TEST(BenchRun, GoalsByHand) {
   EXPECT_DOUBLE_EQ(g.per_recording[1].ratio, 1.6);
   EXPECT_FALSE(g.per_recording[1].within_1_5);
   EXPECT_FALSE(g.all_within_1_5);
+  EXPECT_DOUBLE_EQ(g.per_recording[0].reference_ratio, 0.6 / 0.4);  // the reference row over the floor
+  EXPECT_DOUBLE_EQ(g.per_recording[1].reference_ratio, 1.0);
 
   auto rows = hand_rows();
   rows.erase(rows.begin() + 1);  // a noise floor missing
