@@ -26,10 +26,13 @@ constexpr double kErcsLowerDb = -40.0, kErcsUpperDb = 20.0;  // search range abo
 constexpr double kLevelRangeDb = 20.0;
 constexpr double kSlopeLowerDbPerM = 0.05, kSlopeUpperDbPerM = 3.0;
 constexpr double kMultibounceUpperDb = 40.0;
+constexpr double kPatternExponentUpper = 3.0;
+constexpr double kExponentPerDb = 1.0 / 12.0;  // 6 dB step: n moves by 0.5 (about 2.6 dB at 30 deg)
 constexpr double kPositionRangeM = 0.5;      // reflectors move at most this far
 constexpr double kMetresPerDb = 1.0 / 60.0;  // position step per dB of step
 constexpr double kDegPerDb = 2.5;            // visibility angle step per dB of step
 constexpr double kCentreRangeDeg = 30.0;
+constexpr std::string_view kCalibratedSentence = " Calibrated by rcsim calibrate ";
 
 Json parse_document(std::string_view text, const std::string& label) {
   try {
@@ -37,6 +40,13 @@ Json parse_document(std::string_view text, const std::string& label) {
   } catch (const Json::parse_error& e) {
     throw InputError(label, "", e.what());
   }
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 Json builtin_document(const std::vector<EmbeddedFile>& files, const std::string& name) {
@@ -50,10 +60,23 @@ Json builtin_document(const std::vector<EmbeddedFile>& files, const std::string&
 Json sensor_document(const std::string& type, const std::string& base_dir) {
   if (is_builtin_sensor_config(type)) return builtin_document(embedded_sensor_configs(), type);
   const std::string path = resolve_relative(base_dir, type);
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_document(text.str(), path);
+  return parse_document(read_text(path), path);
+}
+
+// The documents of a start calibration, keyed as CalibrationParameter::document; none for "".
+std::map<std::string, Json> start_documents(const std::string& dir) {
+  std::map<std::string, Json> documents;
+  if (dir.empty()) return documents;
+  load_calibration(dir);  // refuses a bad directory, naming the file and field
+  const std::filesystem::path index_path = std::filesystem::path(dir) / kCalibrationIndexFile;
+  const Json index = parse_document(read_text(index_path), index_path.string());
+  for (const auto& [field, prefix] : {std::pair{"sensors", "sensor:"}, std::pair{"models", "model:"}}) {
+    for (const auto& [name, file] : index.at(field).items()) {
+      const std::filesystem::path path = std::filesystem::path(dir) / file.get<std::string>();
+      documents[prefix + name] = parse_document(read_text(path), path.string());
+    }
+  }
+  return documents;
 }
 
 // A parameter's search step: ERCS in dB (multiplicative), level and multibounce loss in dB, the
@@ -67,6 +90,7 @@ double moved(const CalibrationParameter& p, double step_db, int direction) {
     case ParameterGroup::slope: v += direction * step_db / 20.0; break;
     case ParameterGroup::position: v += direction * step_db * kMetresPerDb; break;
     case ParameterGroup::visibility: v += direction * step_db * kDegPerDb; break;
+    case ParameterGroup::antenna: v += direction * step_db * kExponentPerDb; break;
   }
   return std::clamp(v, p.lower, p.upper);
 }
@@ -105,7 +129,12 @@ class Fitter {
   Fitter(const std::vector<Recording>& recordings, const CalibrationOptions& options)
       : options_(options), library_(ModelLibrary::builtin()), calibration_(std::make_shared<Calibration>()) {
     ImportOptions import = options.replay.import;
-    import.calibration_dir.clear();  // the search starts from the built-ins and the recordings' files
+    import.calibration_dir.clear();  // the search starts from the built-ins and the recordings' files,
+    const std::map<std::string, Json> start = start_documents(options.start_dir);  // or from these
+    const auto starting = [&](const std::string& key, Json fallback) {
+      const auto it = start.find(key);
+      return it != start.end() ? it->second : std::move(fallback);
+    };
     for (const Recording& rec : recordings) {
       Entry& e = entries_.emplace_back();
       e.recording = &rec;
@@ -114,12 +143,12 @@ class Fitter {
       for (const RecordingSensor& s : e.imported.sensors) {
         Json doc = sensor_document(s.type, rec.dir.string());
         const std::string key = "sensor:" + doc.value("name", s.type);
-        documents_.try_emplace(key, std::move(doc));
+        documents_.try_emplace(key, starting(key, std::move(doc)));
         e.documents.insert(key);
       }
       for (const ImportedObject& o : e.imported.objects) {
         const std::string key = "model:" + o.model;
-        documents_.try_emplace(key, builtin_document(embedded_object_models(), o.model));
+        documents_.try_emplace(key, starting(key, builtin_document(embedded_object_models(), o.model)));
         e.documents.insert(key);
       }
     }
@@ -330,6 +359,12 @@ class Fitter {
     if (wanted(ParameterGroup::multibounce)) {
       add_field(key, doc, "/multibounce/loss_per_bounce_db", ParameterGroup::multibounce, 0.0, kMultibounceUpperDb, "dB");
     }
+    if (wanted(ParameterGroup::antenna)) {
+      // Optional in rcsim-sensor: absent means the paper's 1, written in so that it can be varied.
+      Json& writable = documents_.at(key);
+      if (!writable["antenna"].contains("amplitude_pattern_exponent")) writable["antenna"]["amplitude_pattern_exponent"] = 1.0;
+      add_field(key, writable, "/antenna/amplitude_pattern_exponent", ParameterGroup::antenna, 1.0, kPatternExponentUpper, "1");
+    }
   }
 
   CalibrationOptions options_;
@@ -345,7 +380,8 @@ class Fitter {
 
 std::optional<ParameterGroup> parse_parameter_group(std::string_view name) {
   for (const ParameterGroup g : {ParameterGroup::ercs, ParameterGroup::position, ParameterGroup::visibility,
-                                 ParameterGroup::level, ParameterGroup::slope, ParameterGroup::multibounce}) {
+                                 ParameterGroup::level, ParameterGroup::slope, ParameterGroup::multibounce,
+                                 ParameterGroup::antenna}) {
     if (parameter_group_name(g) == name) return g;
   }
   return std::nullopt;
@@ -359,6 +395,7 @@ std::string_view parameter_group_name(ParameterGroup group) {
     case ParameterGroup::level: return "level";
     case ParameterGroup::slope: return "slope";
     case ParameterGroup::multibounce: return "multibounce";
+    case ParameterGroup::antenna: return "antenna";
   }
   return "?";
 }
@@ -424,6 +461,8 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
   result.objective_after = best;
   result.parameters = parameters;
   result.documents = fitter.documents();
+  // A start calibration's documents the recordings do not use are carried over unchanged.
+  for (auto& [key, doc] : start_documents(options.start_dir)) result.documents.try_emplace(key, std::move(doc));
   for (std::size_t i = 0; i < n; ++i) {
     result.recordings.push_back({fitter.recording(i).name, before[i].gospa_m, figures[i].gospa_m});
   }
@@ -476,6 +515,7 @@ void write_calibration(const std::string& dir, const CalibrationResult& result, 
   index["created_by"] = "rcsim calibrate";
   index["level"] = "full";
   index["seed"] = options.seed;
+  index["started_from"] = options.start_dir.empty() ? Json() : Json(options.start_dir);
   Json groups = Json::array();
   for (const ParameterGroup g : options.groups) groups.push_back(parameter_group_name(g));
   index["groups"] = groups;
@@ -498,8 +538,10 @@ void write_calibration(const std::string& dir, const CalibrationResult& result, 
   Json sensors = Json::object(), models = Json::object();
   for (const auto& [key, doc] : result.documents) {
     Json out = doc;
-    out["description"] = doc.value("description", "") +
-                         fmt::format(" Calibrated by rcsim calibrate on {} recording(s) (seed {}).", recordings.size(), options.seed);
+    std::string description = doc.value("description", "");
+    // A document started from an earlier calibration says only how it was last calibrated.
+    if (const auto earlier = description.find(kCalibratedSentence); earlier != std::string::npos) description.resize(earlier);
+    out["description"] = description + fmt::format("{}on {} recording(s) (seed {}).", kCalibratedSentence, recordings.size(), options.seed);
     const std::string file = file_name_of(key);
     AtomicFileWriter writer((std::filesystem::path(dir) / file).string());
     writer.stream() << out.dump(2) << '\n';

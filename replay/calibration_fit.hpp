@@ -34,8 +34,9 @@ enum class ParameterGroup {
   level,        // the sensor's reference level L0, eq. (1)
   slope,        // the sensor's reference slope, eq. (1)
   multibounce,  // the sensor's loss per back-and-forth bounce
+  antenna,      // the sensor's amplitude pattern exponent n, A^phi = |H_sum|^n in eq. (2)
 };
-inline constexpr std::string_view kParameterGroupNames = "ercs | position | visibility | level | slope | multibounce";
+inline constexpr std::string_view kParameterGroupNames = "ercs | position | visibility | level | slope | multibounce | antenna";
 std::optional<ParameterGroup> parse_parameter_group(std::string_view name);
 std::string_view parameter_group_name(ParameterGroup group);
 
@@ -47,6 +48,9 @@ struct CalibrationOptions {
   double initial_step_db = 6.0;
   double final_step_db = 0.5;    // the search ends after the sweeps at the first step below this
   int max_sweeps_per_step = 3;
+  // A calibration directory (rcsim-calibration) to start from instead of the built-ins: an earlier
+  // fit, or hand-edited documents (e.g. a model with reflectors added); "" = the built-ins.
+  std::string start_dir;
   ReplayOptions replay;  // import and metric parameters; its seed and fidelity are set here
 };
 

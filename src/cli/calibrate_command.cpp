@@ -22,6 +22,7 @@ struct CalibrateArgs {
   double initial_step_db = replay::CalibrationOptions{}.initial_step_db;
   double final_step_db = replay::CalibrationOptions{}.final_step_db;
   bool cross_validate = false;
+  std::string start_dir;
 };
 
 std::vector<replay::ParameterGroup> parse_groups(const std::string& list) {
@@ -58,6 +59,7 @@ void run_calibrate(const CalibrateArgs& args) {
   options.seed = static_cast<std::uint64_t>(args.seed);
   options.initial_step_db = args.initial_step_db;
   options.final_step_db = args.final_step_db;
+  options.start_dir = args.start_dir;
   if (options.final_step_db > options.initial_step_db) {
     throw InputError("--final-step-db", fmt::format("{}", args.final_step_db), "must be at most --initial-step-db");
   }
@@ -113,6 +115,8 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("--final-step-db", args->final_step_db, "the step halves while at least this")
       ->check(CLI::Range(0.01, 40.0))
       ->capture_default_str();
+  cmd->add_option("--start", args->start_dir,
+                  "calibration directory to start from instead of the built-ins (an earlier fit, or hand-edited models)");
   cmd->add_flag("--cross-validate", args->cross_validate,
                 "also fit on all recordings but one, in turn, and report each held-out recording's GOSPA");
   cmd->callback([args] { run_calibrate(*args); });

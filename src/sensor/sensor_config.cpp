@@ -59,9 +59,13 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   c.amplitude.detection_threshold_db = amp.number("detection_threshold_db");
 
   const auto antenna = root.member("antenna");
-  antenna.expect_only({"dipole_length_wavelengths", "element_spacing_wavelengths"});
+  antenna.expect_only({"dipole_length_wavelengths", "element_spacing_wavelengths", "amplitude_pattern_exponent"});
   c.antenna.dipole_length_wavelengths = positive(antenna, "dipole_length_wavelengths");
   c.antenna.element_spacing_wavelengths = positive(antenna, "element_spacing_wavelengths");
+  if (const auto n = antenna.optional_number("amplitude_pattern_exponent")) {
+    if (!(*n >= 1.0 && *n <= 4.0)) antenna.fail("amplitude_pattern_exponent", "must be in [1, 4] (1: the paper's |H_sum|)");
+    c.antenna.amplitude_pattern_exponent = *n;
+  }
   if (c.antenna.element_spacing_wavelengths > 0.5) {
     antenna.fail("element_spacing_wavelengths", "must be at most 0.5 so that eq. (7) stays monotone over +-90 deg");
   }

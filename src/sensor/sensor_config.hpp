@@ -22,6 +22,10 @@ struct AmplitudeLaw {
 struct AntennaGeometry {
   double dipole_length_wavelengths = 0.5;    // L / lambda in eq. (6)
   double element_spacing_wavelengths = 0.5;  // d / lambda: exp(j 2 pi d/lambda sin(phi)) in eq. (6)
+  // n in A^phi = |H_sum(phi)|^n of eq. (2): 1 is the paper's one-way pattern; a sensor whose
+  // amplitude falls faster off boresight (transmit and receive patterns, n near 2) fits n > 1.
+  // It scales sum and delta alike, so the monopulse angle (eq. (7)) does not change.
+  double amplitude_pattern_exponent = 1.0;
 };
 
 struct ResolutionCell {

@@ -16,10 +16,14 @@ double reference_range_amplitude(const AmplitudeLaw& law, double range_m) {
 
 void compute_echoes(const AmplitudeLaw& law, const MonopulseAntenna& antenna, const IdealTargets& ideal, Echoes& out) {
   out.clear();
+  const double extra_pattern_power = antenna.amplitude_pattern_exponent() - 1.0;
   for (std::size_t i = 0; i < ideal.size(); ++i) {
     const auto& t = ideal[i];
-    const double weight = reference_range_amplitude(law, t.range_m) * t.ercs;  // A_ref^R(R_n) ERCS_n, eq. (8)
+    double weight = reference_range_amplitude(law, t.range_m) * t.ercs;  // A_ref^R(R_n) ERCS_n, eq. (8)
     const AntennaPointers h = antenna.pattern(t.sin_azimuth, t.cos_azimuth);  // eq. (6)
+    // eq. (2) with A^phi = |H_sum|^n: the extra |H_sum|^(n-1) scales both pointers (|H_sum| <= 1, so
+    // no overflow; 0 at +-90 deg stays 0).
+    if (extra_pattern_power != 0.0) weight *= std::pow(magnitude(h.sum), extra_pattern_power);
     Echo& e = out.emplace_back();  // built in place: a copy from the stack stalls on store forwarding
     e.range_m = t.range_m;
     e.range_rate_mps = t.range_rate_mps;

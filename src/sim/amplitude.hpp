@@ -17,7 +17,8 @@ double power_to_db(double power);
 double reference_range_amplitude(const AmplitudeLaw& law, double range_m);
 
 // Paper eqs. (2)-(3), (6), (8): for each ideal target the echo with amplitude
-// A_n = A_ref^R(R_n) |H_sum(phi_n)| ERCS_n and the pointers A_ref^R(R_n) ERCS_n H(phi_n).
+// A_n = A_ref^R(R_n) |H_sum(phi_n)|^n ERCS_n and the pointers A_ref^R(R_n) ERCS_n |H_sum|^(n-1) H(phi_n)
+// (n = 1, the paper's, unless the sensor's antenna says otherwise).
 void compute_echoes(const AmplitudeLaw& law, const MonopulseAntenna& antenna, const IdealTargets& ideal, Echoes& out);
 
 }  // namespace rcsim

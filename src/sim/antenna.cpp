@@ -10,7 +10,8 @@ namespace rcsim {
 MonopulseAntenna::MonopulseAntenna(const AntennaGeometry& geometry)
     : length_factor_(kPi * geometry.dipole_length_wavelengths),
       spacing_factor_(kPi * geometry.element_spacing_wavelengths),
-      equal_factors_(length_factor_ == spacing_factor_) {}
+      equal_factors_(length_factor_ == spacing_factor_),
+      amplitude_pattern_exponent_(geometry.amplitude_pattern_exponent) {}
 
 double MonopulseAntenna::additive_sensing_ratio(const AntennaPointers& pointers) {
   const double d = magnitude(pointers.delta);

@@ -38,6 +38,8 @@ class MonopulseAntenna {
   }
   // |H_sum(phi)|, the antenna pattern A^phi of eq. (2) (1 at boresight).
   double sum_magnitude(double azimuth_rad) const { return magnitude(pattern(azimuth_rad).sum); }
+  // n of A^phi = |H_sum|^n (AntennaGeometry); 1 for the paper's pattern.
+  double amplitude_pattern_exponent() const { return amplitude_pattern_exponent_; }
 
   // Paper eq. (7): ASR = (|H_delta| - |H_sum|) / (|H_delta| + |H_sum|), in [-1, 1].
   static double additive_sensing_ratio(const AntennaPointers& pointers);
@@ -52,6 +54,7 @@ class MonopulseAntenna {
   double length_factor_;   // pi L / lambda
   double spacing_factor_;  // pi d / lambda
   bool equal_factors_;     // L = d (as in the srr24): the si argument equals u, one sine serves both
+  double amplitude_pattern_exponent_;
 };
 
 }  // namespace rcsim

@@ -132,6 +132,36 @@ TEST_F(CalibrationFiles, AWrittenCalibrationReplaysExactlyAsFitted) {
   EXPECT_TRUE(index["cross_validation"].is_null());
 }
 
+TEST_F(CalibrationFiles, AFitStartedFromACalibrationStartsWhereItStopped) {
+  std::vector<Recording> recordings{recording_with_pole_ercs(0.25, 5)};
+  CalibrationOptions options;
+  options.groups = {ParameterGroup::ercs};
+  options.seed = 5;
+  options.final_step_db = 3.0;
+  const auto first = replay::calibrate(recordings, options);
+  const std::string out = (dir_ / "first").string();
+  replay::write_calibration(out, first, options, recordings, nullptr);
+
+  options.start_dir = out;
+  options.final_step_db = 1.5;
+  const auto second = replay::calibrate(recordings, options);
+  // Its starting point is the first fit: same GOSPA, same pole ERCS, and it can only improve.
+  EXPECT_EQ(second.recordings[0].gospa_before_m, first.recordings[0].gospa_after_m);
+  EXPECT_DOUBLE_EQ(parameter(second, "pole.pole.ercs").initial, parameter(first, "pole.pole.ercs").value);
+  EXPECT_LE(second.recordings[0].gospa_after_m, second.recordings[0].gospa_before_m);
+
+  const std::string again = (dir_ / "second").string();
+  replay::write_calibration(again, second, options, recordings, nullptr);
+  const auto index = nlohmann::json::parse(read_file(std::filesystem::path(again) / "calibration.json"));
+  EXPECT_EQ(index["started_from"], out);
+  const auto pole = nlohmann::json::parse(read_file(std::filesystem::path(again) / "model_pole.json"));
+  const std::string description = pole["description"];
+  EXPECT_EQ(description.find("Calibrated by"), description.rfind("Calibrated by"));  // said once, not twice
+
+  options.start_dir = (dir_ / "nowhere").string();
+  EXPECT_THROW(replay::calibrate(recordings, options), InputError);
+}
+
 TEST_F(CalibrationFiles, RefusesDirectoriesThatAreNotCalibrationsNamingTheFileAndField) {
   const auto message = [&](const std::string& index_text) {
     std::ofstream(dir_ / "calibration.json") << index_text;

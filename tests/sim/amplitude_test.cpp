@@ -6,6 +6,9 @@
 #include <cmath>
 
 #include "common/angles.hpp"
+#include "common/embedded_data.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "sensor/sensor_config.hpp"
 
 namespace rcsim {
@@ -58,6 +61,47 @@ TEST(Amplitude, EchoScalesWithErcsAndAntennaPattern) {
   const auto h = antenna.pattern(deg_to_rad(30.0));
   EXPECT_NEAR(std::abs(echoes[0].delta_pointer) / std::abs(echoes[0].sum_pointer), std::abs(h.delta) / std::abs(h.sum),
               1e-12);
+}
+
+TEST(Amplitude, PatternExponentTwoSquaresTheAntennaFactorAndKeepsTheAngle) {
+  AntennaGeometry geometry;
+  geometry.amplitude_pattern_exponent = 2.0;
+  const MonopulseAntenna antenna{geometry};
+  const MonopulseAntenna paper{AntennaGeometry{}};
+  IdealTargets ideal(2);
+  ideal[0].range_m = ideal[1].range_m = 10.0;
+  ideal[0].set_azimuth(deg_to_rad(30.0));
+  ideal[1].set_azimuth(deg_to_rad(90.0));  // |H_sum| = 0: stays 0, no NaN
+  ideal[0].ercs = ideal[1].ercs = 1.0;
+  Echoes echoes;
+  compute_echoes(AmplitudeLaw{}, antenna, ideal, echoes);
+  // A^phi = |H_sum(30 deg)|^2: 19 dB + 2 * 20 log10(0.551329) = 19 - 10.3436 = 8.6564 dB
+  EXPECT_NEAR(amplitude_to_db(echoes[0].amplitude), 19.0 + 40 * std::log10(0.5513288954), 1e-8);
+  EXPECT_TRUE(std::isfinite(echoes[1].amplitude));
+  EXPECT_NEAR(echoes[1].amplitude, 0.0, 1e-15);  // cos(pi/2) in doubles is 6e-17, squared
+  // The monopulse ratio, eq. (7), and so the estimated angle are those of the paper's pattern.
+  const auto h = paper.pattern(deg_to_rad(30.0));
+  const AntennaPointers pointers{echoes[0].sum_pointer, echoes[0].delta_pointer};
+  EXPECT_NEAR(MonopulseAntenna::additive_sensing_ratio(pointers), MonopulseAntenna::additive_sensing_ratio(h), 1e-12);
+  EXPECT_NEAR(antenna.estimate_azimuth(pointers), deg_to_rad(30.0), 1e-12);
+}
+
+TEST(Amplitude, PatternExponentIsOptionalAndRefusedOutsideOneToFour) {
+  nlohmann::json srr24;
+  for (const auto& f : embedded_sensor_configs()) {
+    if (f.name == "srr24") srr24 = nlohmann::json::parse(f.text);
+  }
+  ASSERT_FALSE(srr24.is_null());
+  EXPECT_EQ(parse_sensor_config(JsonField(srr24, "srr24.json", "")).antenna.amplitude_pattern_exponent, 1.0);
+  srr24["antenna"]["amplitude_pattern_exponent"] = 1.7;
+  EXPECT_EQ(parse_sensor_config(JsonField(srr24, "srr24.json", "")).antenna.amplitude_pattern_exponent, 1.7);
+  srr24["antenna"]["amplitude_pattern_exponent"] = 0.5;
+  try {
+    parse_sensor_config(JsonField(srr24, "srr24.json", ""));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("antenna.amplitude_pattern_exponent"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
