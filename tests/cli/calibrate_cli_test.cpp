@@ -70,6 +70,13 @@ TEST_F(CalibrateCli, RefusalsNameTheInput) {
                                  " --calibration " + dir_.string());
   EXPECT_EQ(missing.exit_code, 2) << missing.output;
   EXPECT_NE(missing.output.find("calibration.json"), std::string::npos) << missing.output;
+
+  // A start directory that is no calibration is refused before the search, and nothing is written.
+  const auto start = run_rcsim("calibrate " + recording("standstill_1m") + " -o " + (dir_ / "x").string() +
+                               " --start " + dir_.string());
+  EXPECT_EQ(start.exit_code, 2) << start.output;
+  EXPECT_NE(start.output.find("calibration.json"), std::string::npos) << start.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
 }
 
 }  // namespace
