@@ -3,10 +3,10 @@
 validation recordings of recordings_synthetic/ do not contain (other ranges, aspects, offsets,
 speeds and the rear of the car), so that a model calibrated on the campaign can be measured on
 the nine as data it has never seen. Run from this directory; the output is deterministic."""
-import json, math, os
+import json, math, os, sys
 
-SENSORS = [{"id": "front_left", "type": "srr24", "x_m": 3.7, "y_m": 0.7, "yaw_rad": 0.5},
-           {"id": "front_right", "type": "srr24", "x_m": 3.7, "y_m": -0.7, "yaw_rad": -0.5}]
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes"))
+from scene_json import SENSORS, scene  # noqa: E402
 HALF_LENGTH_M = 2.3  # passenger_car
 
 
@@ -41,15 +41,6 @@ def still(x, y, yaw):
 
 def car(ident, trajectory):
     return {"id": ident, "model": "passenger_car", "trajectory": trajectory}
-
-
-def scene(name, description, duration, ego, objects, effects=None, ego_yaw=None):
-    s = {"format": "rcsim-scene", "version": 1, "name": name, "description": description, "duration_s": duration}
-    if effects:
-        s["effects"] = effects
-    s["ego"] = {"trajectory": ego, "sensors": SENSORS}
-    s["objects"] = objects
-    return s
 
 
 # Ego standing turned by yaw so that one sensor sits at the world origin looking along +x.

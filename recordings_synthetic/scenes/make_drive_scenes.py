@@ -3,19 +3,10 @@
 are not adapted from docs/examples/). Run from this directory; the output is deterministic."""
 import json, math
 
-SENSORS = [{"id": "front_left", "type": "srr24", "x_m": 3.7, "y_m": 0.7, "yaw_rad": 0.5},
-           {"id": "front_right", "type": "srr24", "x_m": 3.7, "y_m": -0.7, "yaw_rad": -0.5}]
+from scene_json import scene
 
 def sample(t, x, y, yaw, v):
     return {"t_s": round(t, 3), "x_m": round(x, 3), "y_m": round(y, 3), "yaw_rad": round(yaw, 5), "speed_mps": round(v, 3)}
-
-def scene(name, description, duration, ego, objects, effects=None):
-    s = {"format": "rcsim-scene", "version": 1, "name": name, "description": description, "duration_s": duration}
-    if effects:
-        s["effects"] = effects
-    s["ego"] = {"trajectory": ego, "sensors": SENSORS}
-    s["objects"] = objects
-    return s
 
 def lane_change_yaw(dy, dx):
     return math.atan2(dy, dx)
