@@ -4,13 +4,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "common/atomic_file.hpp"
 #include "common/embedded_data.hpp"
 #include "common/input_error.hpp"
+#include "common/text_file.hpp"
 #include "model/model_library.hpp"
 #include "replay/calibration.hpp"
 #include "replay/simulated_source.hpp"
@@ -42,13 +41,6 @@ Json parse_document(std::string_view text, const std::string& label) {
   }
 }
 
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 Json builtin_document(const std::vector<EmbeddedFile>& files, const std::string& name) {
   for (const auto& f : files) {
     if (f.name == name) return parse_document(f.text, "builtin:" + name + ".json");
@@ -60,7 +52,7 @@ Json builtin_document(const std::vector<EmbeddedFile>& files, const std::string&
 Json sensor_document(const std::string& type, const std::string& base_dir) {
   if (is_builtin_sensor_config(type)) return builtin_document(embedded_sensor_configs(), type);
   const std::string path = resolve_relative(base_dir, type);
-  return parse_document(read_text(path), path);
+  return parse_document(read_text_file(path), path);
 }
 
 // The documents of a start calibration, keyed as CalibrationParameter::document; none for "".
@@ -69,11 +61,11 @@ std::map<std::string, Json> start_documents(const std::string& dir) {
   if (dir.empty()) return documents;
   load_calibration(dir);  // refuses a bad directory, naming the file and field
   const std::filesystem::path index_path = std::filesystem::path(dir) / kCalibrationIndexFile;
-  const Json index = parse_document(read_text(index_path), index_path.string());
+  const Json index = parse_document(read_text_file(index_path), index_path.string());
   for (const auto& [field, prefix] : {std::pair{"sensors", "sensor:"}, std::pair{"models", "model:"}}) {
     for (const auto& [name, file] : index.at(field).items()) {
       const std::filesystem::path path = std::filesystem::path(dir) / file.get<std::string>();
-      documents[prefix + name] = parse_document(read_text(path), path.string());
+      documents[prefix + name] = parse_document(read_text_file(path), path.string());
     }
   }
   return documents;

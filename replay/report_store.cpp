@@ -4,12 +4,11 @@
 #include <filesystem>
 #include <fmt/chrono.h>
 #include <fmt/format.h>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "common/embedded_data.hpp"
 #include "common/input_error.hpp"
+#include "common/text_file.hpp"
 
 namespace rcsim::replay {
 
@@ -22,10 +21,7 @@ std::string sensor_configuration_text(const std::string& type, const std::filesy
   for (const auto& file : embedded_sensor_configs()) {
     if (std::filesystem::path(std::string(file.name)).stem() == type) return std::string(file.text);
   }
-  std::ifstream in(base_dir / type, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return read_text_file(base_dir / type);
 }
 
 nlohmann::ordered_json parameters_json(const ReplayOptions& options, const Effects& e) {

@@ -1,10 +1,10 @@
 #include "common/json_reader.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
+
+#include "common/text_file.hpp"
 
 namespace rcsim {
 
@@ -35,13 +35,7 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& file) {
   }
 }
 
-nlohmann::json parse_json_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_json_text(buffer.str(), path);
-}
+nlohmann::json parse_json_file(const std::string& path) { return parse_json_text(read_text_file(path), path); }
 
 JsonField::JsonField(const nlohmann::json& value, std::string file, std::string path)
     : value_(&value), file_(std::move(file)), path_(std::move(path)) {}

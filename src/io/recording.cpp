@@ -5,12 +5,11 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <fstream>
-#include <sstream>
 #include <unistd.h>
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "common/text_file.hpp"
 #include "io/csv_reader.hpp"
 #include "io/target_list_writer.hpp"
 
@@ -23,17 +22,9 @@ namespace {
 // Times in a recording agree when they differ by less than this (files carry 6 decimals).
 constexpr double kTimeTolerance_s = 2e-6;
 
-std::string read_whole_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "", "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 void read_header(Recording& rec, const fs::path& path) {
   const std::string file = path.string();
-  const nlohmann::json json = parse_json_text(read_whole_file(path), file);
+  const nlohmann::json json = parse_json_text(read_text_file(path), file);
   const JsonField root(json, file, "");
   root.expect_format("rcsim-recording", 1);
   root.expect_only({"format", "version", "name", "description", "cycle_time_s", "sensors", "objects", "source"});
@@ -214,7 +205,7 @@ Recording read_recording(const fs::path& dir) {
   read_targets(rec, dir / "targets.csv");
   std::uint64_t hash = fnv1a64("rcsim-recording/1");
   for (const char* name : {"recording.json", "ego.csv", "objects.csv", "targets.csv"}) {
-    hash = fnv1a64(read_whole_file(dir / name), hash);
+    hash = fnv1a64(read_text_file(dir / name), hash);
   }
   rec.checksum = hash;
   return rec;
