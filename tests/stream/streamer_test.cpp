@@ -133,7 +133,7 @@ TEST(StreamLoopback, TwoSubscribedClientsBothGetTheCompleteStream) {
   auto source = make_scene_source(scene, source_options);
   StreamOptions options;
   options.control = "127.0.0.1:0";
-  options.speed = 0.0;
+  options.speed = testing::kLosslessSpeed;
   options.wait_clients = 2;
   StreamerRun streamer(*source, options);
   ListenOptions listen;
@@ -164,7 +164,7 @@ TEST(StreamLoopback, GarbageOnTheControlPortChangesNothingInTheStream) {
   auto source = make_scene_source(scene, source_options);
   StreamOptions options;
   options.control = "127.0.0.1:0";
-  options.speed = 0.0;
+  options.speed = testing::kLosslessSpeed;
   options.wait_clients = 1;
   StreamerRun streamer(*source, options);
   const std::uint16_t port = streamer.streamer.control_port();
@@ -320,7 +320,7 @@ TEST(StreamLoopback, FragmentedCyclesReassembleEndToEnd) {
   StreamOptions options;
   options.destinations = {fmt::format("127.0.0.1:{}", client.listener.port())};
   options.destination_messages = kSimulatedBit | kTruthBit;
-  options.speed = 0.0;
+  options.speed = testing::kLosslessSpeed;
   StreamerRun streamer(*source, options);
   const StreamSummary summary = streamer.get();
   const ListenSummary s = client.get();
@@ -355,7 +355,7 @@ TEST(StreamLoopback, RecordingStreamsRecordedSimulatedAndTruth) {
   options.destinations = {fmt::format("127.0.0.1:{}", recorded.listener.port()),
                           fmt::format("127.0.0.1:{}", simulated.listener.port())};
   options.destination_messages = kSimulatedBit | kRecordedBit | kTruthBit;
-  options.speed = 0.0;
+  options.speed = testing::kLosslessSpeed;
   StreamerRun streamer(*source, options);
   streamer.get();
   const ListenSummary sr = recorded.get(), ss = simulated.get();
@@ -391,7 +391,7 @@ TEST(StreamLoopback, MulticastGroupOnTheLoopbackInterface) {
   StreamOptions options;
   options.destinations = {fmt::format("239.255.77.77:{}", client->listener.port())};
   options.multicast_interface = "127.0.0.1";
-  options.speed = 0.0;
+  options.speed = testing::kLosslessSpeed;
   StreamerRun streamer(*source, options);
   streamer.get();
   const ListenSummary s = client->get();

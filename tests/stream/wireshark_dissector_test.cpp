@@ -168,7 +168,7 @@ TEST(StreamDissector, TsharkDecodesTheLoopbackStreamAsTheListenerDoes) {
   StreamOptions options;
   options.destinations = {fmt::format("127.0.0.1:{}", listener.port())};
   options.destination_messages = kSimulatedBit | kTruthBit;
-  options.speed = 0.0;
+  options.speed = testing::kLosslessSpeed;
   std::ostringstream stream_log;
   Streamer streamer(*source, options, stream_log);
   streamer.run();
