@@ -98,7 +98,7 @@ TEST(Fidelity, CommandLine) {
       EXPECT_NE(r.output, full_output) << level;
     }
   }
-  EXPECT_EQ(testing::run_rcsim("stream " + scene + " --to 127.0.0.1:39993 --speed max --fidelity no_monopulse").exit_code, 0);
+  EXPECT_EQ(testing::run_rcsim("stream " + scene + " --to 127.0.0.1:9 --speed max --fidelity no_monopulse").exit_code, 0);
   EXPECT_EQ(testing::run_rcsim("simulate " + scene + " --fidelity turbo").exit_code, 2);
   const std::string recording = std::string(RCSIM_SOURCE_DIR) + "/recordings_synthetic/two_in_one_cell";
   EXPECT_EQ(testing::run_rcsim("replay " + recording + " --db /dev/null --fidelity turbo").exit_code, 2);

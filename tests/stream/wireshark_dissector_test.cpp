@@ -44,11 +44,13 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return out;
 }
 
-// tshark's reading of a capture, one Packet per rcsim datagram.
-std::vector<Packet> dissect(const fs::path& capture, const fs::path& dir) {
+// tshark's reading of a capture, one Packet per rcsim datagram (display filter: rcsim, and to
+// the given UDP port if one is given).
+std::vector<Packet> dissect(const fs::path& capture, const fs::path& dir, std::uint16_t port = 0) {
   const fs::path out = dir / "tshark.out", err = dir / "tshark.err";
   testing::Child tshark = testing::spawn(
-      {"tshark", "-r", capture.string(), "-X", "lua_script:" + kDissector, "-Y", "rcsim", "-T", "fields", "-E", "separator=/t",
+      {"tshark", "-r", capture.string(), "-X", "lua_script:" + kDissector, "-Y",
+       port == 0 ? std::string("rcsim") : fmt::format("rcsim && udp.dstport == {}", port), "-T", "fields", "-E", "separator=/t",
        "-E", "aggregator=;", "-e", "rcsim.sequence", "-e", "rcsim.type", "-e", "rcsim.fragment_count", "-e",
        "rcsim.target.range_m", "-e", "rcsim.object.id", "-e", "rcsim.end.cycles_sent"},
       out, err);
@@ -148,10 +150,13 @@ TEST(StreamDissector, TsharkDecodesTheLoopbackStreamAsTheListenerDoes) {
   // show when the capture really runs, and the line count when it has seen everything.
   const fs::path live = dir / "live.pcapng";
   boost::asio::io_context io;
+  // Warm-ups go to a port of our own that never reads them: other tests running in parallel send
+  // to fixed ports (9), which must not enter the capture.
   udp::socket warm_up(io, udp::v4());
-  const udp::endpoint nobody(boost::asio::ip::make_address("127.0.0.1"), 9);
+  udp::socket warm_up_sink(io, udp::endpoint(boost::asio::ip::make_address("127.0.0.1"), 0));
+  const udp::endpoint nobody = warm_up_sink.local_endpoint();
   testing::Child capture = testing::spawn(
-      {"tshark", "-l", "-P", "-i", "lo", "-f", fmt::format("udp dst port {} or udp dst port 9", listener.port()), "-w", live.string()},
+      {"tshark", "-l", "-P", "-i", "lo", "-f", fmt::format("udp dst port {} or udp dst port {}", listener.port(), nobody.port()), "-w", live.string()},
       dir / "capture.out", dir / "capture.err");
   const auto capture_lines = [&dir] {
     const std::string text = testing::read_file(dir / "capture.out");
@@ -180,7 +185,7 @@ TEST(StreamDissector, TsharkDecodesTheLoopbackStreamAsTheListenerDoes) {
 
   check(dissect(listen.pcap_output, dir), summary, out.str(), scene.cycle_count(), "pcap written by the listener");
   if (capturing) {
-    check(dissect(live, dir), summary, out.str(), scene.cycle_count(), "live capture on lo");
+    check(dissect(live, dir, listener.port()), summary, out.str(), scene.cycle_count(), "live capture on lo");
   } else {
     std::cerr << "[ note ] no live capture on lo here (" << testing::read_file(dir / "capture.err")
               << "); checked the listener's pcap only\n";
