@@ -93,9 +93,13 @@ std::pair<std::uint64_t, std::uint64_t> reference_seeds(std::uint64_t seed, cons
 }
 
 std::vector<BenchRow> bench_recording(const Recording& rec, int index, const BenchOptions& options,
-                                      const std::function<void(const BenchRow&)>& done) {
+                                      const std::function<void(const BenchRow&)>& done,
+                                      const std::function<void(const std::string&)>& warn) {
   const ModelLibrary library = ModelLibrary::builtin();
   const ImportedScene imported = import_recording(rec, library, options.replay.import);
+  if (warn) {
+    for (const std::string& warning : imported.warnings) warn(warning);
+  }
   const Scene scene = build_scene(imported, library, rec.dir.string());
   std::vector<BenchRow> rows;
   const auto add = [&](BenchRow row) {

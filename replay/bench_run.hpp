@@ -50,9 +50,11 @@ struct BenchRow {
 };
 
 // The rows of one recording, in the order reference, noise_floor, then options.levels; each row
-// is handed to `done` as soon as it is measured (progress).
+// is handed to `done` as soon as it is measured (progress), and what the import noticed (bridged
+// or split annotation gaps, ImportedScene::warnings) to `warn` before any row.
 std::vector<BenchRow> bench_recording(const Recording& recording, int index, const BenchOptions& options,
-                                      const std::function<void(const BenchRow&)>& done = {});
+                                      const std::function<void(const BenchRow&)>& done = {},
+                                      const std::function<void(const std::string&)>& warn = {});
 
 // One level over all recordings: cycles per CPU second of the sum, means of the errors. The one
 // summary of a bench: rcsim bench prints it, rcsim report plots and tabulates it.

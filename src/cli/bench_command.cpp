@@ -212,7 +212,12 @@ void run_bench(const BenchArgs& args) {
       print_row(progress, r, floor_m);
       progress.flush();
     };
-    for (auto& r : replay::bench_recording(recordings[i], static_cast<int>(i), options, done)) rows.push_back(std::move(r));
+    // What the import noticed, as rcsim replay prints it (stderr, also with --json).
+    const auto warn = [&](const std::string& warning) {
+      progress.flush();
+      std::cerr << "rcsim: warning: " << warning << '\n';
+    };
+    for (auto& r : replay::bench_recording(recordings[i], static_cast<int>(i), options, done, warn)) rows.push_back(std::move(r));
   }
   if (!args.json) print_summary(std::cout, rows);
   const std::int64_t bench_id = db ? replay::store_bench(*db, options, machine, rows) : 0;

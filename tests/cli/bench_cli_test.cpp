@@ -10,6 +10,7 @@
 
 #include "scratch_dir.hpp"
 #include "cli/run_rcsim.hpp"
+#include "replay/replay_fixtures.hpp"
 
 namespace rcsim {
 namespace {
@@ -53,6 +54,28 @@ TEST_F(BenchCli, JsonRowsAndTheSameSeedRepeatsTheErrors) {
       EXPECT_EQ(second["rows"][i][key], j["rows"][i][key]) << i << " " << key;
     }
   }
+}
+
+// What the import noticed reaches the user of bench as it does the user of replay (stderr), and
+// --json stays parseable on stdout.
+TEST_F(BenchCli, PrintsImportWarningsOnStderr) {
+  Recording rec = testing::model_recording(testing::two_cars_scene(2.0), 2, 0.03, 0.01);
+  rec.boxes[0].erase(rec.boxes[0].begin() + 10, rec.boxes[0].begin() + 30);  // 0.8 s unannotated
+  const fs::path gap = dir_ / "gap";
+  write_recording(gap, rec);
+  const std::string args = "bench " + gap.string() + " --no-reference --levels full --min-cpu-s 0";
+  const auto table = run_rcsim(args);
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_NE(table.output.find("rcsim: warning: "), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("objects.csv: lines "), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("absent"), std::string::npos) << table.output;
+  const auto json = run_rcsim(args + " --json", false);
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  EXPECT_EQ(json.output.find("warning"), std::string::npos) << "stdout holds the JSON only";
+  EXPECT_EQ(nlohmann::json::parse(json.output)["rows"].size(), 1u);
+  const auto clean = run_rcsim("bench " + recording("standstill_1m") + " --no-reference --levels full --min-cpu-s 0");
+  ASSERT_EQ(clean.exit_code, 0) << clean.output;
+  EXPECT_EQ(clean.output.find("warning"), std::string::npos) << clean.output;
 }
 
 TEST_F(BenchCli, TableWithReferenceGoalsAndStorage) {
