@@ -30,7 +30,8 @@ void stream_and_listen(const fs::path& dir, const std::string& format, const std
   ASSERT_GT(listener.pid, 0);
   const std::string port = testing::listening_port(testing::wait_for_text(log, "listening on"));
   ASSERT_FALSE(port.empty()) << testing::read_file(log);
-  testing::Child streamer = testing::spawn({kBinary, "stream", scene, "--to", "127.0.0.1:" + port, "--speed", fmt::format("{}", testing::kLosslessSpeed), "--seed", "11"},
+  const std::string speed = fmt::format("{}", testing::kLosslessSpeed);
+  testing::Child streamer = testing::spawn({kBinary, "stream", scene, "--to", "127.0.0.1:" + port, "--speed", speed, "--seed", "11"},
                                            dir / "stream.out", dir / "stream.err");
   EXPECT_EQ(streamer.wait(), 0) << testing::read_file(dir / "stream.err");
   ASSERT_EQ(listener.wait(), 0) << testing::read_file(log);

@@ -146,17 +146,18 @@ TEST(StreamDissector, TsharkDecodesTheLoopbackStreamAsTheListenerDoes) {
   auto listened = std::async(std::launch::async, [&listener] { return listener.run(); });
 
   // A live capture on the loopback interface, if this machine lets us capture. tshark prints a
-  // line per packet (-P) while it writes the file: warm-up datagrams to a port nobody listens on
-  // show when the capture really runs, and the line count when it has seen everything.
+  // line per packet (-P) while it writes the file: warm-up datagrams show when the capture really
+  // runs, and the line count when it has seen everything. The warm-ups go to a socket of our own
+  // that never reads them: other tests running in parallel send to fixed ports (9), which must
+  // not enter the capture.
   const fs::path live = dir / "live.pcapng";
   boost::asio::io_context io;
-  // Warm-ups go to a port of our own that never reads them: other tests running in parallel send
-  // to fixed ports (9), which must not enter the capture.
   udp::socket warm_up(io, udp::v4());
   udp::socket warm_up_sink(io, udp::endpoint(boost::asio::ip::make_address("127.0.0.1"), 0));
-  const udp::endpoint nobody = warm_up_sink.local_endpoint();
+  const udp::endpoint warm_up_to = warm_up_sink.local_endpoint();
+  const std::string capture_filter = fmt::format("udp dst port {} or udp dst port {}", listener.port(), warm_up_to.port());
   testing::Child capture = testing::spawn(
-      {"tshark", "-l", "-P", "-i", "lo", "-f", fmt::format("udp dst port {} or udp dst port {}", listener.port(), nobody.port()), "-w", live.string()},
+      {"tshark", "-l", "-P", "-i", "lo", "-f", capture_filter, "-w", live.string()},
       dir / "capture.out", dir / "capture.err");
   const auto capture_lines = [&dir] {
     const std::string text = testing::read_file(dir / "capture.out");
@@ -164,7 +165,7 @@ TEST(StreamDissector, TsharkDecodesTheLoopbackStreamAsTheListenerDoes) {
   };
   bool capturing = false;
   for (int i = 0; i < 100 && !capturing; ++i) {
-    warm_up.send_to(boost::asio::buffer("warm-up", 7), nobody);
+    warm_up.send_to(boost::asio::buffer("warm-up", 7), warm_up_to);
     std::this_thread::sleep_for(50ms);
     capturing = capture_lines() > 0;
   }
