@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Rewrites tests/golden/golden_hashes.txt from the current build's outputs. Run it only when a
+# change of output is deliberate, and say in the commit why the outputs changed.
+# Usage: scripts/update-golden.sh [BUILD_DIR]   (default: build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir=${1:-build}
+cmake --build "$build_dir" -j 2
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
+RCSIM_GOLDEN_OUT="$out" "$build_dir/bin/rcsim_tests" --gtest_filter='Bundled/GoldenRun.*' >/dev/null || true
+{
+  echo "# rcsim golden run (tests/golden/golden_run_test.cpp): FNV-1a 64 of each output, seed 7."
+  echo "# Made by scripts/update-golden.sh; a change here is a change of output, said in the commit."
+  sort "$out"
+} > tests/golden/golden_hashes.txt
+echo "$(grep -vc '^#' tests/golden/golden_hashes.txt) hashes written to tests/golden/golden_hashes.txt"

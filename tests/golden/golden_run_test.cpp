@@ -1,0 +1,193 @@
+// The golden run: fixed seeds over every bundled scene and recording, run as a user runs rcsim,
+// hashed, and compared with tests/golden/golden_hashes.txt. Any change of output fails here, so
+// a refactor that reorders random draws or moves a rounding is caught; a deliberate change of
+// output is a deliberate update of the hashes, said in the commit (scripts/update-golden.sh).
+//
+// What is hashed (FNV-1a 64, the recording checksum's hash):
+//   simulate : `rcsim simulate SCENE --seed 7 --level L --format csv` stdout, L = ideal,
+//              detections, tracks;
+//   synth    : `rcsim synth SCENE --seed 7` (the signal-level reference): its ego.csv, objects.csv
+//              and targets.csv, for the documented examples (docs/examples);
+//   replay   : every table of the report `rcsim replay REC --seed 7` writes, rows ordered by
+//              primary key, reals printed with 17 significant digits; the columns that name the
+//              machine or the moment (times, directories, version) are left out.
+#include <gtest/gtest.h>
+
+#include <SQLiteCpp/SQLiteCpp.h>
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli/run_rcsim.hpp"
+#include "io/recording.hpp"
+#include "scratch_dir.hpp"
+
+namespace rcsim {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_rcsim;
+
+constexpr int kGoldenSeed = 7;
+const fs::path kSourceDir = RCSIM_SOURCE_DIR;
+const fs::path kHashFile = kSourceDir / "tests" / "golden" / "golden_hashes.txt";
+
+struct GoldenCase {
+  std::string kind;  // simulate | synth | replay
+  std::string path;  // relative to the source directory
+  std::string level;  // simulate only
+  std::string key() const { return kind + " " + path + (level.empty() ? "" : " " + level); }
+};
+
+std::vector<GoldenCase> golden_cases() {
+  std::vector<GoldenCase> cases;
+  std::set<std::string> scenes;
+  for (const char* dir : {"docs/examples", "recordings_synthetic/scenes", "recordings_synthetic/campaign/scenes"}) {
+    for (const auto& e : fs::directory_iterator(kSourceDir / dir)) {
+      if (e.path().extension() == ".json") scenes.insert(fs::relative(e.path(), kSourceDir).string());
+    }
+  }
+  for (const auto& scene : scenes) {
+    for (const char* level : {"ideal", "detections", "tracks"}) cases.push_back({"simulate", scene, level});
+  }
+  for (const auto& scene : scenes) {
+    if (scene.rfind("docs/examples/", 0) == 0) cases.push_back({"synth", scene, ""});
+  }
+  std::set<std::string> recordings;
+  for (const char* dir : {"recordings_synthetic", "recordings_synthetic/campaign"}) {
+    for (const auto& e : fs::directory_iterator(kSourceDir / dir)) {
+      if (fs::exists(e.path() / "recording.json")) recordings.insert(fs::relative(e.path(), kSourceDir).string());
+    }
+  }
+  for (const auto& rec : recordings) cases.push_back({"replay", rec, ""});
+  return cases;
+}
+
+std::map<std::string, std::string> expected_hashes() {
+  std::map<std::string, std::string> hashes;
+  std::ifstream in(kHashFile);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto space = line.rfind(' ');
+    hashes[line.substr(0, space)] = line.substr(space + 1);
+  }
+  return hashes;
+}
+
+std::string hex(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
+
+// Columns whose values depend on the machine, the moment or the checkout, not on the figures.
+bool is_circumstantial(const std::string& column) {
+  static const std::set<std::string> kColumns{"created_utc", "recording_dir", "rcsim_version", "simulate_cpu_s",
+                                              "total_wall_s", "parameters"};
+  return kColumns.count(column) > 0;
+}
+
+// The report's contents as text: every table, its deterministic columns, rows by primary key.
+std::string dump_report(const fs::path& db_path) {
+  SQLite::Database db(db_path.string(), SQLite::OPEN_READONLY);
+  std::vector<std::string> tables;
+  SQLite::Statement list(db, "SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name");
+  while (list.executeStep()) tables.push_back(list.getColumn(0).getString());
+  std::string text;
+  for (const auto& table : tables) {
+    std::vector<std::string> columns;
+    std::vector<std::pair<int, std::string>> key;
+    SQLite::Statement info(db, "PRAGMA table_info(" + table + ")");
+    while (info.executeStep()) {
+      const std::string name = info.getColumn(1).getString();
+      if (const int pk = info.getColumn(5).getInt(); pk > 0) key.emplace_back(pk, name);
+      if (!is_circumstantial(name)) columns.push_back(name);
+    }
+    std::sort(key.begin(), key.end());
+    std::string select = "SELECT ";
+    for (std::size_t i = 0; i < columns.size(); ++i) select += (i ? ", " : "") + columns[i];
+    select += " FROM " + table;
+    for (std::size_t i = 0; i < key.size(); ++i) select += (i ? ", " : " ORDER BY ") + key[i].second;
+    text += "== " + table + "\n";
+    SQLite::Statement rows(db, select);
+    while (rows.executeStep()) {
+      for (int c = 0; c < rows.getColumnCount(); ++c) {
+        const auto value = rows.getColumn(c);
+        if (c) text += ',';
+        if (value.isNull()) text += "NULL";
+        else if (value.isInteger()) text += std::to_string(value.getInt64());
+        else if (value.isFloat()) text += fmt::format("{:.17g}", value.getDouble());
+        else text += value.getString();
+      }
+      text += '\n';
+    }
+  }
+  return text;
+}
+
+class GoldenRun : public ::testing::TestWithParam<GoldenCase> {};
+
+TEST_P(GoldenRun, OutputHashIsUnchanged) {
+  const GoldenCase& c = GetParam();
+  std::string output;
+  if (c.kind == "simulate") {
+    const auto r = run_rcsim(fmt::format("simulate {} --seed {} --level {} --format csv",
+                                         (kSourceDir / c.path).string(), kGoldenSeed, c.level), false);
+    ASSERT_EQ(r.exit_code, 0) << c.key();
+    output = r.output;
+  } else if (c.kind == "synth") {
+    const fs::path dir = testing::fresh_scratch_dir("golden");
+    const auto r = run_rcsim(fmt::format("synth {} -o {} --seed {}", (kSourceDir / c.path).string(),
+                                         (dir / "rec").string(), kGoldenSeed), false);
+    ASSERT_EQ(r.exit_code, 0) << c.key();
+    for (const char* file : {"ego.csv", "objects.csv", "targets.csv"}) output += testing::read_file(dir / "rec" / file);
+    fs::remove_all(dir);
+  } else {
+    const fs::path dir = testing::fresh_scratch_dir("golden");
+    const fs::path db = dir / "report.sqlite";
+    const auto r = run_rcsim(fmt::format("replay {} --db {} --seed {}", (kSourceDir / c.path).string(), db.string(),
+                                         kGoldenSeed), false);
+    ASSERT_EQ(r.exit_code, 0) << c.key();
+    output = dump_report(db);
+    fs::remove_all(dir);
+  }
+  ASSERT_FALSE(output.empty()) << c.key();
+  const std::string actual = hex(fnv1a64(output));
+  // scripts/update-golden.sh collects these lines into the hash file.
+  if (const char* out = std::getenv("RCSIM_GOLDEN_OUT")) std::ofstream(out, std::ios::app) << c.key() << ' ' << actual << '\n';
+  const auto expected = expected_hashes();
+  const auto it = expected.find(c.key());
+  ASSERT_NE(it, expected.end()) << "no golden hash for '" << c.key() << "' in " << kHashFile.string()
+                                << "; the line would be: " << c.key() << ' ' << actual;
+  EXPECT_EQ(it->second, actual) << c.key() << ": the output changed. If that is deliberate, update "
+                                << kHashFile.string() << " (scripts/update-golden.sh) and say why in the commit.";
+}
+
+// Every line of the hash file names a case that still exists: a scene or recording removed or
+// renamed is removed from the file too.
+TEST(GoldenHashes, EveryLineNamesABundledCase) {
+  std::set<std::string> keys;
+  for (const auto& c : golden_cases()) keys.insert(c.key());
+  const auto expected = expected_hashes();
+  ASSERT_FALSE(expected.empty()) << kHashFile.string();
+  for (const auto& [key, hash] : expected) {
+    EXPECT_TRUE(keys.count(key)) << key;
+    EXPECT_EQ(hash.size(), 16u) << key;
+  }
+}
+
+std::string case_name(const ::testing::TestParamInfo<GoldenCase>& info) {
+  std::string name = info.param.kind + "_" + info.param.path + (info.param.level.empty() ? "" : "_" + info.param.level);
+  for (char& ch : name) {
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  }
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Bundled, GoldenRun, ::testing::ValuesIn(golden_cases()), case_name);
+
+}  // namespace
+}  // namespace rcsim
