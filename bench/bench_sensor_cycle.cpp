@@ -13,7 +13,7 @@
 #include "common/angles.hpp"
 #include "io/recording.hpp"
 #include "model/model_library.hpp"
-#include "replay/importer.hpp"
+#include "replay/import/importer.hpp"
 #include "sim/simulation.hpp"
 #include "traffic/scene_writer.hpp"
 #include "traffic/traffic_sim.hpp"

@@ -13,7 +13,7 @@
 #include "common/angles.hpp"
 #include "io/recording.hpp"
 #include "model/model_library.hpp"
-#include "replay/model_recording.hpp"
+#include "replay/run/model_recording.hpp"
 #include "scene/scene.hpp"
 #include "sensor/sensor_config.hpp"
 

@@ -6,7 +6,7 @@
 
 #include "model/model_library.hpp"
 #include "scene/scene.hpp"
-#include "io/target_list_writer.hpp"
+#include "sim/target_list_writer.hpp"
 #include "sensor/sensor_config.hpp"
 #include "sim/simulation.hpp"
 

@@ -12,10 +12,10 @@
 #include "cli/recording_dirs.hpp"
 #include "cli/replay_options.hpp"
 #include "common/input_error.hpp"
-#include "replay/bench_run.hpp"
-#include "replay/bench_store.hpp"
-#include "replay/calibration.hpp"
-#include "replay/report_store.hpp"
+#include "replay/evaluate/speed_error.hpp"
+#include "replay/store/speed_error_store.hpp"
+#include "replay/import/calibration.hpp"
+#include "replay/store/report_store.hpp"
 
 namespace rcsim::cli {
 

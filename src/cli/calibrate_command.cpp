@@ -8,7 +8,7 @@
 #include "cli/commands.hpp"
 #include "cli/recording_dirs.hpp"
 #include "common/input_error.hpp"
-#include "replay/calibration_fit.hpp"
+#include "replay/calibrate/calibration_fit.hpp"
 
 namespace rcsim::cli {
 

@@ -4,7 +4,7 @@
 #include "cli/commands.hpp"
 #include "cli/replay_options.hpp"
 #include "io/recording.hpp"
-#include "replay/importer.hpp"
+#include "replay/import/importer.hpp"
 
 namespace rcsim::cli {
 

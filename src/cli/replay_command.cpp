@@ -9,8 +9,8 @@
 #include "cli/fidelity_option.hpp"
 #include "cli/replay_options.hpp"
 #include "io/recording.hpp"
-#include "replay/replay_run.hpp"
-#include "replay/report_store.hpp"
+#include "replay/run/replay_run.hpp"
+#include "replay/store/report_store.hpp"
 
 namespace rcsim::cli {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "replay/importer.hpp"
+#include "replay/import/importer.hpp"
 
 namespace rcsim::cli {
 

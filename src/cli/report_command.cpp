@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
-#include "replay/html_report.hpp"
+#include "replay/report/html_report.hpp"
 
 namespace rcsim::cli {
 

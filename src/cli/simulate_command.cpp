@@ -6,7 +6,7 @@
 #include "cli/commands.hpp"
 #include "cli/fidelity_option.hpp"
 #include "common/atomic_file.hpp"
-#include "io/target_list_writer.hpp"
+#include "sim/target_list_writer.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
 

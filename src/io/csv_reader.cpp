@@ -120,4 +120,14 @@ void CsvReader::fail_line(const std::string& message) const {
   throw InputError(path_, fmt::format("line {}", line_), message);
 }
 
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
 }  // namespace rcsim

@@ -42,4 +42,7 @@ class CsvReader {
   int line_ = 0;
 };
 
+// A field as CSV writes it: quoted (with doubled quotes) when it holds a comma, quote or line break.
+std::string csv_field(const std::string& text);
+
 }  // namespace rcsim

@@ -11,7 +11,6 @@
 #include "common/json_reader.hpp"
 #include "common/text_file.hpp"
 #include "io/csv_reader.hpp"
-#include "io/target_list_writer.hpp"
 
 namespace rcsim {
 

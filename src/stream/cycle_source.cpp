@@ -6,7 +6,7 @@
 
 #include "io/recording.hpp"
 #include "model/model_library.hpp"
-#include "replay/importer.hpp"
+#include "replay/import/importer.hpp"
 #include "scene/scene.hpp"
 
 namespace rcsim::stream {

@@ -17,6 +17,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "io/csv_reader.hpp"
 #include "stream/endpoints.hpp"
 #include "stream/pcap_writer.hpp"
 #include "stream/reassembly.hpp"

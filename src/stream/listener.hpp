@@ -9,7 +9,7 @@
 #include <ostream>
 #include <string>
 
-#include "io/target_list_writer.hpp"
+#include "sim/target_list_writer.hpp"
 #include "stream/wire_format.hpp"
 
 namespace rcsim::stream {

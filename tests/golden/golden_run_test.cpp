@@ -45,6 +45,8 @@ struct GoldenCase {
   std::string key() const { return kind + " " + path + (level.empty() ? "" : " " + level); }
 };
 
+void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.key(); }
+
 std::vector<GoldenCase> golden_cases() {
   std::vector<GoldenCase> cases;
   std::set<std::string> scenes;

@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "cli/run_rcsim.hpp"
-#include "replay/model_recording.hpp"
+#include "replay/run/model_recording.hpp"
 #include "test_support.hpp"
 
 namespace rcsim::testing {

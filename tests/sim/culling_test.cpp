@@ -10,7 +10,7 @@
 #include "common/angles.hpp"
 #include "common/rng.hpp"
 #include "io/recording.hpp"
-#include "replay/importer.hpp"
+#include "replay/import/importer.hpp"
 #include "sim/scene_culling.hpp"
 #include "test_support.hpp"
 

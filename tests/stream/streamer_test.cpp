@@ -12,7 +12,7 @@
 #include <random>
 #include <set>
 
-#include "replay/model_recording.hpp"
+#include "replay/run/model_recording.hpp"
 #include "stream/endpoints.hpp"
 #include "stream/listener.hpp"
 #include "stream/reassembly.hpp"

@@ -1,0 +1,99 @@
+#pragma once
+// rcsim calibrate (docs/calibration.md). The paper assigns ERCS 1 to its reference reflector and
+// derives the equivalent radar cross sections of all other reflection centers "by inspection of
+// real radar measurements" (III-B, eq. (3)). This does that inspection by search: it varies the
+// ERCS of every reflector of every model the recordings use (and, if asked, the sensor's
+// amplitude law, eq. (1), and its multibounce loss) so that the model at level `full`, replayed
+// against the recordings as rcsim replay does, comes closest to them in GOSPA.
+//
+// Objective: the mean over recordings of GOSPA / GOSPA with the starting parameters, so that every
+// recording weighs the same, plus how much further (in |ln|) the count of simulated targets has
+// moved from the recorded count than at the start (GOSPA alone would reward reporting nothing
+// where the model misplaces targets). Search: coordinate pattern search, each parameter moved by +-step in
+// turn and kept where the objective falls; the step halves from initial_step_db to final_step_db.
+// Every random draw comes from one seed (common random numbers), so the objective is a
+// deterministic function of the parameters.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/recording.hpp"
+#include "replay/run/replay_run.hpp"
+
+namespace rcsim::replay {
+
+// What may be varied. Reflectors that mirror each other about the model's x axis (a left and a
+// right corner) share their parameters, mirrored, so a fitted model stays symmetric.
+enum class ParameterGroup {
+  ercs,         // each reflector's ERCS (point: its maximum; plane: its value), in dB steps
+  position,     // point reflectors' x and y; plane reflectors moved along their outward normal
+  visibility,   // point reflectors' visibility function: centre, full half-width, fall-off
+  level,        // the sensor's reference level L0, eq. (1)
+  slope,        // the sensor's reference slope, eq. (1)
+  multibounce,  // the sensor's loss per back-and-forth bounce
+  antenna,      // the sensor's amplitude pattern exponent n, A^phi = |H_sum|^n in eq. (2)
+};
+inline constexpr std::string_view kParameterGroupNames = "ercs | position | visibility | level | slope | multibounce | antenna";
+std::optional<ParameterGroup> parse_parameter_group(std::string_view name);
+std::string_view parameter_group_name(ParameterGroup group);
+
+struct CalibrationOptions {
+  std::vector<ParameterGroup> groups{ParameterGroup::ercs, ParameterGroup::slope};
+  std::uint64_t seed = 1;
+  // First step: ERCS, level and loss in dB; slope: step / 20 m; positions: step / 60 dB/m (6 dB:
+  // 0.1 m); angles: 2.5 deg per dB.
+  double initial_step_db = 6.0;
+  double final_step_db = 0.5;    // the search ends after the sweeps at the first step below this
+  int max_sweeps_per_step = 3;
+  // A calibration directory (rcsim-calibration) to start from instead of the built-ins: an earlier
+  // fit, or hand-edited documents (e.g. a model with reflectors added); "" = the built-ins.
+  std::string start_dir;
+  ReplayOptions replay;  // import and metric parameters; its seed and fidelity are set here
+};
+
+struct CalibrationParameter {
+  // e.g. passenger_car.corner_front_left+corner_front_right.ercs, srr24.amplitude.reference_slope_db_per_m
+  std::string name;
+  std::string document;               // "sensor:srr24" or "model:passenger_car"
+  std::vector<std::string> pointers;  // JSON pointers of the values it sets, e.g. /plane_reflectors/0/ercs
+  ParameterGroup group = ParameterGroup::ercs;
+  std::string unit;  // of initial and value: the first pointer's value, or an offset ("offset_m")
+  double initial = 0.0, value = 0.0, lower = 0.0, upper = 0.0;
+};
+
+struct RecordingFit {
+  std::string recording;
+  double gospa_before_m = 0.0;  // with the starting parameters
+  double gospa_after_m = 0.0;   // with the fitted ones
+};
+
+struct CalibrationResult {
+  std::vector<CalibrationParameter> parameters;
+  std::vector<RecordingFit> recordings;
+  double objective_before = 1.0, objective_after = 1.0;  // mean GOSPA ratio plus count penalty
+  int evaluations = 0;  // objective evaluations (each replays the recordings a parameter touches)
+  // The fitted rcsim-sensor and rcsim-object-model documents, keyed as CalibrationParameter::document.
+  std::map<std::string, nlohmann::ordered_json> documents;
+};
+
+// Progress: the step just finished, the objective and the evaluations so far.
+using CalibrationProgress = std::function<void(double step_db, double objective, int evaluations)>;
+
+CalibrationResult calibrate(const std::vector<Recording>& recordings, const CalibrationOptions& options,
+                            const CalibrationProgress& progress = {});
+
+// Leave-one-out: each recording's GOSPA with the parameters fitted on all the others (before:
+// the starting parameters), an estimate of the error on a recording the fit has not seen.
+std::vector<RecordingFit> cross_validate(const std::vector<Recording>& recordings, const CalibrationOptions& options,
+                                         const std::function<void(const RecordingFit&)>& done = {});
+
+// Writes the fitted documents (DIR/<name>.json) and the index DIR/calibration.json
+// (rcsim-calibration v1) that rcsim replay/bench --calibration DIR read; each file atomically,
+// the index last.
+void write_calibration(const std::string& dir, const CalibrationResult& result, const CalibrationOptions& options,
+                       const std::vector<Recording>& recordings, const std::vector<RecordingFit>* held_out);
+
+}  // namespace rcsim::replay

@@ -1,0 +1,152 @@
+#include "replay/report/html_report.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "common/atomic_file.hpp"
+#include "replay/report/speed_error_section.hpp"
+#include "replay/store/report_reader.hpp"
+#include "replay/report/html_report_figures.hpp"
+#include "replay/report/html_report_tables.hpp"
+#include "replay/store/report_store.hpp"
+#include "replay/report/svg_writer.hpp"
+
+namespace rcsim::replay {
+
+namespace {
+
+using svg::escape;
+
+constexpr const char* kStyle = R"CSS(
+body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; color: #212529; margin: 24px auto;
+       max-width: 1320px; padding: 0 16px; }
+h1 { font-size: 24px; margin-bottom: 4px; }
+h2 { font-size: 20px; border-bottom: 2px solid #343a40; padding-bottom: 3px; margin-top: 40px; }
+h3 { font-size: 16px; margin: 22px 0 6px; }
+p.meta, p.hint { color: #555; font-size: 13px; }
+table { border-collapse: collapse; margin: 6px 0 14px; font-size: 13px; }
+th, td { border: 1px solid #ced4da; padding: 3px 8px; vertical-align: top; }
+th { background: #f1f3f5; text-align: left; font-weight: 600; white-space: pre; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+table.kv th { min-width: 200px; }
+table.kv td.text { text-align: left; }
+.scroll { overflow-x: auto; }
+.cols { display: flex; flex-wrap: wrap; gap: 24px; align-items: flex-start; }
+.figs { display: flex; flex-wrap: wrap; gap: 14px; }
+.figs svg { border: 1px solid #dee2e6; }
+svg text { font-family: system-ui, sans-serif; }
+svg .title { font-size: 13px; font-weight: 600; fill: #212529; }
+svg .note { font-size: 11px; fill: #666; }
+svg .axis-label { font-size: 12px; fill: #333; }
+svg .legend { font-size: 12px; fill: #333; }
+svg .box-label { font-size: 10px; fill: #343a40; }
+pre { background: #f8f9fa; border: 1px solid #e9ecef; padding: 8px; overflow: auto; max-height: 320px; font-size: 12px; }
+details { margin: 4px 0; }
+.swatch { display: inline-block; width: 10px; height: 10px; border-radius: 5px; margin: 0 4px 0 10px; }
+nav ul { columns: 2; }
+tr.default td { background: #fff4e6; }
+)CSS";
+
+void write_run_section(std::ostream& out, SQLite::Database& db, const report::RunData& run,
+                       const HtmlReportOptions& options, int max_points) {
+  const report::RunInfo& i = run.info;
+  out << fmt::format(R"(<section class="run" id="run-{}"><h2>Run {}: {}</h2>)", i.run_id, i.run_id,
+                     escape(i.recording_name));
+  out << R"(<div class="cols"><div><h3>Run</h3>)" << report::run_information_table(run)
+      << "</div><div><h3>Summary</h3>" << report::summary_table(run) << "</div></div>";
+  out << R"(<h3>Sensors</h3><div class="scroll">)" << report::sensor_table(run) << "</div>";
+  out << R"(<div class="cols"><div><h3>Objects</h3>)" << report::object_table(run)
+      << "</div><div><h3>Distribution distances, recorded against simulated</h3>" << report::distance_table(run)
+      << "</div></div>";
+
+  out << fmt::format(R"(<h3 id="run-{}-pictures">Bird's-eye view of chosen cycles</h3>)", i.run_id)
+      << R"(<p class="hint">Ego vehicle frame of the pictured cycle, x forward (up), y left. Cycles chosen )"
+         "automatically: the largest GOSPA, the most merge artefacts, the first recorded target, the middle of the "
+         "run, the first simulated target, the largest difference in target counts, then the last cycle and the "
+         "quarters.</p>";
+  out << R"(<div class="figs">)";
+  for (const auto& chosen : report::choose_cycles(db, run, static_cast<std::size_t>(std::max(0, options.pictures)))) {
+    out << svg::birdseye_svg(report::birdseye_of_cycle(db, run, chosen, options.trace_cycles));
+  }
+  out << "</div>";
+
+  out << fmt::format(R"(<h3 id="run-{}-series">Time series</h3>)", i.run_id);
+  out << R"(<div class="figs">)";
+  for (const auto& plot : report::time_series(db, run, max_points)) out << svg::plot_svg(plot);
+  out << "</div>";
+
+  out << fmt::format(R"(<h3 id="run-{}-residuals">Residuals of assigned pairs</h3>)", i.run_id);
+  out << R"(<div class="figs">)";
+  for (const auto& h : report::residual_histograms(db, run, options.histogram_bins)) out << svg::histogram_svg(h);
+  out << "</div>";
+
+  out << fmt::format(R"(<h3 id="run-{}-merge">Merge artefacts per object pair and sensor</h3>)", i.run_id)
+      << report::merge_artefact_table(run);
+  out << "<h3>Confirmation latency per object and sensor</h3>" << report::latency_table(run);
+  out << "<h3>Parameters and sources</h3>" << report::parameter_table(run);
+  out << "<h3>Provenance</h3>" << report::provenance_blocks(run);
+  out << "</section>\n";
+}
+
+}  // namespace
+
+void write_html_report(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
+                       std::ostream& out) {
+  const std::optional<std::int64_t> bench_id = report::select_bench(db, db_label, options.bench_id);
+  const std::size_t all_runs = report::run_ids(db).size();
+  // A bench alone makes a page; with neither runs nor a bench, select_runs says there are no runs.
+  const bool bench_alone = bench_id && all_runs == 0 && options.run_ids.empty();
+  const std::vector<std::int64_t> ids =
+      bench_alone ? std::vector<std::int64_t>{} : report::select_runs(db, db_label, options.run_ids, options.last_runs);
+  const std::optional<report::BenchData> bench =
+      bench_id ? std::optional<report::BenchData>(report::load_bench(db, *bench_id)) : std::nullopt;
+  std::vector<report::RunData> runs;
+  for (const std::int64_t id : ids) runs.push_back(report::load_run(db, id));
+  const int n = static_cast<int>(runs.size());
+  const int max_points = n <= 4 ? options.max_points : std::max(250, 4 * options.max_points / n);
+
+  out << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">";
+  out << "<title>rcsim validation report: " << escape(db_label) << "</title>";
+  out << "<style>" << kStyle << "</style></head><body>\n";
+  out << "<h1>rcsim validation report</h1>";
+  out << "<p class=\"meta\">Report database <code>" << escape(db_label) << "</code>; "
+      << fmt::format("{} of its {} runs shown", n, all_runs);
+  if (bench) out << fmt::format(", and bench {} of its {} benches", bench->info.bench_id, report::bench_ids(db).size());
+  out << fmt::format("; written by rcsim {}.", RCSIM_VERSION) << "</p>";
+  if (!runs.empty()) {
+    out << "<p class=\"hint\">Recorded targets are drawn in"
+        << fmt::format(R"(<span class="swatch" style="background:{}"></span>blue, simulated targets in)",
+                       svg::kRecordedColour)
+        << fmt::format(R"(<span class="swatch" style="background:{}"></span>orange.)", svg::kSimulatedColour)
+        << " GOSPA (&alpha; = 2) and OSPA are computed per cycle and sensor in the sensor's Cartesian frame; the "
+           "localisation, missed and false parts are in m^p and add up to GOSPA^p. Residuals are simulated minus "
+           "recorded of the assigned pairs. Latency is the time from when an object becomes detectable to its "
+           "first reported target.</p>\n";
+  }
+  out << "<nav><ul>";
+  if (bench) {
+    out << fmt::format(R"(<li><a href="#bench-{0}">Speed against error</a>: bench {0}, {1} recordings</li>)",
+                       bench->info.bench_id, bench->recordings().size());
+  }
+  for (const auto& r : runs) {
+    out << fmt::format(R"(<li><a href="#run-{0}">Run {0}</a>: {1}, seed {2}</li>)", r.info.run_id,
+                       escape(r.info.recording_name), r.info.seed);
+  }
+  out << "</ul></nav>\n";
+  if (bench) out << report::bench_section(*bench);
+  if (runs.size() > 1) {
+    out << "<h2>Runs side by side</h2>" << report::comparison_table(runs) << "\n";
+  }
+  for (const auto& run : runs) write_run_section(out, db, run, options, max_points);
+  out << "</body></html>\n";
+}
+
+void write_html_report_file(const std::string& db_path, const std::string& html_path, const HtmlReportOptions& options) {
+  const auto db = open_report_database(db_path, false);
+  AtomicFileWriter writer(html_path);
+  write_html_report(*db, db_path, options, writer.stream());
+  writer.commit();
+}
+
+}  // namespace rcsim::replay

@@ -1,0 +1,274 @@
+#include "replay/report/html_report_tables.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "common/angles.hpp"
+#include "replay/report/svg_writer.hpp"
+
+namespace rcsim::replay::report {
+
+namespace {
+
+using svg::escape;
+
+std::string num(double value, int decimals) { return svg::fixed(value, decimals); }
+
+std::string opt(const std::optional<double>& value, int decimals, const char* none = "never") {
+  return value ? svg::fixed(*value, decimals) : std::string(none);
+}
+
+std::string deg(double angle_rad, int decimals) { return svg::fixed(rad_to_deg(angle_rad), decimals); }
+
+// A two-column row of a key-value table; `key` names the value for machine checks.
+std::string kv(const char* key, const std::string& label, const std::string& value, const std::string& unit,
+               bool text = false) {
+  return fmt::format(R"(<tr><th>{}</th><td class="{}" data-key="{}">{}</td><td>{}</td></tr>)", escape(label),
+                     text ? "text" : "num", key, escape(value), escape(unit));
+}
+
+std::string header_row(std::initializer_list<const char*> names) {
+  std::string out = "<tr>";
+  for (const char* n : names) out += fmt::format("<th>{}</th>", n);
+  return out + "</tr>";
+}
+
+std::string cell(const std::string& text) { return "<td>" + escape(text) + "</td>"; }
+std::string cell_num(const std::string& text) { return R"(<td class="num">)" + escape(text) + "</td>"; }
+
+std::string percent(std::int64_t part, std::int64_t whole) {
+  return whole > 0 ? fmt::format("{:.1f} %", 100.0 * static_cast<double>(part) / static_cast<double>(whole)) : "-";
+}
+
+}  // namespace
+
+std::string run_information_table(const RunData& run) {
+  const RunInfo& i = run.info;
+  std::string out = R"(<table class="kv run-info">)";
+  out += kv("recording", "recording", i.recording_name, "", true);
+  out += kv("recording_dir", "recording directory", i.recording_dir, "", true);
+  out += kv("checksum", "recording checksum (FNV-1a 64)", i.recording_checksum, "", true);
+  out += kv("seed", "seed", std::to_string(i.seed), "");
+  out += kv("cycles", "cycles", std::to_string(i.cycles), fmt::format("x {} sensors", run.sensors.size()));
+  out += kv("cycle_time", "cycle time", num(i.cycle_time_s, 4), "s");
+  out += kv("duration", "duration", num(i.cycle_time_s * i.cycles, 1), "s");
+  out += kv("level", "compared level", i.level, "", true);
+  out += kv("rcsim_version", "rcsim version", i.rcsim_version, "", true);
+  out += kv("created", "stored", i.created_utc, "UTC", true);
+  return out + "</table>";
+}
+
+std::string summary_table(const RunData& run) {
+  if (!run.summary) return R"(<p class="warn">This run has no summary row (damaged database).</p>)";
+  const RunSummary& s = *run.summary;
+  std::string out = R"(<table class="kv summary">)";
+  out += kv("targets_recorded", "targets recorded", std::to_string(s.targets_recorded), "");
+  out += kv("targets_simulated", "targets simulated", std::to_string(s.targets_simulated),
+            s.targets_recorded > 0 ? fmt::format("{:.3f} x recorded", static_cast<double>(s.targets_simulated) /
+                                                                          static_cast<double>(s.targets_recorded))
+                                   : "");
+  out += kv("targets_matched", "targets matched (assigned pairs)", std::to_string(s.targets_matched),
+            percent(s.targets_matched, s.targets_recorded) + " of recorded");
+  out += kv("gospa_mean", "GOSPA, mean over cycles and sensors", num(s.gospa_mean_m, 3), "m");
+  out += kv("gospa_localisation", "  localisation part (mean)", num(s.gospa_localisation_mean_mp, 3), "m^p");
+  out += kv("gospa_missed", "  missed part (mean)", num(s.gospa_missed_mean_mp, 3), "m^p");
+  out += kv("gospa_false", "  false part (mean)", num(s.gospa_false_mean_mp, 3), "m^p");
+  out += kv("ospa_mean", "OSPA, mean", num(s.ospa_mean_m, 3), "m");
+  out += kv("residual_range_rms", "residual RMS, range", num(s.residual_range_rms_m, 3), "m");
+  out += kv("residual_azimuth_rms", "residual RMS, azimuth", deg(s.residual_azimuth_rms_rad, 3), "deg");
+  out += kv("residual_range_rate_rms", "residual RMS, range rate", num(s.residual_range_rate_rms_mps, 3), "m/s");
+  out += kv("residual_amplitude_mean", "residual mean, amplitude", num(s.residual_amplitude_mean_db, 2), "dB");
+  out += kv("merge_recorded", "merge artefacts recorded", std::to_string(s.merge_recorded), "targets");
+  out += kv("merge_simulated", "merge artefacts simulated", std::to_string(s.merge_simulated), "targets");
+  out += kv("merge_matched", "merge artefacts matched", std::to_string(s.merge_matched), "in both, per pair and cycle");
+  out += kv("latency_recorded", "confirmation latency recorded, mean", opt(s.latency_recorded_s, 3, "-"),
+            fmt::format("s, over {} object-sensor pairs reported in both", s.latency_pairs));
+  out += kv("latency_simulated", "confirmation latency simulated, mean", opt(s.latency_simulated_s, 3, "-"), "s");
+  out += kv("simulate_cpu", "simulation CPU time", num(s.simulate_cpu_s, 2), "s");
+  out += kv("total_wall", "replay wall time (import, simulation, metrics, storage)", num(s.total_wall_s, 2), "s");
+  return out + "</table>";
+}
+
+std::string sensor_table(const RunData& run) {
+  std::string out = R"(<table class="sensors">)";
+  out += header_row({"sensor", "type", "x / m", "y / m", "yaw / deg", "FOV / deg", "max range / m", "cycles",
+                     "recorded", "simulated", "assigned", "GOSPA mean / m", "GOSPA max / m", "OSPA mean / m",
+                     "merge rec.", "merge sim.", "merge matched"});
+  for (const SensorInfo& s : run.sensors) {
+    SensorTotals t;
+    for (const auto& row : run.sensor_totals) {
+      if (row.sensor == s.sensor) t = row;
+    }
+    out += "<tr>" + cell(s.id) + cell(s.type) + cell_num(num(s.X_VS.x_m, 2)) + cell_num(num(s.X_VS.y_m, 2)) +
+           cell_num(deg(s.X_VS.yaw_rad, 1)) + cell_num("\u00b1" + deg(s.azimuth_half_rad, 1)) +
+           cell_num(num(s.max_range_m, 1)) + cell_num(std::to_string(t.cycles)) + cell_num(std::to_string(t.recorded)) +
+           cell_num(std::to_string(t.simulated)) + cell_num(std::to_string(t.assigned)) +
+           cell_num(num(t.gospa_mean_m, 3)) + cell_num(num(t.gospa_max_m, 3)) + cell_num(num(t.ospa_mean_m, 3)) +
+           cell_num(std::to_string(t.merge_recorded)) + cell_num(std::to_string(t.merge_simulated)) +
+           cell_num(std::to_string(t.merge_matched)) + "</tr>";
+  }
+  return out + "</table>";
+}
+
+std::string object_table(const RunData& run) {
+  if (run.objects.empty()) return "<p>The recording has no annotated objects.</p>";
+  std::string out = R"(<table class="objects">)";
+  out += header_row({"#", "object", "class (model)", "length / m", "width / m", "reflectors"});
+  for (const ObjectInfo& o : run.objects) {
+    out += "<tr>" + cell_num(std::to_string(o.object)) + cell(o.id) + cell(o.object_class) +
+           cell_num(num(o.length_m, 2)) + cell_num(num(o.width_m, 2)) + cell_num(std::to_string(o.reflectors)) + "</tr>";
+  }
+  return out + "</table>";
+}
+
+std::string distance_table(const RunData& run) {
+  std::string out = R"(<table class="distances">)";
+  out += header_row({"quantity", "unit", "W1 (area metric)", "KS statistic", "n recorded", "n simulated"});
+  for (const DistanceRow& d : run.distances) {
+    out += "<tr>" + cell(d.quantity) + cell(d.unit) + cell_num(opt(d.wasserstein1, 4, "-")) +
+           cell_num(opt(d.kolmogorov_smirnov, 4, "-")) + cell_num(std::to_string(d.n_recorded)) +
+           cell_num(std::to_string(d.n_simulated)) + "</tr>";
+  }
+  return out + "</table>";
+}
+
+std::string merge_artefact_table(const RunData& run) {
+  if (run.merge_pairs.empty()) {
+    return "<p>No two objects shared a range-speed resolution cell in any cycle: no merge artefacts expected.</p>";
+  }
+  std::string out = R"(<table class="merge">)";
+  out += header_row({"object A", "object B", "sensor", "cycles sharing a cell", "first / s", "last / s",
+                     "artefacts recorded", "artefacts simulated", "matched"});
+  for (const MergePairRow& m : run.merge_pairs) {
+    out += "<tr>" + cell(run.object_label(m.object_a)) + cell(run.object_label(m.object_b)) +
+           cell(run.sensor_label(m.sensor)) + cell_num(std::to_string(m.cycles)) + cell_num(num(m.first_t_s, 2)) +
+           cell_num(num(m.last_t_s, 2)) + cell_num(std::to_string(m.recorded)) + cell_num(std::to_string(m.simulated)) +
+           cell_num(std::to_string(m.matched)) + "</tr>";
+  }
+  out += "</table>";
+  out += "<p class=\"hint\">Artefact counts are those of the cycles in which the pair shares a cell (a cycle with "
+         "several pairs counts its artefacts for each).</p>";
+  return out;
+}
+
+std::string latency_table(const RunData& run) {
+  if (run.latencies.empty()) return "<p>No object became detectable for any sensor.</p>";
+  std::string out = R"(<table class="latency">)";
+  out += header_row({"object", "class", "sensor", "detectable from / s", "first recorded / s", "first simulated / s",
+                     "latency recorded / s", "latency simulated / s", "simulated - recorded / s"});
+  for (const LatencyRow& l : run.latencies) {
+    std::string object_class;
+    for (const auto& o : run.objects) {
+      if (o.object == l.object) object_class = o.object_class;
+    }
+    const std::optional<double> diff = l.latency_recorded_s && l.latency_simulated_s
+                                           ? std::optional<double>(*l.latency_simulated_s - *l.latency_recorded_s)
+                                           : std::nullopt;
+    out += "<tr>" + cell(run.object_label(l.object)) + cell(object_class) + cell(run.sensor_label(l.sensor)) +
+           cell_num(num(l.detectable_from_s, 3)) + cell_num(opt(l.first_recorded_s, 3)) +
+           cell_num(opt(l.first_simulated_s, 3)) + cell_num(opt(l.latency_recorded_s, 3, "-")) +
+           cell_num(opt(l.latency_simulated_s, 3, "-")) + cell_num(opt(diff, 3, "-")) + "</tr>";
+  }
+  return out + "</table>";
+}
+
+std::string parameter_table(const RunData& run) {
+  const nlohmann::ordered_json parameters = nlohmann::ordered_json::parse(run.info.parameters, nullptr, false);
+  if (parameters.is_discarded() || !parameters.is_object()) {
+    return "<pre>" + escape(run.info.parameters) + "</pre>";
+  }
+  const auto value_text = [](const nlohmann::ordered_json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); };
+  std::string out = R"(<table class="parameters">)";
+  out += header_row({"metric / step", "parameters", "source"});
+  for (const auto& [name, value] : parameters.items()) {
+    std::string params, source;
+    if (value.is_object()) {
+      for (const auto& [key, v] : value.items()) {
+        if (key == "source") {
+          source = value_text(v);
+        } else if (v.is_object()) {
+          for (const auto& [sub_key, sub] : v.items()) {
+            params += "<div>" + escape(key + "." + sub_key) + " = " + escape(value_text(sub)) + "</div>";
+          }
+        } else {
+          params += "<div>" + escape(key) + " = " + escape(value_text(v)) + "</div>";
+        }
+      }
+    } else {
+      params = escape(value_text(value));
+    }
+    out += "<tr>" + cell(name) + "<td>" + params + "</td>" + cell(source) + "</tr>";
+  }
+  return out + "</table>";
+}
+
+std::string provenance_blocks(const RunData& run) {
+  std::string source = run.info.recording_source;
+  const nlohmann::ordered_json parsed = nlohmann::ordered_json::parse(source, nullptr, false);
+  if (!parsed.is_discarded()) source = parsed.dump(2);
+  std::string out = "<details><summary>Recording provenance (recording.json <code>source</code>)</summary><pre>" +
+                    escape(source) + "</pre></details>";
+  for (const SensorInfo& s : run.sensors) {
+    out += "<details><summary>Sensor configuration of " + escape(s.id) + " (" + escape(s.type) + ")</summary><pre>" +
+           escape(s.configuration) + "</pre></details>";
+  }
+  return out;
+}
+
+std::string comparison_table(const std::vector<RunData>& runs) {
+  std::string out = R"(<div class="scroll"><table class="comparison"><tr><th>quantity</th>)";
+  for (const RunData& r : runs) {
+    out += fmt::format(R"(<th><a href="#run-{0}">run {0}</a></th>)", r.info.run_id);
+  }
+  out += "</tr>";
+  const auto row = [&](const std::string& label, const std::function<std::string(const RunData&)>& value) {
+    out += "<tr><th>" + escape(label) + "</th>";
+    for (const RunData& r : runs) out += (label.rfind("recording", 0) == 0 ? cell(value(r)) : cell_num(value(r)));
+    out += "</tr>";
+  };
+  const auto summary = [](const std::function<std::string(const RunSummary&)>& f) {
+    return [f](const RunData& r) { return r.summary ? f(*r.summary) : std::string("-"); };
+  };
+  row("recording", [](const RunData& r) { return r.info.recording_name; });
+  row("seed", [](const RunData& r) { return std::to_string(r.info.seed); });
+  row("cycles x sensors", [](const RunData& r) { return fmt::format("{} x {}", r.info.cycles, r.sensors.size()); });
+  row("targets recorded", summary([](const RunSummary& s) { return std::to_string(s.targets_recorded); }));
+  row("targets simulated", summary([](const RunSummary& s) { return std::to_string(s.targets_simulated); }));
+  row("targets matched", summary([](const RunSummary& s) { return std::to_string(s.targets_matched); }));
+  row("GOSPA mean / m", summary([](const RunSummary& s) { return num(s.gospa_mean_m, 3); }));
+  row("  localisation / m^p", summary([](const RunSummary& s) { return num(s.gospa_localisation_mean_mp, 3); }));
+  row("  missed / m^p", summary([](const RunSummary& s) { return num(s.gospa_missed_mean_mp, 3); }));
+  row("  false / m^p", summary([](const RunSummary& s) { return num(s.gospa_false_mean_mp, 3); }));
+  row("OSPA mean / m", summary([](const RunSummary& s) { return num(s.ospa_mean_m, 3); }));
+  row("residual RMS range / m", summary([](const RunSummary& s) { return num(s.residual_range_rms_m, 3); }));
+  row("residual RMS azimuth / deg", summary([](const RunSummary& s) { return deg(s.residual_azimuth_rms_rad, 3); }));
+  row("residual RMS range rate / (m/s)", summary([](const RunSummary& s) { return num(s.residual_range_rate_rms_mps, 3); }));
+  row("residual mean amplitude / dB", summary([](const RunSummary& s) { return num(s.residual_amplitude_mean_db, 2); }));
+  row("merge artefacts rec. / sim. / matched", summary([](const RunSummary& s) {
+        return fmt::format("{} / {} / {}", s.merge_recorded, s.merge_simulated, s.merge_matched);
+      }));
+  row("latency recorded / s", summary([](const RunSummary& s) { return opt(s.latency_recorded_s, 3, "-"); }));
+  row("latency simulated / s", summary([](const RunSummary& s) { return opt(s.latency_simulated_s, 3, "-"); }));
+  // Distribution distances, per quantity of the first run that has them.
+  std::vector<std::pair<std::string, std::string>> quantities;
+  for (const RunData& r : runs) {
+    for (const auto& d : r.distances) {
+      bool known = false;
+      for (const auto& q : quantities) known = known || q.first == d.quantity;
+      if (!known) quantities.emplace_back(d.quantity, d.unit);
+    }
+  }
+  for (const auto& [quantity, unit] : quantities) {
+    row("W1 / KS " + quantity + " (" + unit + ")", [&, q = quantity](const RunData& r) {
+      for (const auto& d : r.distances) {
+        if (d.quantity == q) return opt(d.wasserstein1, 3, "-") + " / " + opt(d.kolmogorov_smirnov, 3, "-");
+      }
+      return std::string("-");
+    });
+  }
+  return out + "</table></div>";
+}
+
+}  // namespace rcsim::replay::report

@@ -1,0 +1,25 @@
+#pragma once
+// The HTML tables of the report, rendered from what html_report_data.hpp read. Every text
+// from the database is escaped here; numbers carry their units in the header or the row.
+#include <string>
+#include <vector>
+
+#include "replay/store/report_reader.hpp"
+
+namespace rcsim::replay::report {
+
+std::string run_information_table(const RunData& run);
+std::string summary_table(const RunData& run);
+std::string sensor_table(const RunData& run);
+std::string object_table(const RunData& run);
+std::string distance_table(const RunData& run);
+std::string merge_artefact_table(const RunData& run);
+std::string latency_table(const RunData& run);
+// The metric and import parameters (runs.parameters, JSON) with their cited sources.
+std::string parameter_table(const RunData& run);
+// The recording's provenance and the sensor configurations, verbatim (escaped), folded.
+std::string provenance_blocks(const RunData& run);
+// Several runs side by side: one column per run.
+std::string comparison_table(const std::vector<RunData>& runs);
+
+}  // namespace rcsim::replay::report

@@ -1,0 +1,200 @@
+#include "replay/report/svg_birdseye.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "replay/report/svg_plot.hpp"
+#include "replay/report/svg_writer.hpp"
+
+namespace rcsim::replay::svg {
+
+namespace {
+
+std::array<Vec2, 4> box_corners_V(const BirdsEyeBox& box) {
+  const double a = 0.5 * box.length_m, b = 0.5 * box.width_m;
+  return {transform_point(box.X_VO, {a, b}), transform_point(box.X_VO, {-a, b}), transform_point(box.X_VO, {-a, -b}),
+          transform_point(box.X_VO, {a, -b})};
+}
+
+struct Bounds {
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
+  void add(const Vec2& p) {
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return;
+    x_lo = std::min(x_lo, p.x());
+    x_hi = std::max(x_hi, p.x());
+    y_lo = std::min(y_lo, p.y());
+    y_hi = std::max(y_hi, p.y());
+  }
+};
+
+// Opacity of a target drawn `age` cycles before the pictured one.
+double fade(int age, int trace_cycles) {
+  if (age <= 0) return 1.0;
+  return 0.12 + 0.45 * (1.0 - static_cast<double>(age) / (trace_cycles + 1));
+}
+
+}  // namespace
+
+std::string birdseye_svg(const BirdsEyeSpec& spec) {
+  // The view: everything worth seeing (targets, sensors, the vehicle origin, boxes near the
+  // sensors), padded, made square at equal scale.
+  double reach_m = 0.0;
+  for (const auto& s : spec.sensors) reach_m = std::max(reach_m, s.max_range_m);
+  Bounds bounds;
+  bounds.add(Vec2::Zero());
+  for (const auto& s : spec.sensors) bounds.add(s.X_VS.translation());
+  for (const auto& t : spec.targets) bounds.add(t.p_V);
+  for (const auto& box : spec.boxes) {
+    if (box.X_VO.translation().norm() > reach_m + 10.0) continue;
+    for (const Vec2& c : box_corners_V(box)) bounds.add(c);
+  }
+  widen(bounds.x_lo, bounds.x_hi, 10.0, 0.0);
+  widen(bounds.y_lo, bounds.y_hi, 10.0, 0.0);
+  bounds.x_lo -= 2.0, bounds.x_hi += 2.0, bounds.y_lo -= 2.0, bounds.y_hi += 2.0;
+  const double span = std::max(bounds.x_hi - bounds.x_lo, bounds.y_hi - bounds.y_lo);
+  const double cx = 0.5 * (bounds.x_lo + bounds.x_hi), cy = 0.5 * (bounds.y_lo + bounds.y_hi);
+  const double x_lo = cx - 0.5 * span, x_hi = cx + 0.5 * span, y_lo = cy - 0.5 * span, y_hi = cy + 0.5 * span;
+
+  const double left = 58.0, top = 30.0 + 14.0 * static_cast<double>(spec.notes.size()), size = spec.size_px;
+  const double right = left + size, bottom = top + size;
+  const int width_px = static_cast<int>(right + 16.0), height_px = static_cast<int>(bottom + 104.0);
+  // Screen: x (forward) up, y (left) to the left.
+  const LinearScale sx{y_hi, y_lo, left, right}, sy{x_lo, x_hi, bottom, top};
+  const auto px = [&](const Vec2& p_V) { return fmt::format("{},{}", coord(sx(p_V.y())), coord(sy(p_V.x()))); };
+
+  std::string out;
+  out += fmt::format(R"(<svg class="birdseye" xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}" role="img" aria-label="{2}">)",
+                     width_px, height_px, escape(spec.title));
+  out += fmt::format(R"(<rect class="bg" x="0" y="0" width="{}" height="{}" fill="#fff"/>)", width_px, height_px);
+  out += fmt::format(R"(<text x="8" y="16" class="title">{}</text>)", escape(spec.title));
+  for (std::size_t i = 0; i < spec.notes.size(); ++i) {
+    out += fmt::format(R"(<text x="8" y="{}" class="note">{}</text>)", 31 + 14 * i, escape(spec.notes[i]));
+  }
+
+  // Axes with a metre grid.
+  const Ticks tx = nice_ticks(x_lo, x_hi, 8), ty = nice_ticks(y_lo, y_hi, 8);
+  out += R"(<g class="grid" stroke="#e6e6e6" stroke-width="1">)";
+  for (const double v : ty.values) {
+    out += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{0}" y2="{2}"/>)", coord(sx(v)), coord(top), coord(bottom));
+  }
+  for (const double v : tx.values) {
+    out += fmt::format(R"(<line x1="{1}" y1="{0}" x2="{2}" y2="{0}"/>)", coord(sy(v)), coord(left), coord(right));
+  }
+  out += "</g>";
+  out += R"(<g class="ticks" font-size="11" fill="#333">)";
+  for (const double v : ty.values) {
+    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle">{}</text>)", coord(sx(v)), coord(bottom + 14),
+                       fixed(v, ty.decimals));
+  }
+  for (const double v : tx.values) {
+    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="end">{}</text>)", coord(left - 5), coord(sy(v) + 4),
+                       fixed(v, tx.decimals));
+  }
+  out += "</g>";
+  out += fmt::format(R"(<text class="axis-label" x="{}" y="{}" text-anchor="middle">y / m (vehicle frame, left positive)</text>)",
+                     coord(0.5 * (left + right)), coord(bottom + 32));
+  out += fmt::format(R"~(<text class="axis-label" x="14" y="{0}" text-anchor="middle" transform="rotate(-90 14 {0})">x / m (vehicle frame, forward)</text>)~",
+                     coord(0.5 * (top + bottom)));
+
+  // The drawing, clipped to the plot area by a nested viewport.
+  out += fmt::format(R"(<svg x="{0}" y="{1}" width="{2}" height="{2}" viewBox="{0} {1} {2} {2}" overflow="hidden">)",
+                     coord(left), coord(top), coord(size));
+  out += R"(<g class="fovs">)";
+  for (const auto& s : spec.sensors) {
+    std::string points = px(s.X_VS.translation());
+    constexpr int kArcSegments = 32;
+    for (int i = 0; i <= kArcSegments; ++i) {
+      const double a = -s.azimuth_half_rad + 2.0 * s.azimuth_half_rad * i / kArcSegments;
+      points += ' ';
+      points += px(transform_point(s.X_VS, {s.max_range_m * std::cos(a), s.max_range_m * std::sin(a)}));
+    }
+    out += fmt::format(R"(<polygon class="fov" points="{}" fill="#2b8a3e" fill-opacity="0.06" stroke="#2b8a3e" stroke-opacity="0.5" stroke-dasharray="5 4"/>)",
+                       points);
+  }
+  out += "</g>";
+  out += R"(<g class="boxes">)";
+  for (const auto& box : spec.boxes) {
+    std::string points;
+    for (const Vec2& c : box_corners_V(box)) {
+      if (!points.empty()) points += ' ';
+      points += px(c);
+    }
+    out += fmt::format(R"(<polygon class="box" points="{}" fill="#868e96" fill-opacity="0.18" stroke="{}" stroke-width="{}"/>)",
+                       points, box.in_merge_pair ? "#862e9c" : "#495057", box.in_merge_pair ? "2" : "1.2");
+    const Vec2 c = box.X_VO.translation();
+    out += fmt::format(R"(<text class="box-label" x="{}" y="{}" text-anchor="middle">{}</text>)", coord(sx(c.y())),
+                       coord(sy(c.x()) + 3), escape(box.label));
+  }
+  out += "</g>";
+  // The ego vehicle's reference point and its sensors.
+  out += fmt::format(R"(<g class="ego" stroke="#111" stroke-width="1.5"><line x1="{0}" y1="{1}" x2="{0}" y2="{2}"/><line x1="{3}" y1="{4}" x2="{5}" y2="{4}"/></g>)",
+                     coord(sx(0.0)), coord(sy(-0.8)), coord(sy(0.8)), coord(sx(0.8)), coord(sy(0.0)), coord(sx(-0.8)));
+  for (const auto& s : spec.sensors) {
+    const double k = span / size;  // metres per pixel: a marker of fixed pixel size
+    const Vec2 tip = transform_point(s.X_VS, {9.0 * k, 0.0}), l = transform_point(s.X_VS, {-4.0 * k, 5.0 * k}),
+               r = transform_point(s.X_VS, {-4.0 * k, -5.0 * k});
+    out += fmt::format(R"(<polygon class="sensor" points="{} {} {}" fill="#2b8a3e" stroke="#111" stroke-width="0.8"><title>{}</title></polygon>)",
+                       px(tip), px(l), px(r), escape(s.label));
+  }
+  out += R"(<g class="links" stroke="#444" stroke-width="0.8">)";
+  for (const auto& link : spec.links) {
+    out += fmt::format(R"(<line x1="{}" y1="{}" x2="{}" y2="{}"/>)", coord(sx(link.p_recorded_V.y())),
+                       coord(sy(link.p_recorded_V.x())), coord(sx(link.p_simulated_V.y())),
+                       coord(sy(link.p_simulated_V.x())));
+  }
+  out += "</g>";
+  // Oldest first, so that the pictured cycle is drawn on top.
+  std::vector<const BirdsEyeTarget*> order;
+  for (const auto& t : spec.targets) order.push_back(&t);
+  std::stable_sort(order.begin(), order.end(), [](const auto* a, const auto* b) { return a->age > b->age; });
+  out += R"(<g class="targets">)";
+  for (const BirdsEyeTarget* t : order) {
+    const double x = sx(t->p_V.y()), y = sy(t->p_V.x());
+    const double opacity = fade(t->age, spec.trace_cycles);
+    const double r = t->age == 0 ? 4.5 : 3.0;
+    const char* kind = t->age == 0 ? "current" : "trace";
+    if (t->simulated) {
+      const double d = r + 1.5;
+      out += fmt::format(R"(<polygon class="t sim {}" points="{},{} {},{} {},{} {},{}" fill="none" stroke="{}" stroke-width="1.8" opacity="{:.2f}"/>)",
+                         kind, coord(x), coord(y - d), coord(x + d), coord(y), coord(x), coord(y + d), coord(x - d),
+                         coord(y), kSimulatedColour, opacity);
+    } else {
+      out += fmt::format(R"(<circle class="t rec {}" cx="{}" cy="{}" r="{}" fill="{}" opacity="{:.2f}"/>)", kind,
+                         coord(x), coord(y), coord(r), kRecordedColour, opacity);
+    }
+    if (t->merge_artefact && t->age == 0) {
+      out += fmt::format(R"(<circle class="merge" cx="{}" cy="{}" r="9" fill="none" stroke="#862e9c" stroke-width="1.5"/>)",
+                         coord(x), coord(y));
+    }
+  }
+  out += "</g></svg>";
+  out += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#555"/>)", coord(left),
+                     coord(top), coord(size), coord(size));
+
+  // Legend under the axis label, three rows.
+  const double ly = bottom + 54.0, ly2 = bottom + 72.0, ly3 = bottom + 90.0;
+  const double l0 = left + 8.0, l1 = left + 160.0, l2 = left + 310.0;
+  out += R"(<g class="legend-block">)";
+  out += fmt::format(R"(<circle cx="{}" cy="{}" r="4.5" fill="{}"/><text x="{}" y="{}" class="legend">recorded target</text>)",
+                     coord(l0), coord(ly - 4), kRecordedColour, coord(l0 + 10), coord(ly));
+  out += fmt::format(R"(<polygon points="{0},{1} {2},{3} {0},{4} {5},{3}" fill="none" stroke="{6}" stroke-width="1.8"/><text x="{7}" y="{8}" class="legend">simulated target</text>)",
+                     coord(l1), coord(ly - 10), coord(l1 + 6), coord(ly - 4), coord(ly + 2), coord(l1 - 6),
+                     kSimulatedColour, coord(l1 + 10), coord(ly));
+  out += fmt::format(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#444"/><text x="{}" y="{}" class="legend">assigned pair (GOSPA)</text>)",
+                     coord(l2 - 8), coord(ly - 4), coord(l2 + 6), coord(ly - 4), coord(l2 + 10), coord(ly));
+  out += fmt::format(R"(<circle cx="{}" cy="{}" r="7" fill="none" stroke="#862e9c" stroke-width="1.5"/><text x="{}" y="{}" class="legend">merge artefact</text>)",
+                     coord(l0), coord(ly2 - 4), coord(l0 + 10), coord(ly2));
+  out += fmt::format(R"(<polygon points="{},{} {},{} {},{}" fill="#2b8a3e" stroke="#111" stroke-width="0.8"/><text x="{}" y="{}" class="legend">sensor, with its field of view (dashed)</text>)",
+                     coord(l1 + 6), coord(ly2 - 4), coord(l1 - 5), coord(ly2 - 9), coord(l1 - 5), coord(ly2 + 1),
+                     coord(l1 + 10), coord(ly2));
+  out += fmt::format(R"(<rect x="{}" y="{}" width="12" height="8" fill="#868e96" fill-opacity="0.18" stroke="#495057"/><text x="{}" y="{}" class="legend">annotated box; purple outline: shares a range-speed cell with another</text>)",
+                     coord(l0 - 6), coord(ly3 - 8), coord(l0 + 10), coord(ly3));
+  out += "</g>";
+  out += "</svg>";
+  return out;
+}
+
+}  // namespace rcsim::replay::svg

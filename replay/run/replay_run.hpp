@@ -1,0 +1,131 @@
+#pragma once
+// rcsim replay: import a recording, re-simulate it at exactly the recorded cycle times, and
+// compare the simulated target lists with the recorded ones cycle by cycle and sensor by sensor.
+// Results stream into a ReplaySink (the SQLite report store) so that an hour-long recording
+// never has to be held in memory twice.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/recording.hpp"
+#include "metrics/distribution_distance.hpp"
+#include "metrics/gospa.hpp"
+#include "metrics/merge_artefacts.hpp"
+#include "metrics/sensor_view.hpp"
+#include "replay/import/importer.hpp"
+#include "sim/fidelity.hpp"
+
+namespace rcsim::replay {
+
+struct ReplayOptions {
+  std::uint64_t seed = 0;
+  Fidelity fidelity = Fidelity::full;  // docs/fidelity.md
+  ImportOptions import;
+  metrics::GospaParameters gospa{2.0, 2.0};
+  double association_gate_m = 1.0;  // a target belongs to the nearest box within this distance
+  double merge_contour_margin_m = 0.5;
+};
+
+// One target of one cycle and sensor, recorded or simulated.
+struct ComparedTarget {
+  int track_id = -1;
+  double range_m = 0.0, azimuth_rad = 0.0, range_rate_mps = 0.0, amplitude_db = 0.0;
+  Vec2 p_S = Vec2::Zero();  // Cartesian, sensor frame
+  int object = -1;          // recording object index it belongs to, or -1
+  int match = -1;           // index of the GOSPA-assigned partner in the other list, or -1
+  int merge_pair = -1;      // index into CycleComparison::merge_pairs if a merge artefact
+};
+
+struct ObjectInCycle {
+  int object = -1;
+  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  // annotated (smoothed) box in the world
+  bool in_view = false;                        // in the field of view and detectable range
+};
+
+struct CycleComparison {
+  int cycle = 0;
+  int sensor = 0;
+  double t_s = 0.0;  // recording time
+  Pose2 X_WS;        // sensor pose in the world
+  std::vector<ComparedTarget> recorded, simulated;
+  metrics::GospaResult gospa;
+  std::vector<std::pair<int, int>> merge_pairs;  // object indices sharing a resolution cell
+  int merge_matched = 0;                         // artefacts found in both lists, per pair
+  std::vector<ObjectInCycle> objects;            // present objects near the sensor (stored for sensor 0)
+};
+
+// One episode in which an object is detectable by a sensor: it starts when the re-simulation's
+// sensor model first detects it (a detection, before tracking, whose strongest member is one of
+// its reflectors) and ends after kEpisodeGapCycles cycles without such a detection; an object that
+// leaves and comes back (a parked car passed lap after lap) has several episodes. The latency is
+// the time from the start to the first reported target that belongs to the object: for the
+// simulation the tracker's confirmation delay, for the recording that of the real sensor.
+struct LatencyRow {
+  int sensor = 0, object = 0, episode = 0;
+  double detectable_from_s = 0.0;
+  double first_recorded_s = -1.0, first_simulated_s = -1.0;  // -1: never reported
+};
+
+struct QuantityDistance {
+  std::string quantity, unit;
+  metrics::DistributionDistance distance;
+};
+
+struct ReplaySummary {
+  int cycles = 0;
+  long long targets_recorded = 0, targets_simulated = 0, targets_matched = 0;
+  double gospa_mean_m = 0.0, ospa_mean_m = 0.0;
+  double gospa_localisation_mean_mp = 0.0, gospa_missed_mean_mp = 0.0, gospa_false_mean_mp = 0.0;
+  long long merge_artefacts_recorded = 0, merge_artefacts_simulated = 0, merge_artefacts_matched = 0;
+  // Mean over episodes where both recorded and simulated latencies exist; -1 if none.
+  double latency_recorded_s = -1.0, latency_simulated_s = -1.0;
+  int latency_pairs = 0;
+  double residual_range_rms_m = 0.0, residual_azimuth_rms_rad = 0.0, residual_range_rate_rms_mps = 0.0,
+         residual_amplitude_mean_db = 0.0;
+  double simulate_cpu_s = 0.0, total_wall_s = 0.0;
+  std::vector<LatencyRow> latencies;
+  std::vector<QuantityDistance> distances;
+};
+
+// What a replay hands to storage, in order: begin, every cycle, end.
+class ReplaySink {
+ public:
+  virtual ~ReplaySink() = default;
+  virtual void begin_run(const Recording& recording, const ImportedScene& scene, const Scene& simulated_scene,
+                         const ReplayOptions& options) = 0;
+  virtual void add_cycle(const CycleComparison& cycle) = 0;
+  virtual void end_run(const ReplaySummary& summary) = 0;
+};
+
+// A sink that keeps nothing: where only the summary counts (bench rows, calibration).
+class DiscardingSink final : public ReplaySink {
+ public:
+  void begin_run(const Recording&, const ImportedScene&, const Scene&, const ReplayOptions&) override {}
+  void add_cycle(const CycleComparison&) override {}
+  void end_run(const ReplaySummary&) override {}
+};
+
+// What is compared against the recording: the reflection-center model at a fidelity level
+// (replay/simulated_source.hpp: ModelSource) or the signal-level reference (ReferenceSource).
+class SimulatedSource {
+ public:
+  virtual ~SimulatedSource() = default;
+  // Runs every sensor at scene time t (times increasing).
+  virtual void run_at(double t_scene_s) = 0;
+  // The target list one sensor reported in the last run_at, appended to `out`.
+  virtual void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const = 0;
+  // Sets detected[object] = 1 for every object with a detection (before tracking) in the last
+  // run_at: the start of a latency episode. `boxes`: the present objects as that sensor sees them.
+  virtual void mark_detected_objects(std::size_t sensor, const std::vector<metrics::BoxInSensor>& boxes, double gate_m,
+                                     std::vector<char>& detected) const = 0;
+};
+
+// rcsim replay: the reflection-center model (options.fidelity) against the recording.
+ReplaySummary replay_recording(const Recording& recording, const ReplayOptions& options, ReplaySink& sink);
+
+// The comparison itself, for any source; `scene` is build_scene(imported); summary.simulate_cpu_s
+// is the CPU time spent in source.run_at.
+ReplaySummary compare_with_recording(const Recording& recording, const ImportedScene& imported, const Scene& scene,
+                                     SimulatedSource& source, const ReplayOptions& options, ReplaySink& sink);
+
+}  // namespace rcsim::replay

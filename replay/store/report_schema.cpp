@@ -1,0 +1,161 @@
+// The report database schema (`rcsim-report` v2, schemas/report-database.md), applied by
+// report_store.cpp when it creates a database; a v1 database gains the bench tables on opening.
+#include "replay/store/report_store.hpp"
+
+namespace rcsim::replay {
+
+extern const char* const kReportSchemaSql;
+const char* const kReportSchemaSql = R"SQL(
+CREATE TABLE IF NOT EXISTS runs (
+  run_id INTEGER PRIMARY KEY,
+  recording_name TEXT NOT NULL,
+  recording_dir TEXT NOT NULL,
+  recording_checksum TEXT NOT NULL,      -- FNV-1a 64, 16 hex digits (schemas/recording.md)
+  recording_source TEXT NOT NULL,        -- JSON: the recording's provenance
+  cycle_time_s REAL NOT NULL,
+  cycles INTEGER NOT NULL,
+  seed INTEGER NOT NULL,
+  level TEXT NOT NULL,                   -- simulation output level compared (tracks)
+  parameters TEXT NOT NULL,              -- JSON: metric and import parameters with their sources
+  rcsim_version TEXT NOT NULL,
+  created_utc TEXT NOT NULL              -- ISO 8601
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS run_sensors (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  sensor INTEGER NOT NULL,               -- index in recording.json
+  sensor_id TEXT NOT NULL,
+  type TEXT NOT NULL,
+  x_m REAL NOT NULL, y_m REAL NOT NULL, yaw_rad REAL NOT NULL,
+  azimuth_half_rad REAL NOT NULL, max_range_m REAL NOT NULL,
+  configuration TEXT NOT NULL,           -- the rcsim-sensor document used
+  PRIMARY KEY (run_id, sensor)
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS run_objects (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  object INTEGER NOT NULL,               -- index in recording.json
+  object_id TEXT NOT NULL,
+  class TEXT NOT NULL,                   -- also the object model used
+  length_m REAL NOT NULL, width_m REAL NOT NULL,
+  reflectors INTEGER NOT NULL,
+  PRIMARY KEY (run_id, object)
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS cycles (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  cycle INTEGER NOT NULL,
+  sensor INTEGER NOT NULL,
+  t_s REAL NOT NULL,
+  sensor_x_m REAL NOT NULL, sensor_y_m REAL NOT NULL, sensor_yaw_rad REAL NOT NULL,
+  n_recorded INTEGER NOT NULL, n_simulated INTEGER NOT NULL, n_assigned INTEGER NOT NULL,
+  gospa_m REAL NOT NULL,
+  gospa_localisation_mp REAL NOT NULL, gospa_missed_mp REAL NOT NULL, gospa_false_mp REAL NOT NULL,
+  ospa_m REAL NOT NULL,
+  merge_recorded INTEGER NOT NULL, merge_simulated INTEGER NOT NULL, merge_matched INTEGER NOT NULL,
+  PRIMARY KEY (run_id, cycle, sensor)
+) STRICT, WITHOUT ROWID;
+
+CREATE TABLE IF NOT EXISTS targets (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  cycle INTEGER NOT NULL,
+  sensor INTEGER NOT NULL,
+  origin TEXT NOT NULL CHECK (origin IN ('recorded', 'simulated')),
+  idx INTEGER NOT NULL,                  -- position in its list of that cycle and sensor
+  track_id INTEGER,                      -- NULL if the recording has no ids
+  range_m REAL NOT NULL, azimuth_rad REAL NOT NULL, range_rate_mps REAL NOT NULL, amplitude_db REAL NOT NULL,
+  x_s_m REAL NOT NULL, y_s_m REAL NOT NULL,  -- Cartesian, sensor frame
+  object INTEGER,                        -- the object it belongs to (nearest box within the gate)
+  match_idx INTEGER,                     -- idx of the assigned target of the other origin
+  merge_artefact INTEGER NOT NULL,       -- 1 if a merge artefact of a pair sharing a cell
+  PRIMARY KEY (run_id, cycle, sensor, origin, idx)
+) STRICT, WITHOUT ROWID;
+
+CREATE TABLE IF NOT EXISTS object_states (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  cycle INTEGER NOT NULL,
+  object INTEGER NOT NULL,
+  x_m REAL NOT NULL, y_m REAL NOT NULL, yaw_rad REAL NOT NULL,  -- annotated box (smoothed), world
+  PRIMARY KEY (run_id, cycle, object)
+) STRICT, WITHOUT ROWID;
+
+CREATE TABLE IF NOT EXISTS merge_pairs (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  cycle INTEGER NOT NULL,
+  sensor INTEGER NOT NULL,
+  object_a INTEGER NOT NULL, object_b INTEGER NOT NULL,
+  PRIMARY KEY (run_id, cycle, sensor, object_a, object_b)
+) STRICT, WITHOUT ROWID;
+
+CREATE TABLE IF NOT EXISTS latencies (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  sensor INTEGER NOT NULL,
+  object INTEGER NOT NULL,
+  episode INTEGER NOT NULL,              -- 0, 1, ...: the object's detectable episodes for this sensor
+  detectable_from_s REAL NOT NULL,
+  first_recorded_s REAL, first_simulated_s REAL,       -- NULL: never reported
+  latency_recorded_s REAL, latency_simulated_s REAL,
+  PRIMARY KEY (run_id, sensor, object, episode)
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS distribution_distances (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  quantity TEXT NOT NULL,
+  unit TEXT NOT NULL,
+  wasserstein1 REAL,                      -- NULL when either sample is empty
+  kolmogorov_smirnov REAL,
+  n_recorded INTEGER NOT NULL, n_simulated INTEGER NOT NULL,
+  PRIMARY KEY (run_id, quantity)
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS summaries (
+  run_id INTEGER PRIMARY KEY REFERENCES runs(run_id) ON DELETE CASCADE,
+  cycles INTEGER NOT NULL,
+  targets_recorded INTEGER NOT NULL, targets_simulated INTEGER NOT NULL, targets_matched INTEGER NOT NULL,
+  gospa_mean REAL NOT NULL, ospa_mean REAL NOT NULL,
+  gospa_localisation_mean REAL NOT NULL, gospa_missed_mean REAL NOT NULL, gospa_false_mean REAL NOT NULL,
+  merge_artefacts_recorded INTEGER NOT NULL, merge_artefacts_simulated INTEGER NOT NULL,
+  merge_artefacts_matched INTEGER NOT NULL,
+  latency_recorded_s REAL, latency_simulated_s REAL, latency_pairs INTEGER NOT NULL,
+  residual_range_rms_m REAL NOT NULL, residual_azimuth_rms_rad REAL NOT NULL,
+  residual_range_rate_rms_mps REAL NOT NULL, residual_amplitude_mean_db REAL NOT NULL,
+  simulate_cpu_s REAL NOT NULL, total_wall_s REAL NOT NULL
+) STRICT;
+)SQL";
+
+// Added in version 2: `rcsim bench` (speed against error, replay/bench_run.hpp).
+extern const char* const kBenchSchemaSql;
+const char* const kBenchSchemaSql = R"SQL(
+CREATE TABLE IF NOT EXISTS bench_runs (
+  bench_id INTEGER PRIMARY KEY,
+  seed INTEGER NOT NULL,
+  machine TEXT NOT NULL,                 -- CPU model and logical cores the speeds were measured on
+  parameters TEXT NOT NULL,              -- JSON: metric parameters, timing rule, levels and their meaning
+  rcsim_version TEXT NOT NULL,
+  created_utc TEXT NOT NULL              -- ISO 8601
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS bench_rows (
+  bench_id INTEGER NOT NULL REFERENCES bench_runs(bench_id) ON DELETE CASCADE,
+  recording INTEGER NOT NULL,            -- 0, 1, ...: position of the recording in the bench
+  recording_name TEXT NOT NULL,
+  recording_checksum TEXT NOT NULL,      -- FNV-1a 64, 16 hex digits
+  level TEXT NOT NULL,                   -- reference | noise_floor | full | no_monopulse | points_only | no_tracking
+  sensor_cycles INTEGER NOT NULL,        -- cycles x sensors of the recording
+  cpu_s REAL,                            -- CPU time of the timed simulation passes; NULL for noise_floor
+  sensor_cycles_per_cpu_s REAL,          -- NULL for noise_floor
+  gospa_mean_m REAL NOT NULL,            -- mean over sensor cycles against the recording
+  targets_recorded INTEGER NOT NULL,
+  targets_simulated INTEGER NOT NULL,
+  targets_per_cycle_ratio REAL,          -- simulated / recorded; NULL when nothing was recorded
+  merge_artefacts_recorded INTEGER NOT NULL,
+  merge_artefacts_found INTEGER NOT NULL,     -- recorded artefacts the level also produced (per pair and cycle)
+  merge_artefacts_missed INTEGER NOT NULL,    -- recorded - found
+  merge_artefacts_spurious INTEGER NOT NULL,  -- simulated - found
+  latency_difference_s REAL,             -- mean simulated - recorded confirmation latency; NULL: no paired episode
+  latency_pairs INTEGER NOT NULL,
+  PRIMARY KEY (bench_id, recording, level)
+) STRICT;
+)SQL";
+
+}  // namespace rcsim::replay

@@ -1,0 +1,333 @@
+#include "replay/store/report_store.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "common/embedded_data.hpp"
+#include "common/input_error.hpp"
+#include "common/text_file.hpp"
+
+namespace rcsim::replay {
+
+extern const char* const kReportSchemaSql;
+extern const char* const kBenchSchemaSql;
+
+namespace {
+
+std::string sensor_configuration_text(const std::string& type, const std::filesystem::path& base_dir) {
+  for (const auto& file : embedded_sensor_configs()) {
+    if (std::filesystem::path(std::string(file.name)).stem() == type) return std::string(file.text);
+  }
+  return read_text_file(base_dir / type);
+}
+
+nlohmann::ordered_json parameters_json(const ReplayOptions& options, const Effects& e) {
+  return {
+      {"fidelity",
+       {{"level", std::string(fidelity_name(options.fidelity))}, {"documentation", "docs/fidelity.md"}}},
+      {"gospa",
+       {{"cutoff_m", options.gospa.cutoff_m}, {"order_p", options.gospa.order_p}, {"alpha", 2},
+        {"frame", "sensor Cartesian (x along boresight)"},
+        {"source", "A. S. Rahmathullah, A. F. Garcia-Fernandez, L. Svensson, Generalized optimal sub-pattern "
+                   "assignment metric, FUSION 2017"}}},
+      {"ospa",
+       {{"cutoff_m", options.gospa.cutoff_m}, {"order_p", options.gospa.order_p},
+        {"source", "D. Schuhmacher, B.-T. Vo, B.-N. Vo, A consistent metric for performance evaluation of "
+                   "multi-object filters, IEEE Trans. Signal Processing 56(8), 2008"}}},
+      {"assignment",
+       {{"cost", "min(d, c)^p"},
+        {"source", "shortest augmenting path: R. Jonker, A. Volgenant, Computing 38, 1987"}}},
+      {"association", {{"gate_m", options.association_gate_m}, {"rule", "nearest annotated box within the gate"}}},
+      {"merge_artefacts",
+       {{"contour_margin_m", options.merge_contour_margin_m},
+        {"rule", "pair of boxes in view whose nearest points share a range-speed cell; target between their "
+                 "azimuths, within a range cell, farther than the margin from both"},
+        {"source", "paper III-C, Fig. 10"}}},
+      {"latency",
+       {{"detectable", "the re-simulation's sensor model detects the object (before tracking); an episode ends "
+                       "after 10 cycles without a detection"},
+        {"latency", "first reported target belonging to the object minus the episode's start"}}},
+      {"distribution_distances",
+       {{"area_metric", "S. Ferson, W. L. Oberkampf, L. Ginzburg, CMAME 197, 2008 (= Wasserstein-1)"},
+        {"kolmogorov_smirnov", "two-sample statistic sup |F_rec - F_sim|"}}},
+      {"import",
+       {{"smoothing", "local quadratic regression, tricube weights (W. S. Cleveland, JASA 74, 1979)"},
+        {"smoothing_half_window_s", options.import.smoothing_half_window_s},
+        {"max_gap_s", options.import.max_gap_s},
+        {"calibration", options.import.calibration_dir.empty() ? nlohmann::ordered_json()
+                                                                 : nlohmann::ordered_json(options.import.calibration_dir)},
+        {"effects", {{"clutter", e.clutter}, {"multibounce", e.multibounce}, {"occlusion", e.occlusion}}}}}};
+}
+
+std::string utc_now() {
+  return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(std::chrono::system_clock::now())));
+}
+
+void bind_optional(SQLite::Statement& s, int index, double value) {
+  if (value < 0.0) {
+    s.bind(index);  // NULL
+  } else {
+    s.bind(index, value);
+  }
+}
+
+void bind_index(SQLite::Statement& s, int index, int value) {
+  if (value < 0) {
+    s.bind(index);
+  } else {
+    s.bind(index, value);
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create) {
+  if (!create && !std::filesystem::exists(path)) throw InputError(path, "", "no such report database");
+  std::unique_ptr<SQLite::Database> db;
+  try {
+    db = std::make_unique<SQLite::Database>(path, create ? SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE
+                                                         : SQLite::OPEN_READWRITE);
+    db->setBusyTimeout(5000);
+    const int application_id = db->execAndGet("PRAGMA application_id").getInt();
+    const int user_version = db->execAndGet("PRAGMA user_version").getInt();
+    const int tables = db->execAndGet("SELECT count(*) FROM sqlite_schema").getInt();
+    if (application_id == 0 && user_version == 0 && tables == 0) {
+      if (!create) throw InputError(path, "", "the database is empty: no replay has been stored in it");
+      db->exec("PRAGMA journal_mode = WAL");  // persistent: readers never block the writer
+      SQLite::Transaction transaction(*db);
+      db->exec(kReportSchemaSql);
+      db->exec(kBenchSchemaSql);
+      db->exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
+      db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
+      transaction.commit();
+    } else if (application_id != kReportApplicationId) {
+      throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
+                                             static_cast<std::uint32_t>(application_id), kReportApplicationId));
+    } else if (user_version == 1) {
+      // v1 -> v2: the bench tables are new; nothing else changed.
+      SQLite::Transaction transaction(*db);
+      db->exec(kBenchSchemaSql);
+      db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
+      transaction.commit();
+    } else if (user_version != kReportSchemaVersion) {
+      throw InputError(path, "", fmt::format("report database schema version {} is not the supported version {}",
+                                             user_version, kReportSchemaVersion));
+    }
+    db->exec("PRAGMA foreign_keys = ON");
+    // In WAL mode NORMAL keeps the database consistent on a crash or power loss; only the last
+    // committed run may be lost on power loss, never an earlier one.
+    db->exec("PRAGMA synchronous = NORMAL");
+  } catch (const SQLite::Exception& e) {
+    throw InputError(path, "", std::string("cannot use as a report database: ") + e.what());
+  }
+  return db;
+}
+
+ReportWriter::ReportWriter(SQLite::Database& db) : db_(db) {}
+
+ReportWriter::~ReportWriter() = default;  // an uncommitted transaction rolls back
+
+void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported, const Scene& scene,
+                             const ReplayOptions& options) {
+  transaction_.emplace(db_);
+  SQLite::Statement run(db_,
+                        "INSERT INTO runs (recording_name, recording_dir, recording_checksum, recording_source, "
+                        "cycle_time_s, cycles, seed, level, parameters, rcsim_version, created_utc) "
+                        "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  run.bind(1, rec.name);
+  run.bind(2, std::filesystem::absolute(rec.dir).lexically_normal().string());
+  run.bind(3, fmt::format("{:016x}", rec.checksum));
+  run.bind(4, rec.source.dump());
+  run.bind(5, rec.cycle_time_s);
+  run.bind(6, rec.cycle_count());
+  run.bind(7, static_cast<std::int64_t>(options.seed));
+  run.bind(8, "tracks");
+  run.bind(9, parameters_json(options, imported.effects).dump());  // the effects actually simulated
+  run.bind(10, RCSIM_VERSION);
+  run.bind(11, utc_now());
+  run.exec();
+  run_id_ = db_.getLastInsertRowid();
+
+  SQLite::Statement sensor(db_, "INSERT INTO run_sensors VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  for (std::size_t i = 0; i < imported.sensors.size(); ++i) {
+    const RecordingSensor& s = imported.sensors[i];  // with the type actually simulated
+    sensor.bind(1, run_id_);
+    sensor.bind(2, static_cast<int>(i));
+    sensor.bind(3, s.id);
+    sensor.bind(4, s.type);
+    sensor.bind(5, s.x_m);
+    sensor.bind(6, s.y_m);
+    sensor.bind(7, s.yaw_rad);
+    sensor.bind(8, scene.sensors[i].config.fov.azimuth_half_rad);
+    sensor.bind(9, scene.sensors[i].config.fov.max_range_m);
+    sensor.bind(10, sensor_configuration_text(s.type, rec.dir));
+    sensor.exec();
+    sensor.reset();
+  }
+  SQLite::Statement object(db_, "INSERT INTO run_objects VALUES (?, ?, ?, ?, ?, ?, ?)");
+  for (std::size_t i = 0; i < imported.objects.size(); ++i) {
+    const ImportedObject& o = imported.objects[i];
+    object.bind(1, run_id_);
+    object.bind(2, static_cast<int>(i));
+    object.bind(3, o.id);
+    object.bind(4, o.model);
+    object.bind(5, o.length_m);
+    object.bind(6, o.width_m);
+    object.bind(7, static_cast<std::int64_t>(scene.objects[i].model.reflector_count()));
+    object.exec();
+    object.reset();
+  }
+  insert_cycle_ = std::make_unique<SQLite::Statement>(
+      db_, "INSERT INTO cycles VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  insert_target_ = std::make_unique<SQLite::Statement>(
+      db_, "INSERT INTO targets VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  insert_object_state_ = std::make_unique<SQLite::Statement>(db_, "INSERT INTO object_states VALUES (?, ?, ?, ?, ?, ?)");
+  insert_merge_pair_ = std::make_unique<SQLite::Statement>(db_, "INSERT INTO merge_pairs VALUES (?, ?, ?, ?, ?)");
+}
+
+void ReportWriter::insert_targets(const CycleComparison& c, const char* origin, const std::vector<ComparedTarget>& list) {
+  SQLite::Statement& s = *insert_target_;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const ComparedTarget& t = list[i];
+    s.bind(1, run_id_);
+    s.bind(2, c.cycle);
+    s.bind(3, c.sensor);
+    s.bind(4, origin);
+    s.bind(5, static_cast<int>(i));
+    bind_index(s, 6, t.track_id);
+    s.bind(7, t.range_m);
+    s.bind(8, t.azimuth_rad);
+    s.bind(9, t.range_rate_mps);
+    s.bind(10, t.amplitude_db);
+    s.bind(11, t.p_S.x());
+    s.bind(12, t.p_S.y());
+    bind_index(s, 13, t.object);
+    bind_index(s, 14, t.match);
+    s.bind(15, t.merge_pair >= 0 ? 1 : 0);
+    s.exec();
+    s.reset();
+  }
+}
+
+void ReportWriter::add_cycle(const CycleComparison& c) {
+  SQLite::Statement& s = *insert_cycle_;
+  int merge_recorded = 0, merge_simulated = 0;
+  for (const auto& t : c.recorded) merge_recorded += t.merge_pair >= 0;
+  for (const auto& t : c.simulated) merge_simulated += t.merge_pair >= 0;
+  s.bind(1, run_id_);
+  s.bind(2, c.cycle);
+  s.bind(3, c.sensor);
+  s.bind(4, c.t_s);
+  s.bind(5, c.X_WS.x_m);
+  s.bind(6, c.X_WS.y_m);
+  s.bind(7, c.X_WS.yaw_rad);
+  s.bind(8, static_cast<int>(c.recorded.size()));
+  s.bind(9, static_cast<int>(c.simulated.size()));
+  s.bind(10, c.gospa.assigned);
+  s.bind(11, c.gospa.gospa_m);
+  s.bind(12, c.gospa.localisation_mp);
+  s.bind(13, c.gospa.missed_mp);
+  s.bind(14, c.gospa.false_mp);
+  s.bind(15, c.gospa.ospa_m);
+  s.bind(16, merge_recorded);
+  s.bind(17, merge_simulated);
+  s.bind(18, c.merge_matched);
+  s.exec();
+  s.reset();
+  insert_targets(c, "recorded", c.recorded);
+  insert_targets(c, "simulated", c.simulated);
+  for (const auto& [a, b] : c.merge_pairs) {
+    SQLite::Statement& m = *insert_merge_pair_;
+    m.bind(1, run_id_);
+    m.bind(2, c.cycle);
+    m.bind(3, c.sensor);
+    m.bind(4, a);
+    m.bind(5, b);
+    m.exec();
+    m.reset();
+  }
+  if (c.sensor == 0) {  // the boxes are the same for every sensor of a cycle
+    SQLite::Statement& o = *insert_object_state_;
+    for (const ObjectInCycle& object : c.objects) {
+      o.bind(1, run_id_);
+      o.bind(2, c.cycle);
+      o.bind(3, object.object);
+      o.bind(4, object.x_m);
+      o.bind(5, object.y_m);
+      o.bind(6, object.yaw_rad);
+      o.exec();
+      o.reset();
+    }
+  }
+}
+
+void ReportWriter::end_run(const ReplaySummary& r) {
+  SQLite::Statement latency(db_, "INSERT INTO latencies VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const LatencyRow& row : r.latencies) {
+    latency.bind(1, run_id_);
+    latency.bind(2, row.sensor);
+    latency.bind(3, row.object);
+    latency.bind(4, row.episode);
+    latency.bind(5, row.detectable_from_s);
+    bind_optional(latency, 6, row.first_recorded_s);
+    bind_optional(latency, 7, row.first_simulated_s);
+    bind_optional(latency, 8, row.first_recorded_s < 0.0 ? -1.0 : row.first_recorded_s - row.detectable_from_s);
+    bind_optional(latency, 9, row.first_simulated_s < 0.0 ? -1.0 : row.first_simulated_s - row.detectable_from_s);
+    latency.exec();
+    latency.reset();
+  }
+  SQLite::Statement distance(db_, "INSERT INTO distribution_distances VALUES (?, ?, ?, ?, ?, ?, ?)");
+  for (const QuantityDistance& d : r.distances) {
+    distance.bind(1, run_id_);
+    distance.bind(2, d.quantity);
+    distance.bind(3, d.unit);
+    if (std::isnan(d.distance.wasserstein1)) {
+      distance.bind(4);
+      distance.bind(5);
+    } else {
+      distance.bind(4, d.distance.wasserstein1);
+      distance.bind(5, d.distance.kolmogorov_smirnov);
+    }
+    distance.bind(6, d.distance.n_recorded);
+    distance.bind(7, d.distance.n_simulated);
+    distance.exec();
+    distance.reset();
+  }
+  SQLite::Statement summary(db_, "INSERT INTO summaries VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+                                 "?, ?, ?, ?)");
+  int i = 1;
+  summary.bind(i++, run_id_);
+  summary.bind(i++, r.cycles);
+  summary.bind(i++, static_cast<std::int64_t>(r.targets_recorded));
+  summary.bind(i++, static_cast<std::int64_t>(r.targets_simulated));
+  summary.bind(i++, static_cast<std::int64_t>(r.targets_matched));
+  summary.bind(i++, r.gospa_mean_m);
+  summary.bind(i++, r.ospa_mean_m);
+  summary.bind(i++, r.gospa_localisation_mean_mp);
+  summary.bind(i++, r.gospa_missed_mean_mp);
+  summary.bind(i++, r.gospa_false_mean_mp);
+  summary.bind(i++, static_cast<std::int64_t>(r.merge_artefacts_recorded));
+  summary.bind(i++, static_cast<std::int64_t>(r.merge_artefacts_simulated));
+  summary.bind(i++, static_cast<std::int64_t>(r.merge_artefacts_matched));
+  bind_optional(summary, i++, r.latency_recorded_s);
+  bind_optional(summary, i++, r.latency_simulated_s);
+  summary.bind(i++, r.latency_pairs);
+  summary.bind(i++, r.residual_range_rms_m);
+  summary.bind(i++, r.residual_azimuth_rms_rad);
+  summary.bind(i++, r.residual_range_rate_rms_mps);
+  summary.bind(i++, r.residual_amplitude_mean_db);
+  summary.bind(i++, r.simulate_cpu_s);
+  summary.bind(i++, r.total_wall_s);
+  summary.exec();
+  insert_cycle_.reset();
+  insert_target_.reset();
+  insert_object_state_.reset();
+  insert_merge_pair_.reset();
+  transaction_->commit();
+  transaction_.reset();
+}
+
+}  // namespace rcsim::replay

@@ -1,0 +1,47 @@
+#pragma once
+// The SQLite report database (`rcsim-report` v2, schemas/report-database.md): many replay runs
+// in one file. A run is written in one transaction, so a replay that fails or is killed midway
+// leaves the database and its earlier runs as they were. Every value is bound to a prepared
+// statement; no text is ever pasted into SQL.
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "replay/run/replay_run.hpp"
+
+namespace rcsim::replay {
+
+inline constexpr std::int32_t kReportApplicationId = 0x52435352;  // "RCSR"
+inline constexpr int kReportSchemaVersion = 2;  // 2 added the bench tables; 1 is migrated on opening
+
+// Opens (creating if needed) a report database; refuses a file that is not one, or one of
+// another schema version, naming the file. A version 1 database is migrated to version 2 (the
+// bench tables are added, in one transaction; its runs are untouched).
+std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
+
+// Stores one replay run as it streams in.
+class ReportWriter final : public ReplaySink {
+ public:
+  explicit ReportWriter(SQLite::Database& db);
+  ~ReportWriter() override;
+
+  void begin_run(const Recording& recording, const ImportedScene& scene, const Scene& simulated_scene,
+                 const ReplayOptions& options) override;
+  void add_cycle(const CycleComparison& cycle) override;
+  void end_run(const ReplaySummary& summary) override;
+
+  std::int64_t run_id() const { return run_id_; }
+
+ private:
+  void insert_targets(const CycleComparison& cycle, const char* origin, const std::vector<ComparedTarget>& list);
+
+  SQLite::Database& db_;
+  std::optional<SQLite::Transaction> transaction_;
+  std::int64_t run_id_ = 0;
+  std::unique_ptr<SQLite::Statement> insert_cycle_, insert_target_, insert_object_state_, insert_merge_pair_;
+};
+
+}  // namespace rcsim::replay

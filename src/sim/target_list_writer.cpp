@@ -1,0 +1,73 @@
+#include "sim/target_list_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "io/csv_reader.hpp"
+#include "sim/amplitude.hpp"
+
+namespace rcsim {
+
+TargetListWriter::TargetListWriter(std::ostream& out, TargetListFormat format, OutputLevel level)
+    : out_(out), format_(format), level_(level) {}
+
+void TargetListWriter::write_header() {
+  if (format_ != TargetListFormat::Csv) return;
+  out_ << "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db";
+  if (level_ == OutputLevel::ideal) out_ << ",object,reflector";
+  out_ << '\n';
+}
+
+void TargetListWriter::write_row(int cycle, double t_s, const std::string& sensor_id, const Row& row) {
+  ++rows_;
+  if (format_ == TargetListFormat::Csv) {
+    out_ << fmt::format("{:.6f},{},{},{},{:.4f},{:.6f},{:.4f},{:.3f}", t_s, cycle, csv_field(sensor_id), row.id,
+                        row.range_m, row.azimuth_rad, row.range_rate_mps, row.amplitude_db);
+    if (level_ == OutputLevel::ideal) out_ << ',' << csv_field(*row.object) << ',' << csv_field(row.reflector);
+    out_ << '\n';
+    return;
+  }
+  out_ << fmt::format(
+      "{{\"t_s\":{:.6f},\"cycle\":{},\"sensor\":{},\"id\":{},\"range_m\":{:.4f},\"azimuth_rad\":{:.6f},"
+      "\"range_rate_mps\":{:.4f},\"amplitude_db\":{:.3f}",
+      t_s, cycle, nlohmann::json(sensor_id).dump(), row.id, row.range_m, row.azimuth_rad, row.range_rate_mps,
+      row.amplitude_db);
+  if (level_ == OutputLevel::ideal) {
+    out_ << ",\"object\":" << nlohmann::json(*row.object).dump() << ",\"reflector\":" << nlohmann::json(row.reflector).dump();
+  }
+  out_ << "}\n";
+}
+
+void TargetListWriter::write_sensor_cycle(const Scene& scene, int cycle, double t_s, const std::string& sensor_id,
+                                          const SensorCycleState& state) {
+  switch (level_) {
+    case OutputLevel::ideal:
+      for (std::size_t i = 0; i < state.ideal.size(); ++i) {
+        const auto& t = state.ideal[i];
+        const auto& object = scene.objects[static_cast<std::size_t>(t.object_index)];
+        const auto k = static_cast<std::size_t>(t.reflector_index);
+        std::string reflector = t.kind == ReflectorKind::Point ? object.model.points[k].name : object.model.planes[k].name;
+        if (t.bounce_order > 1) reflector += fmt::format("#bounce{}", t.bounce_order);
+        // echoes[i] belongs to ideal[i] at this level (cells are not formed).
+        write_row(cycle, t_s, sensor_id,
+                  {static_cast<int>(i), t.range_m, t.azimuth_rad, t.range_rate_mps,
+                   amplitude_to_db(state.echoes[i].amplitude), &object.id, std::move(reflector)});
+      }
+      break;
+    case OutputLevel::detections:
+      for (std::size_t i = 0; i < state.detections.size(); ++i) {
+        const auto& d = state.detections[i];
+        write_row(cycle, t_s, sensor_id,
+                  {static_cast<int>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, nullptr, {}});
+      }
+      break;
+    case OutputLevel::tracks:
+      for (const auto& r : state.reported) {
+        write_row(cycle, t_s, sensor_id, {r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, nullptr, {}});
+      }
+      break;
+  }
+}
+
+}  // namespace rcsim

@@ -1,0 +1,144 @@
+#include "scratch_dir.hpp"
+#include "replay/run/replay_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "replay/replay_fixtures.hpp"
+#include "replay/store/report_store.hpp"
+
+namespace rcsim::replay {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ReplayRun : public testing::ScratchDirTest {
+ protected:
+  ReplayRun() : ScratchDirTest("replay") {}
+
+  Recording write_and_read(const Recording& rec, const std::string& name) {
+    write_recording(dir_ / name, rec);
+    return read_recording(dir_ / name);
+  }
+};
+
+TEST_F(ReplayRun, ModelAgainstItselfWithTheSameSeedAgreesToFileRounding) {
+  const Scene scene = testing::two_cars_scene();
+  const Recording rec = write_and_read(testing::model_recording(scene, 5), "self");
+  ASSERT_GT(rec.targets.size(), 100u);
+  ReplayOptions options;
+  options.seed = 5;
+  options.import.effects = {};  // the scene had none
+  const auto db = open_report_database((dir_ / "r.sqlite").string(), true);
+  ReportWriter writer(*db);
+  const ReplaySummary s = replay_recording(rec, options, writer);
+  EXPECT_EQ(s.cycles, scene.cycle_count());
+  EXPECT_EQ(s.targets_recorded, static_cast<long long>(rec.targets.size()));
+  EXPECT_EQ(s.targets_simulated, s.targets_recorded);
+  EXPECT_EQ(s.targets_matched, s.targets_recorded);
+  EXPECT_LT(s.gospa_mean_m, 1e-3);
+  EXPECT_LT(s.residual_range_rms_m, 1e-4);
+  EXPECT_EQ(s.merge_artefacts_recorded, s.merge_artefacts_simulated);
+  EXPECT_NEAR(s.latency_recorded_s, s.latency_simulated_s, 1e-9);
+  // Four-hit confirmation: the first report comes three cycles after the first detection.
+  EXPECT_GE(s.latency_recorded_s, 3 * scene.cycle_time_s - 1e-9);
+  // Equal up to the file's decimals (ties split by rounding can move the KS statistic a little).
+  for (const auto& d : s.distances) {
+    EXPECT_LT(d.distance.wasserstein1, 1e-3) << d.quantity;
+    EXPECT_LT(d.distance.kolmogorov_smirnov, 0.05) << d.quantity;
+  }
+
+  SQLite::Statement count(*db, "SELECT count(*) FROM targets WHERE run_id = ? AND origin = 'recorded'");
+  count.bind(1, writer.run_id());
+  ASSERT_TRUE(count.executeStep());
+  EXPECT_EQ(count.getColumn(0).getInt64(), s.targets_recorded);
+  SQLite::Statement cycles(*db, "SELECT count(*) FROM cycles WHERE run_id = ?");
+  cycles.bind(1, writer.run_id());
+  ASSERT_TRUE(cycles.executeStep());
+  EXPECT_EQ(cycles.getColumn(0).getInt(), s.cycles * 2);
+}
+
+TEST_F(ReplayRun, AnotherSeedDiffersButStaysClose) {
+  const Scene scene = testing::two_cars_scene();
+  const Recording rec = write_and_read(testing::model_recording(scene, 5), "self");
+  ReplayOptions options;
+  options.seed = 6;
+  options.import.effects = {};
+  const auto db = open_report_database((dir_ / "r.sqlite").string(), true);
+  ReportWriter writer(*db);
+  const ReplaySummary s = replay_recording(rec, options, writer);
+  EXPECT_GT(s.gospa_mean_m, 1e-3);
+  EXPECT_LT(s.gospa_mean_m, 1.5);
+  EXPECT_GT(s.targets_matched, s.targets_recorded / 2);
+}
+
+TEST_F(ReplayRun, SideBySideCarsShowMergeArtefactsInBothLists) {
+  // Paper Fig. 10: two cars abreast at equal speed share range-speed cells; the monopulse angle
+  // of the merged cell lies between them.
+  Scene scene = testing::two_cars_scene(4.0);
+  scene.sensors.resize(1);
+  scene.sensors.front().X_VS = {3.7, 0.0, 0.0};  // centred, so that both cars are equally strong
+  const Recording rec = write_and_read(testing::model_recording(scene, 3), "merge");
+  ReplayOptions options;
+  options.seed = 4;
+  options.import.effects = {};
+  const auto db = open_report_database((dir_ / "r.sqlite").string(), true);
+  ReportWriter writer(*db);
+  const ReplaySummary s = replay_recording(rec, options, writer);
+  EXPECT_GT(s.merge_artefacts_recorded, 0);
+  EXPECT_GT(s.merge_artefacts_simulated, 0);
+  EXPECT_GT(s.merge_artefacts_matched, 0);
+}
+
+TEST_F(ReplayRun, FailedRunLeavesEarlierRunsIntact) {
+  const Scene scene = testing::two_cars_scene(1.0);
+  const Recording rec = write_and_read(testing::model_recording(scene, 1), "a");
+  const auto path = (dir_ / "r.sqlite").string();
+  ReplayOptions options;
+  options.import.effects = {};
+  {
+    const auto db = open_report_database(path, true);
+    ReportWriter writer(*db);
+    replay_recording(rec, options, writer);
+  }
+  // A sink that fails midway, like a replay that meets a full disk.
+  struct Failing final : ReplaySink {
+    explicit Failing(SQLite::Database& db) : inner(db) {}
+    void begin_run(const Recording& r, const ImportedScene& i, const Scene& s, const ReplayOptions& o) override {
+      inner.begin_run(r, i, s, o);
+    }
+    void add_cycle(const CycleComparison& c) override {
+      if (++cycles == 10) throw std::runtime_error("disk full");
+      inner.add_cycle(c);
+    }
+    void end_run(const ReplaySummary& s) override { inner.end_run(s); }
+    ReportWriter inner;
+    int cycles = 0;
+  };
+  {
+    const auto db = open_report_database(path, true);
+    Failing failing(*db);
+    EXPECT_THROW(replay_recording(rec, options, failing), std::runtime_error);
+  }
+  const auto db = open_report_database(path, false);
+  EXPECT_EQ(db->execAndGet("SELECT count(*) FROM runs").getInt(), 1);
+  EXPECT_EQ(db->execAndGet("SELECT count(DISTINCT run_id) FROM cycles").getInt(), 1);
+  EXPECT_EQ(db->execAndGet("SELECT count(*) FROM summaries").getInt(), 1);
+  EXPECT_EQ(db->execAndGet("PRAGMA integrity_check").getString(), "ok");
+}
+
+TEST_F(ReplayRun, RefusesAForeignDatabase) {
+  const auto path = (dir_ / "other.sqlite").string();
+  {
+    SQLite::Database other(path, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
+    other.exec("CREATE TABLE t (x INTEGER)");
+  }
+  EXPECT_THROW(open_report_database(path, true), InputError);
+  std::ofstream(dir_ / "junk.sqlite") << "this is not a database, just text that is long enough to matter......";
+  EXPECT_THROW(open_report_database((dir_ / "junk.sqlite").string(), true), InputError);
+}
+
+}  // namespace
+}  // namespace rcsim::replay
