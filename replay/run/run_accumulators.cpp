@@ -1,0 +1,72 @@
+#include "replay/run/run_accumulators.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/angles.hpp"
+
+namespace rcsim::replay {
+
+void RunAccumulators::add_cycle(const CycleComparison& cycle, long long merge_recorded, long long merge_simulated) {
+  for (const ComparedTarget& a : cycle.recorded) {
+    if (a.match < 0) continue;
+    const ComparedTarget& b = cycle.simulated[static_cast<std::size_t>(a.match)];
+    range_sq_m2_ += std::pow(b.range_m - a.range_m, 2);
+    azimuth_sq_rad2_ += std::pow(angle_difference_rad(b.azimuth_rad, a.azimuth_rad), 2);
+    rate_sq_m2ps2_ += std::pow(b.range_rate_mps - a.range_rate_mps, 2);
+    amplitude_sum_db_ += b.amplitude_db - a.amplitude_db;
+    ++targets_matched_;
+  }
+  merge_recorded_ += merge_recorded;
+  merge_simulated_ += merge_simulated;
+  merge_matched_ += cycle.merge_matched;
+  targets_recorded_ += static_cast<long long>(cycle.recorded.size());
+  targets_simulated_ += static_cast<long long>(cycle.simulated.size());
+  gospa_sum_ += cycle.gospa.gospa_m;
+  ospa_sum_ += cycle.gospa.ospa_m;
+  localisation_sum_ += cycle.gospa.localisation_mp;
+  missed_sum_ += cycle.gospa.missed_mp;
+  false_sum_ += cycle.gospa.false_mp;
+  ++sensor_cycles_;
+  for (int origin = 0; origin < 2; ++origin) {
+    const auto& list = origin == 0 ? cycle.recorded : cycle.simulated;
+    for (const auto& t : list) {
+      range_m_[origin].push_back(static_cast<float>(t.range_m));
+      azimuth_rad_[origin].push_back(static_cast<float>(t.azimuth_rad));
+      rate_mps_[origin].push_back(static_cast<float>(t.range_rate_mps));
+      amplitude_db_[origin].push_back(static_cast<float>(t.amplitude_db));
+    }
+    count_[origin].push_back(static_cast<float>(list.size()));
+  }
+}
+
+void RunAccumulators::finish(ReplaySummary& summary) {
+  summary.targets_recorded = targets_recorded_;
+  summary.targets_simulated = targets_simulated_;
+  summary.targets_matched = targets_matched_;
+  summary.merge_artefacts_recorded = merge_recorded_;
+  summary.merge_artefacts_simulated = merge_simulated_;
+  summary.merge_artefacts_matched = merge_matched_;
+  const double n = std::max<double>(1.0, static_cast<double>(sensor_cycles_));
+  summary.gospa_mean_m = gospa_sum_ / n;
+  summary.ospa_mean_m = ospa_sum_ / n;
+  summary.gospa_localisation_mean_mp = localisation_sum_ / n;
+  summary.gospa_missed_mean_mp = missed_sum_ / n;
+  summary.gospa_false_mean_mp = false_sum_ / n;
+  const double m = std::max<double>(1.0, static_cast<double>(targets_matched_));
+  summary.residual_range_rms_m = std::sqrt(range_sq_m2_ / m);
+  summary.residual_azimuth_rms_rad = std::sqrt(azimuth_sq_rad2_ / m);
+  summary.residual_range_rate_rms_mps = std::sqrt(rate_sq_m2ps2_ / m);
+  summary.residual_amplitude_mean_db = amplitude_sum_db_ / m;
+
+  const auto distance = [](const std::vector<float>& a, const std::vector<float>& b) {
+    return metrics::distribution_distance(std::vector<double>(a.begin(), a.end()), std::vector<double>(b.begin(), b.end()));
+  };
+  summary.distances.push_back({"range", "m", distance(range_m_[0], range_m_[1])});
+  summary.distances.push_back({"azimuth", "rad", distance(azimuth_rad_[0], azimuth_rad_[1])});
+  summary.distances.push_back({"range_rate", "m/s", distance(rate_mps_[0], rate_mps_[1])});
+  summary.distances.push_back({"amplitude", "dB", distance(amplitude_db_[0], amplitude_db_[1])});
+  summary.distances.push_back({"targets_per_cycle", "1", distance(count_[0], count_[1])});
+}
+
+}  // namespace rcsim::replay

@@ -1,0 +1,29 @@
+#pragma once
+// The run's figures, accumulated cycle by cycle and sensor by sensor (ReplaySummary): target
+// counts, GOSPA and its parts, residuals of the assigned pairs, merge artefacts, and the samples
+// of the per-target quantities for the distribution distances.
+#include <vector>
+
+#include "replay/run/replay_run.hpp"
+
+namespace rcsim::replay {
+
+class RunAccumulators {
+ public:
+  // One compared cycle of one sensor, after matching (ComparedTarget::match set); the merge
+  // artefacts each list holds of the cycle's pairs.
+  void add_cycle(const CycleComparison& cycle, long long merge_recorded, long long merge_simulated);
+  // Means, RMS residuals and distribution distances into `summary` (its latencies untouched).
+  void finish(ReplaySummary& summary);
+
+ private:
+  long long targets_recorded_ = 0, targets_simulated_ = 0, targets_matched_ = 0;
+  long long merge_recorded_ = 0, merge_simulated_ = 0, merge_matched_ = 0;
+  double gospa_sum_ = 0.0, ospa_sum_ = 0.0, localisation_sum_ = 0.0, missed_sum_ = 0.0, false_sum_ = 0.0;
+  long long sensor_cycles_ = 0;
+  double range_sq_m2_ = 0.0, azimuth_sq_rad2_ = 0.0, rate_sq_m2ps2_ = 0.0, amplitude_sum_db_ = 0.0;
+  // Samples per origin: [0] recorded, [1] simulated (float: half the memory of an hour-long run).
+  std::vector<float> range_m_[2], azimuth_rad_[2], rate_mps_[2], amplitude_db_[2], count_[2];
+};
+
+}  // namespace rcsim::replay
