@@ -65,19 +65,30 @@ void write_run_section(std::ostream& out, SQLite::Database& db, const report::Ru
          "run, the first simulated target, the largest difference in target counts, then the last cycle and the "
          "quarters.</p>";
   out << R"(<div class="figs">)";
-  for (const auto& chosen : report::choose_cycles(db, run, static_cast<std::size_t>(std::max(0, options.pictures)))) {
-    out << svg::birdseye_svg(report::birdseye_of_cycle(db, run, chosen, options.trace_cycles));
+  const auto chosen_cycles = report::choose_cycles(report::read_cycle_highlights(db, i.run_id), run,
+                                                   static_cast<std::size_t>(std::max(0, options.pictures)));
+  for (const auto& chosen : chosen_cycles) {
+    const int first_cycle = std::max(0, chosen.cycle - std::max(0, options.trace_cycles));
+    out << svg::birdseye_svg(
+        report::birdseye_of_cycle(run, chosen, report::read_cycle_window(db, i.run_id, first_cycle, chosen.cycle)));
   }
   out << "</div>";
 
   out << fmt::format(R"(<h3 id="run-{}-series">Time series</h3>)", i.run_id);
   out << R"(<div class="figs">)";
-  for (const auto& plot : report::time_series(db, run, max_points)) out << svg::plot_svg(plot);
+  const int stride = report::series_stride(run, max_points);
+  for (const auto& plot : report::time_series(run, stride, report::read_nearest_targets(db, i.run_id, stride),
+                                              report::read_cycle_buckets(db, i.run_id, stride))) {
+    out << svg::plot_svg(plot);
+  }
   out << "</div>";
 
   out << fmt::format(R"(<h3 id="run-{}-residuals">Residuals of assigned pairs</h3>)", i.run_id);
   out << R"(<div class="figs">)";
-  for (const auto& h : report::residual_histograms(db, run, options.histogram_bins)) out << svg::histogram_svg(h);
+  report::ResidualHistograms histograms(
+      report::read_residual_sample_stats(db, i.run_id, report::residual_sample_stride(run)), options.histogram_bins);
+  report::for_each_residual(db, i.run_id, [&](const report::Residuals& r) { histograms.add(r); });
+  for (const auto& h : histograms.specs()) out << svg::histogram_svg(h);
   out << "</div>";
 
   out << fmt::format(R"(<h3 id="run-{}-merge">Merge artefacts per object pair and sensor</h3>)", i.run_id)
