@@ -77,7 +77,7 @@ struct BenchLevelSummary {
 // In the order the levels first appear in `rows`.
 std::vector<BenchLevelSummary> summarise_levels(const std::vector<BenchRow>& rows);
 
-// The goals of issue 7 / docs/bench.md, evaluated on a bench.
+// The goals of docs/bench.md (speed, error, noise floor), evaluated on a bench.
 struct BenchGoals {
   bool evaluable = false;           // full, the reference and the noise floor all present
   double best_error_m = 0.0;        // lowest mean GOSPA of any level (reference included)

@@ -56,149 +56,169 @@ std::vector<std::int64_t> select_runs(SQLite::Database& db, const std::string& d
   return selected;
 }
 
+namespace {
+
+void read_info(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT recording_name, recording_dir, recording_checksum, recording_source, cycle_time_s, "
+                      "cycles, seed, level, parameters, rcsim_version, created_utc FROM runs WHERE run_id = ?");
+  q.bind(1, run_id);
+  if (!q.executeStep()) throw std::runtime_error(fmt::format("run {} vanished from the database", run_id));
+  RunInfo& i = run.info;
+  i.run_id = run_id;
+  i.recording_name = q.getColumn(0).getString();
+  i.recording_dir = q.getColumn(1).getString();
+  i.recording_checksum = q.getColumn(2).getString();
+  i.recording_source = q.getColumn(3).getString();
+  i.cycle_time_s = q.getColumn(4).getDouble();
+  i.cycles = q.getColumn(5).getInt();
+  i.seed = q.getColumn(6).getInt64();
+  i.level = q.getColumn(7).getString();
+  i.parameters = q.getColumn(8).getString();
+  i.rcsim_version = q.getColumn(9).getString();
+  i.created_utc = q.getColumn(10).getString();
+}
+
+void read_summary(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT cycles, targets_recorded, targets_simulated, targets_matched, gospa_mean, ospa_mean, "
+                      "gospa_localisation_mean, gospa_missed_mean, gospa_false_mean, merge_artefacts_recorded, "
+                      "merge_artefacts_simulated, merge_artefacts_matched, latency_recorded_s, latency_simulated_s, "
+                      "latency_pairs, residual_range_rms_m, residual_azimuth_rms_rad, residual_range_rate_rms_mps, "
+                      "residual_amplitude_mean_db, simulate_cpu_s, total_wall_s FROM summaries WHERE run_id = ?");
+  q.bind(1, run_id);
+  if (q.executeStep()) {
+    RunSummary s;
+    int c = 0;
+    s.cycles = q.getColumn(c++).getInt();
+    s.targets_recorded = q.getColumn(c++).getInt64();
+    s.targets_simulated = q.getColumn(c++).getInt64();
+    s.targets_matched = q.getColumn(c++).getInt64();
+    s.gospa_mean_m = q.getColumn(c++).getDouble();
+    s.ospa_mean_m = q.getColumn(c++).getDouble();
+    s.gospa_localisation_mean_mp = q.getColumn(c++).getDouble();
+    s.gospa_missed_mean_mp = q.getColumn(c++).getDouble();
+    s.gospa_false_mean_mp = q.getColumn(c++).getDouble();
+    s.merge_recorded = q.getColumn(c++).getInt64();
+    s.merge_simulated = q.getColumn(c++).getInt64();
+    s.merge_matched = q.getColumn(c++).getInt64();
+    s.latency_recorded_s = optional_double(q.getColumn(c++));
+    s.latency_simulated_s = optional_double(q.getColumn(c++));
+    s.latency_pairs = q.getColumn(c++).getInt();
+    s.residual_range_rms_m = q.getColumn(c++).getDouble();
+    s.residual_azimuth_rms_rad = q.getColumn(c++).getDouble();
+    s.residual_range_rate_rms_mps = q.getColumn(c++).getDouble();
+    s.residual_amplitude_mean_db = q.getColumn(c++).getDouble();
+    s.simulate_cpu_s = q.getColumn(c++).getDouble();
+    s.total_wall_s = q.getColumn(c++).getDouble();
+    run.summary = s;
+  }
+}
+
+void read_sensors(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT sensor, sensor_id, type, x_m, y_m, yaw_rad, azimuth_half_rad, max_range_m, configuration "
+                      "FROM run_sensors WHERE run_id = ? ORDER BY sensor");
+  q.bind(1, run_id);
+  while (q.executeStep()) {
+    SensorInfo s;
+    s.sensor = q.getColumn(0).getInt();
+    s.id = q.getColumn(1).getString();
+    s.type = q.getColumn(2).getString();
+    s.X_VS = {q.getColumn(3).getDouble(), q.getColumn(4).getDouble(), q.getColumn(5).getDouble()};
+    s.azimuth_half_rad = q.getColumn(6).getDouble();
+    s.max_range_m = q.getColumn(7).getDouble();
+    s.configuration = q.getColumn(8).getString();
+    run.sensors.push_back(std::move(s));
+  }
+}
+
+void read_objects(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT object, object_id, class, length_m, width_m, reflectors FROM run_objects "
+                      "WHERE run_id = ? ORDER BY object");
+  q.bind(1, run_id);
+  while (q.executeStep()) {
+    run.objects.push_back({q.getColumn(0).getInt(), q.getColumn(1).getString(), q.getColumn(2).getString(),
+                           q.getColumn(3).getDouble(), q.getColumn(4).getDouble(), q.getColumn(5).getInt64()});
+  }
+}
+
+void read_distances(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT quantity, unit, wasserstein1, kolmogorov_smirnov, n_recorded, n_simulated "
+                      "FROM distribution_distances WHERE run_id = ? ORDER BY rowid");
+  q.bind(1, run_id);
+  while (q.executeStep()) {
+    run.distances.push_back({q.getColumn(0).getString(), q.getColumn(1).getString(), optional_double(q.getColumn(2)),
+                             optional_double(q.getColumn(3)), q.getColumn(4).getInt64(), q.getColumn(5).getInt64()});
+  }
+}
+
+void read_latencies(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT sensor, object, detectable_from_s, first_recorded_s, first_simulated_s, "
+                      "latency_recorded_s, latency_simulated_s FROM latencies WHERE run_id = ? "
+                      "ORDER BY object, sensor");
+  q.bind(1, run_id);
+  while (q.executeStep()) {
+    run.latencies.push_back({q.getColumn(0).getInt(), q.getColumn(1).getInt(), q.getColumn(2).getDouble(),
+                             optional_double(q.getColumn(3)), optional_double(q.getColumn(4)),
+                             optional_double(q.getColumn(5)), optional_double(q.getColumn(6))});
+  }
+}
+
+void read_merge_pairs(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT m.sensor, m.object_a, m.object_b, count(*), min(c.t_s), max(c.t_s), "
+                      "sum(c.merge_recorded), sum(c.merge_simulated), sum(c.merge_matched) "
+                      "FROM merge_pairs m JOIN cycles c "
+                      "ON c.run_id = m.run_id AND c.cycle = m.cycle AND c.sensor = m.sensor "
+                      "WHERE m.run_id = ? GROUP BY m.sensor, m.object_a, m.object_b "
+                      "ORDER BY m.object_a, m.object_b, m.sensor");
+  q.bind(1, run_id);
+  while (q.executeStep()) {
+    run.merge_pairs.push_back({q.getColumn(0).getInt(), q.getColumn(1).getInt(), q.getColumn(2).getInt(),
+                               q.getColumn(3).getInt64(), q.getColumn(4).getDouble(), q.getColumn(5).getDouble(),
+                               q.getColumn(6).getInt64(), q.getColumn(7).getInt64(), q.getColumn(8).getInt64()});
+  }
+}
+
+void read_sensor_totals(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT sensor, count(*), sum(n_recorded), sum(n_simulated), sum(n_assigned), avg(gospa_m), "
+                      "max(gospa_m), avg(ospa_m), sum(merge_recorded), sum(merge_simulated), sum(merge_matched) "
+                      "FROM cycles WHERE run_id = ? GROUP BY sensor ORDER BY sensor");
+  q.bind(1, run_id);
+  while (q.executeStep()) {
+    SensorTotals t;
+    t.sensor = q.getColumn(0).getInt();
+    t.cycles = q.getColumn(1).getInt64();
+    t.recorded = q.getColumn(2).getInt64();
+    t.simulated = q.getColumn(3).getInt64();
+    t.assigned = q.getColumn(4).getInt64();
+    t.gospa_mean_m = q.getColumn(5).getDouble();
+    t.gospa_max_m = q.getColumn(6).getDouble();
+    t.ospa_mean_m = q.getColumn(7).getDouble();
+    t.merge_recorded = q.getColumn(8).getInt64();
+    t.merge_simulated = q.getColumn(9).getInt64();
+    t.merge_matched = q.getColumn(10).getInt64();
+    run.sensor_totals.push_back(t);
+  }
+}
+
+}  // namespace
+
 RunData load_run(SQLite::Database& db, std::int64_t run_id) {
   RunData run;
-  {
-    SQLite::Statement q(db,
-                        "SELECT recording_name, recording_dir, recording_checksum, recording_source, cycle_time_s, "
-                        "cycles, seed, level, parameters, rcsim_version, created_utc FROM runs WHERE run_id = ?");
-    q.bind(1, run_id);
-    if (!q.executeStep()) throw std::runtime_error(fmt::format("run {} vanished from the database", run_id));
-    RunInfo& i = run.info;
-    i.run_id = run_id;
-    i.recording_name = q.getColumn(0).getString();
-    i.recording_dir = q.getColumn(1).getString();
-    i.recording_checksum = q.getColumn(2).getString();
-    i.recording_source = q.getColumn(3).getString();
-    i.cycle_time_s = q.getColumn(4).getDouble();
-    i.cycles = q.getColumn(5).getInt();
-    i.seed = q.getColumn(6).getInt64();
-    i.level = q.getColumn(7).getString();
-    i.parameters = q.getColumn(8).getString();
-    i.rcsim_version = q.getColumn(9).getString();
-    i.created_utc = q.getColumn(10).getString();
-  }
-  {
-    SQLite::Statement q(db,
-                        "SELECT cycles, targets_recorded, targets_simulated, targets_matched, gospa_mean, ospa_mean, "
-                        "gospa_localisation_mean, gospa_missed_mean, gospa_false_mean, merge_artefacts_recorded, "
-                        "merge_artefacts_simulated, merge_artefacts_matched, latency_recorded_s, latency_simulated_s, "
-                        "latency_pairs, residual_range_rms_m, residual_azimuth_rms_rad, residual_range_rate_rms_mps, "
-                        "residual_amplitude_mean_db, simulate_cpu_s, total_wall_s FROM summaries WHERE run_id = ?");
-    q.bind(1, run_id);
-    if (q.executeStep()) {
-      RunSummary s;
-      int c = 0;
-      s.cycles = q.getColumn(c++).getInt();
-      s.targets_recorded = q.getColumn(c++).getInt64();
-      s.targets_simulated = q.getColumn(c++).getInt64();
-      s.targets_matched = q.getColumn(c++).getInt64();
-      s.gospa_mean_m = q.getColumn(c++).getDouble();
-      s.ospa_mean_m = q.getColumn(c++).getDouble();
-      s.gospa_localisation_mean_mp = q.getColumn(c++).getDouble();
-      s.gospa_missed_mean_mp = q.getColumn(c++).getDouble();
-      s.gospa_false_mean_mp = q.getColumn(c++).getDouble();
-      s.merge_recorded = q.getColumn(c++).getInt64();
-      s.merge_simulated = q.getColumn(c++).getInt64();
-      s.merge_matched = q.getColumn(c++).getInt64();
-      s.latency_recorded_s = optional_double(q.getColumn(c++));
-      s.latency_simulated_s = optional_double(q.getColumn(c++));
-      s.latency_pairs = q.getColumn(c++).getInt();
-      s.residual_range_rms_m = q.getColumn(c++).getDouble();
-      s.residual_azimuth_rms_rad = q.getColumn(c++).getDouble();
-      s.residual_range_rate_rms_mps = q.getColumn(c++).getDouble();
-      s.residual_amplitude_mean_db = q.getColumn(c++).getDouble();
-      s.simulate_cpu_s = q.getColumn(c++).getDouble();
-      s.total_wall_s = q.getColumn(c++).getDouble();
-      run.summary = s;
-    }
-  }
-  {
-    SQLite::Statement q(db,
-                        "SELECT sensor, sensor_id, type, x_m, y_m, yaw_rad, azimuth_half_rad, max_range_m, configuration "
-                        "FROM run_sensors WHERE run_id = ? ORDER BY sensor");
-    q.bind(1, run_id);
-    while (q.executeStep()) {
-      SensorInfo s;
-      s.sensor = q.getColumn(0).getInt();
-      s.id = q.getColumn(1).getString();
-      s.type = q.getColumn(2).getString();
-      s.X_VS = {q.getColumn(3).getDouble(), q.getColumn(4).getDouble(), q.getColumn(5).getDouble()};
-      s.azimuth_half_rad = q.getColumn(6).getDouble();
-      s.max_range_m = q.getColumn(7).getDouble();
-      s.configuration = q.getColumn(8).getString();
-      run.sensors.push_back(std::move(s));
-    }
-  }
-  {
-    SQLite::Statement q(db,
-                        "SELECT object, object_id, class, length_m, width_m, reflectors FROM run_objects "
-                        "WHERE run_id = ? ORDER BY object");
-    q.bind(1, run_id);
-    while (q.executeStep()) {
-      run.objects.push_back({q.getColumn(0).getInt(), q.getColumn(1).getString(), q.getColumn(2).getString(),
-                             q.getColumn(3).getDouble(), q.getColumn(4).getDouble(), q.getColumn(5).getInt64()});
-    }
-  }
-  {
-    SQLite::Statement q(db,
-                        "SELECT quantity, unit, wasserstein1, kolmogorov_smirnov, n_recorded, n_simulated "
-                        "FROM distribution_distances WHERE run_id = ? ORDER BY rowid");
-    q.bind(1, run_id);
-    while (q.executeStep()) {
-      run.distances.push_back({q.getColumn(0).getString(), q.getColumn(1).getString(), optional_double(q.getColumn(2)),
-                               optional_double(q.getColumn(3)), q.getColumn(4).getInt64(), q.getColumn(5).getInt64()});
-    }
-  }
-  {
-    SQLite::Statement q(db,
-                        "SELECT sensor, object, detectable_from_s, first_recorded_s, first_simulated_s, "
-                        "latency_recorded_s, latency_simulated_s FROM latencies WHERE run_id = ? "
-                        "ORDER BY object, sensor");
-    q.bind(1, run_id);
-    while (q.executeStep()) {
-      run.latencies.push_back({q.getColumn(0).getInt(), q.getColumn(1).getInt(), q.getColumn(2).getDouble(),
-                               optional_double(q.getColumn(3)), optional_double(q.getColumn(4)),
-                               optional_double(q.getColumn(5)), optional_double(q.getColumn(6))});
-    }
-  }
-  {
-    SQLite::Statement q(db,
-                        "SELECT m.sensor, m.object_a, m.object_b, count(*), min(c.t_s), max(c.t_s), "
-                        "sum(c.merge_recorded), sum(c.merge_simulated), sum(c.merge_matched) "
-                        "FROM merge_pairs m JOIN cycles c "
-                        "ON c.run_id = m.run_id AND c.cycle = m.cycle AND c.sensor = m.sensor "
-                        "WHERE m.run_id = ? GROUP BY m.sensor, m.object_a, m.object_b "
-                        "ORDER BY m.object_a, m.object_b, m.sensor");
-    q.bind(1, run_id);
-    while (q.executeStep()) {
-      run.merge_pairs.push_back({q.getColumn(0).getInt(), q.getColumn(1).getInt(), q.getColumn(2).getInt(),
-                                 q.getColumn(3).getInt64(), q.getColumn(4).getDouble(), q.getColumn(5).getDouble(),
-                                 q.getColumn(6).getInt64(), q.getColumn(7).getInt64(), q.getColumn(8).getInt64()});
-    }
-  }
-  {
-    SQLite::Statement q(db,
-                        "SELECT sensor, count(*), sum(n_recorded), sum(n_simulated), sum(n_assigned), avg(gospa_m), "
-                        "max(gospa_m), avg(ospa_m), sum(merge_recorded), sum(merge_simulated), sum(merge_matched) "
-                        "FROM cycles WHERE run_id = ? GROUP BY sensor ORDER BY sensor");
-    q.bind(1, run_id);
-    while (q.executeStep()) {
-      SensorTotals t;
-      t.sensor = q.getColumn(0).getInt();
-      t.cycles = q.getColumn(1).getInt64();
-      t.recorded = q.getColumn(2).getInt64();
-      t.simulated = q.getColumn(3).getInt64();
-      t.assigned = q.getColumn(4).getInt64();
-      t.gospa_mean_m = q.getColumn(5).getDouble();
-      t.gospa_max_m = q.getColumn(6).getDouble();
-      t.ospa_mean_m = q.getColumn(7).getDouble();
-      t.merge_recorded = q.getColumn(8).getInt64();
-      t.merge_simulated = q.getColumn(9).getInt64();
-      t.merge_matched = q.getColumn(10).getInt64();
-      run.sensor_totals.push_back(t);
-    }
-  }
+  read_info(db, run_id, run);
+  read_summary(db, run_id, run);
+  read_sensors(db, run_id, run);
+  read_objects(db, run_id, run);
+  read_distances(db, run_id, run);
+  read_latencies(db, run_id, run);
+  read_merge_pairs(db, run_id, run);
+  read_sensor_totals(db, run_id, run);
   return run;
 }
 

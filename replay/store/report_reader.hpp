@@ -1,5 +1,5 @@
 #pragma once
-// What the HTML report reads from a report database (`rcsim-report` v1,
+// What the HTML report reads from a report database (`rcsim-report` v2,
 // schemas/report-database.md): the per-run tables, each read with one query and SQL aggregates,
 // never the per-target rows of a whole run. Text fields are returned as stored (unescaped).
 #include <SQLiteCpp/SQLiteCpp.h>
