@@ -1,0 +1,111 @@
+// The layers of docs/architecture.md, checked on the sources: every #include "dir/..." of a
+// source file names its own layer or one below it. The static libraries enforce the same at link
+// time for calls; this catches a header-only use upwards too, and names the file and line.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace rcsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Layer of a source directory (relative to the source root) and of an include prefix.
+const std::map<std::string, std::string> kLayerOfDir{
+    {"src/common", "common"},   {"src/io", "io"},
+    {"src/model", "world"},     {"src/scene", "world"},
+    {"src/sensor", "world"},    {"metrics", "metrics"},
+    {"src/sim", "sim"},         {"src/synth", "synth"},
+    {"src/traffic", "traffic"}, {"replay/import", "replay_import"},
+    {"replay/run", "replay_run"}, {"replay/evaluate", "replay_evaluate"},
+    {"replay/calibrate", "replay_calibrate"}, {"replay/store", "replay_store"},
+    {"replay/report", "replay_report"}, {"src/stream", "stream"},
+    {"src/cli", "cli"}};
+
+const std::map<std::string, std::string> kLayerOfInclude{
+    {"common", "common"},   {"io", "io"},         {"model", "world"},   {"scene", "world"},
+    {"sensor", "world"},    {"metrics", "metrics"}, {"sim", "sim"},     {"synth", "synth"},
+    {"traffic", "traffic"}, {"replay/import", "replay_import"},       {"replay/run", "replay_run"},
+    {"replay/evaluate", "replay_evaluate"},     {"replay/calibrate", "replay_calibrate"},
+    {"replay/store", "replay_store"},           {"replay/report", "replay_report"},
+    {"stream", "stream"},   {"cli", "cli"}};
+
+// What each layer may use besides itself (the DEPS of rcsim_layer in CMakeLists.txt, closed).
+const std::map<std::string, std::set<std::string>> kMayUse{
+    {"common", {}},
+    {"io", {"common"}},
+    {"world", {"common"}},
+    {"metrics", {"common"}},
+    {"sim", {"common", "io", "world"}},
+    {"synth", {"common", "io", "world"}},  // never sim: the reference is independent of the model
+    {"traffic", {"common", "world"}},
+    {"replay_import", {"common", "io", "world"}},
+    {"replay_run", {"common", "io", "world", "metrics", "sim", "synth", "replay_import"}},
+    {"replay_evaluate", {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run"}},
+    {"replay_calibrate", {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run"}},
+    {"replay_store",
+     {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate"}},
+    {"replay_report",
+     {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
+      "replay_store"}},
+    {"stream", {"common", "io", "world", "sim", "replay_import"}},
+    {"cli",
+     {"common", "io", "world", "metrics", "sim", "synth", "traffic", "replay_import", "replay_run", "replay_evaluate",
+      "replay_calibrate", "replay_store", "replay_report", "stream"}}};
+
+std::string layer_of_include(const std::string& path) {
+  // The longest prefix wins: "replay/run/x.hpp" before "replay".
+  std::string best, layer;
+  for (const auto& [prefix, l] : kLayerOfInclude) {
+    if (path.rfind(prefix + "/", 0) == 0 && prefix.size() > best.size()) best = prefix, layer = l;
+  }
+  return layer;
+}
+
+TEST(Layering, EveryIncludeNamesItsOwnLayerOrOneBelow) {
+  const fs::path root = RCSIM_SOURCE_DIR;
+  const std::regex include_line(R"re(^\s*#\s*include\s+"([^"]+)")re");
+  int files = 0;
+  for (const auto& [dir, layer] : kLayerOfDir) {
+    ASSERT_TRUE(fs::is_directory(root / dir)) << dir;
+    for (const auto& entry : fs::directory_iterator(root / dir)) {
+      const auto ext = entry.path().extension();
+      if (ext != ".cpp" && ext != ".hpp") continue;
+      ++files;
+      std::ifstream in(entry.path());
+      std::string line;
+      for (int number = 1; std::getline(in, line); ++number) {
+        std::smatch m;
+        if (!std::regex_search(line, m, include_line)) continue;
+        const std::string used = layer_of_include(m[1]);
+        ASSERT_FALSE(used.empty()) << dir << "/" << entry.path().filename().string() << ":" << number
+                                   << ": includes \"" << m[1] << "\", which is in no layer";
+        EXPECT_TRUE(used == layer || kMayUse.at(layer).count(used))
+            << dir << "/" << entry.path().filename().string() << ":" << number << ": layer " << layer
+            << " includes \"" << m[1] << "\" of layer " << used;
+      }
+    }
+  }
+  EXPECT_GT(files, 100);
+}
+
+// Every source directory under src/, replay/ and metrics/ belongs to a layer.
+TEST(Layering, EverySourceDirectoryHasALayer) {
+  const fs::path root = RCSIM_SOURCE_DIR;
+  for (const char* top : {"src", "replay", "metrics"}) {
+    for (const auto& entry : fs::recursive_directory_iterator(root / top)) {
+      if (entry.path().extension() != ".cpp") continue;
+      const std::string dir = fs::relative(entry.path().parent_path(), root).string();
+      EXPECT_TRUE(kLayerOfDir.count(dir)) << dir << " (" << entry.path().filename().string() << ") is in no layer";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rcsim
