@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #include "cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
@@ -23,10 +22,11 @@ class CalibrateCli : public testing::ScratchDirTest {
   }
 };
 
-double gospa_of_replay_output(const std::string& output) {
-  std::smatch m;
-  EXPECT_TRUE(std::regex_search(output, m, std::regex("GOSPA mean ([0-9.]+) m"))) << output;
-  return m.empty() ? -1.0 : std::stod(m[1]);
+// The GOSPA mean of `rcsim replay ... --json` (stdout only).
+double gospa_of_replay(const std::string& args) {
+  const auto r = run_rcsim("replay " + args + " --json", false);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return nlohmann::json::parse(r.output).at("gospa_mean").get<double>();
 }
 
 TEST_F(CalibrateCli, FitsThenReplaysAndBenchesWithTheCalibration) {
@@ -40,13 +40,10 @@ TEST_F(CalibrateCli, FitsThenReplaysAndBenchesWithTheCalibration) {
   const double after = index["recordings"][0]["gospa_after_m"].get<double>();
   EXPECT_LT(after, before);
 
-  // replay's figure (printed to 3 decimals) is the fit's, with and without the calibration.
+  // replay's figure is the fit's, with and without the calibration.
   const std::string db = (dir_ / "r.sqlite").string();
-  const auto plain = run_rcsim("replay " + recording("front_approach") + " --db " + db + " --seed 1");
-  const auto calibrated = run_rcsim("replay " + recording("front_approach") + " --db " + db + " --seed 1 --calibration " + out);
-  ASSERT_EQ(calibrated.exit_code, 0) << calibrated.output;
-  EXPECT_NEAR(gospa_of_replay_output(plain.output), before, 6e-4);
-  EXPECT_NEAR(gospa_of_replay_output(calibrated.output), after, 6e-4);
+  EXPECT_NEAR(gospa_of_replay(recording("front_approach") + " --db " + db + " --seed 1"), before, 1e-9);
+  EXPECT_NEAR(gospa_of_replay(recording("front_approach") + " --db " + db + " --seed 1 --calibration " + out), after, 1e-9);
 
   const auto bench = run_rcsim("bench " + recording("front_approach") + " " + recording("standstill_1m") +
                                " --no-reference --levels full --min-cpu-s 0 --calibration " + out);
