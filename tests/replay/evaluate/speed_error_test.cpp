@@ -1,12 +1,12 @@
-// rcsim bench's core (replay/bench_run.hpp, bench_store.hpp): rows against replay, the reference
-// and noise-floor rows, hand-computed summaries and goals, storage and the v1 -> v2 migration.
+// rcsim bench's core (replay/evaluate/speed_error.hpp): rows against replay, the reference and
+// noise-floor rows, hand-computed summaries and goals.
 #include "replay/evaluate/speed_error.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "replay/store/speed_error_store.hpp"
+#include "replay/evaluate/hand_bench_rows.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/run/simulated_source.hpp"
 #include "scratch_dir.hpp"
@@ -112,39 +112,6 @@ TEST(BenchRun, ReferenceAndNoiseFloorRows) {
   EXPECT_GT(rows[2].sensor_cycles_per_cpu_s, 100.0 * rows[0].sensor_cycles_per_cpu_s);
 }
 
-BenchRow hand_row(int recording, const std::string& level, long long cycles, double cpu_s, double gospa_m, long long rec,
-                  long long sim) {
-  BenchRow r;
-  r.recording = recording;
-  r.recording_name = "rec" + std::to_string(recording);
-  r.level = level;
-  r.sensor_cycles = cycles;
-  r.cpu_s = cpu_s;
-  r.sensor_cycles_per_cpu_s = cpu_s > 0.0 ? static_cast<double>(cycles) / cpu_s : -1.0;
-  r.gospa_mean_m = gospa_m;
-  r.targets_recorded = rec;
-  r.targets_simulated = sim;
-  r.targets_per_cycle_ratio = rec > 0 ? static_cast<double>(sim) / static_cast<double>(rec) : -1.0;
-  return r;
-}
-
-std::vector<BenchRow> hand_rows() {
-  std::vector<BenchRow> rows{
-      hand_row(0, "reference", 100, 1.0, 0.6, 50, 50),  hand_row(0, "noise_floor", 100, -1.0, 0.4, 50, 50),
-      hand_row(0, "full", 100, 1e-4, 0.5, 50, 60),      hand_row(0, "points_only", 100, 5e-5, 0.9, 50, 40),
-      hand_row(1, "reference", 300, 2.0, 1.0, 90, 0),   hand_row(1, "noise_floor", 300, -1.0, 1.0, 90, 90),
-      hand_row(1, "full", 300, 2e-4, 1.6, 0, 10),       hand_row(1, "points_only", 300, 1e-4, 1.5, 90, 45)};
-  rows[2].has_latency = true;
-  rows[2].latency_difference_s = -0.2;
-  rows[6].has_latency = true;
-  rows[6].latency_difference_s = 0.1;
-  rows[2].latency_pairs = 2;
-  rows[6].latency_pairs = 1;
-  rows[2].merge_recorded = 5, rows[2].merge_found = 3, rows[2].merge_missed = 2, rows[2].merge_spurious = 1;
-  rows[6].merge_recorded = 1, rows[6].merge_found = 1, rows[6].merge_missed = 0, rows[6].merge_spurious = 4;
-  return rows;
-}
-
 TEST(BenchRun, LevelSummariesByHand) {
   const auto levels = summarise_levels(hand_rows());
   ASSERT_EQ(levels.size(), 4u);
@@ -191,56 +158,6 @@ TEST(BenchRun, GoalsByHand) {
   rows.erase(rows.begin() + 1);  // a noise floor missing
   rows.erase(rows.begin() + 4);
   EXPECT_FALSE(evaluate_goals(rows).evaluable);
-}
-
-class BenchStore : public testing::ScratchDirTest {
- protected:
-  BenchStore() : ScratchDirTest("bench_store") {}
-};
-
-TEST_F(BenchStore, RowsWithNullsAndIncreasingIds) {
-  const auto db = open_report_database((dir_ / "b.sqlite").string(), true);
-  BenchOptions options;
-  options.seed = 9;
-  const auto rows = hand_rows();
-  const std::int64_t first = store_bench(*db, options, "test machine", rows);
-  const std::int64_t second = store_bench(*db, options, "test machine", rows);
-  EXPECT_EQ(second, first + 1);
-  EXPECT_EQ(db->execAndGet("SELECT count(*) FROM bench_rows").getInt(), 16);
-  SQLite::Statement q(*db, "SELECT cpu_s IS NULL, sensor_cycles_per_cpu_s IS NULL, gospa_mean_m, targets_per_cycle_ratio IS NULL, "
-                           "latency_difference_s FROM bench_rows WHERE bench_id = ? AND recording = ? AND level = ?");
-  q.bind(1, first);
-  q.bind(2, 1);
-  q.bind(3, "noise_floor");
-  ASSERT_TRUE(q.executeStep());
-  EXPECT_EQ(q.getColumn(0).getInt(), 1);
-  EXPECT_EQ(q.getColumn(1).getInt(), 1);
-  EXPECT_DOUBLE_EQ(q.getColumn(2).getDouble(), 1.0);
-  EXPECT_EQ(q.getColumn(3).getInt(), 0);
-  EXPECT_TRUE(q.getColumn(4).isNull());
-  q.reset();
-  q.bind(1, first);
-  q.bind(2, 1);
-  q.bind(3, "full");
-  ASSERT_TRUE(q.executeStep());
-  EXPECT_EQ(q.getColumn(3).getInt(), 1);  // nothing recorded: no ratio
-  EXPECT_DOUBLE_EQ(q.getColumn(4).getDouble(), 0.1);
-  EXPECT_EQ(db->execAndGet("SELECT seed FROM bench_runs WHERE bench_id = " + std::to_string(first)).getInt(), 9);
-}
-
-TEST_F(BenchStore, VersionOneDatabaseIsMigratedAndKeepsItsRuns) {
-  const std::string path = (dir_ / "v1.sqlite").string();
-  {
-    const auto db = open_report_database(path, true);
-    db->exec("INSERT INTO runs (recording_name, recording_dir, recording_checksum, recording_source, cycle_time_s, "
-             "cycles, seed, level, parameters, rcsim_version, created_utc) "
-             "VALUES ('old', '/x', '0000000000000000', '{}', 0.04, 1, 0, 'tracks', '{}', '0.0.1', '2026-01-01T00:00:00Z')");
-    db->exec("DROP TABLE bench_rows; DROP TABLE bench_runs; PRAGMA user_version = 1");  // as version 1 wrote it
-  }
-  const auto db = open_report_database(path, false);
-  EXPECT_EQ(db->execAndGet("PRAGMA user_version").getInt(), 2);
-  EXPECT_EQ(db->execAndGet("SELECT count(*) FROM runs").getInt(), 1);
-  EXPECT_EQ(store_bench(*db, BenchOptions{}, "m", hand_rows()), 1);
 }
 
 }  // namespace
