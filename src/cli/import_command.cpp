@@ -1,26 +1,60 @@
 // rcsim import RECORDING_DIR -o SCENE.json: a scene from a recording's ego log and annotated boxes.
+// rcsim import --from DATASET RAW_DIR -o RECORDING_DIR: a recording from a real dataset's layout.
+#include <fmt/format.h>
 #include <iostream>
 
 #include "cli/commands.hpp"
 #include "cli/replay_options.hpp"
 #include "io/recording.hpp"
+#include "replay/import/dataset_importer.hpp"
 #include "replay/import/importer.hpp"
 
 namespace rcsim::cli {
 
+namespace {
+
+void import_dataset(const std::string& dataset, const std::string& raw_dir, const std::string& output) {
+  const replay::DatasetImporter& importer = replay::find_dataset_importer(dataset);
+  const replay::DatasetRecording imported = importer.import(raw_dir);
+  for (const auto& warning : imported.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
+  write_recording(output, imported.recording, imported.extra_files);
+  const Recording& rec = imported.recording;
+  std::cout << fmt::format("{}: {} cycles, {} sensors, {} objects, {} targets; written to {}\n", rec.name,
+                           rec.cycle_count(), rec.sensors.size(), rec.objects.size(), rec.targets.size(), output);
+}
+
+}  // namespace
+
 void add_import_command(CLI::App& app) {
   struct Args {
-    std::string recording_dir;
+    std::string input_dir;
     std::string output;
+    std::string dataset;
     ImportArgs import;
   };
   auto args = std::make_shared<Args>();
-  auto* cmd = app.add_subcommand("import", "a scene from a recording's ego log and annotated object boxes");
-  cmd->add_option("RECORDING_DIR", args->recording_dir, "recording directory (rcsim-recording)")->required();
-  cmd->add_option("-o,--output", args->output, "scene file to write (rcsim-scene)")->required();
+  std::string datasets;
+  for (const auto& importer : replay::dataset_importers()) {
+    datasets += fmt::format("\n  {}: {}", importer.name, importer.description);
+  }
+  auto* cmd = app.add_subcommand(
+      "import",
+      "a scene from a recording's ego log and annotated object boxes; with --from, a recording from a real "
+      "dataset's own layout");
+  cmd->add_option("INPUT_DIR", args->input_dir,
+                  "recording directory (rcsim-recording); with --from, the dataset's directory")
+      ->required();
+  cmd->add_option("-o,--output", args->output,
+                  "scene file to write (rcsim-scene); with --from, the recording directory to write")
+      ->required();
+  cmd->add_option("--from", args->dataset, "import a real dataset (docs/importers.md):" + datasets);
   add_import_options(*cmd, args->import);
   cmd->callback([args] {
-    const Recording recording = read_recording(args->recording_dir);
+    if (!args->dataset.empty()) {
+      import_dataset(args->dataset, args->input_dir, args->output);
+      return;
+    }
+    const Recording recording = read_recording(args->input_dir);
     const replay::ImportedScene scene =
         replay::import_recording(recording, ModelLibrary::builtin(), import_options(args->import));
     for (const auto& warning : scene.warnings) std::cerr << "rcsim: warning: " << warning << '\n';

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "io/recording.hpp"
 
 #include <cerrno>
@@ -210,7 +211,7 @@ Recording read_recording(const fs::path& dir) {
   return rec;
 }
 
-void write_recording(const fs::path& dir, const Recording& rec) {
+void write_recording(const fs::path& dir, const Recording& rec, const std::map<std::string, std::string>& extra_files) {
   const fs::path target = fs::absolute(dir).lexically_normal();
   const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
   const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
@@ -241,13 +242,18 @@ void write_recording(const fs::path& dir, const Recording& rec) {
     }
     write_file(temp / "objects.csv", objects);
 
-    std::string targets = "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db\n";
+    // The id column only when the sensors report track ids (raw detections have none).
+    const bool ids = std::any_of(rec.targets.begin(), rec.targets.end(), [](const RecordedTarget& t) { return t.id >= 0; });
+    std::string targets = ids ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db\n"
+                              : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db\n";
     for (const auto& t : rec.targets) {
-      fmt::format_to(std::back_inserter(targets), "{:.6f},{},{},{},{:.4f},{:.6f},{:.4f},{:.3f}\n", t.t_s, t.cycle,
-                     csv_field(rec.sensors[t.sensor].id), t.id, t.range_m, t.azimuth_rad, t.range_rate_mps,
-                     t.amplitude_db);
+      fmt::format_to(std::back_inserter(targets), "{:.6f},{},{},", t.t_s, t.cycle, csv_field(rec.sensors[t.sensor].id));
+      if (ids) fmt::format_to(std::back_inserter(targets), "{},", t.id);
+      fmt::format_to(std::back_inserter(targets), "{:.4f},{:.6f},{:.4f},{:.3f}\n", t.range_m, t.azimuth_rad,
+                     t.range_rate_mps, t.amplitude_db);
     }
     write_file(temp / "targets.csv", targets);
+    for (const auto& [file, content] : extra_files) write_file(temp / fs::path(file).filename(), content);
 
     // A directory cannot be renamed over a non-empty one: move the old one aside first.
     const fs::path old = parent / fmt::format(".{}.old.{}", name.string(), ::getpid());

@@ -4,6 +4,7 @@
 // targets.csv (what the sensors reported). Read once, validated, then read-only.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -65,7 +66,10 @@ Recording read_recording(const std::filesystem::path& dir);
 
 // Writes a recording directory atomically: into a temporary sibling directory, then renamed into
 // place (replacing an earlier recording of that name only once the new one is complete).
-void write_recording(const std::filesystem::path& dir, const Recording& recording);
+// `extra_files` (name -> content) go into the same directory, e.g. a sensor configuration file
+// that a sensor's `type` names.
+void write_recording(const std::filesystem::path& dir, const Recording& recording,
+                     const std::map<std::string, std::string>& extra_files = {});
 
 // FNV-1a 64-bit hash of bytes, chained; identifies a recording's content (not a security hash).
 std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t hash = 0xcbf29ce484222325ULL);

@@ -1,0 +1,413 @@
+#include "replay/import/aimotive_importer.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "common/angles.hpp"
+#include "common/embedded_data.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+#include "replay/import/annotation_smoothing.hpp"
+#include "replay/import/doppler_ego_motion.hpp"
+
+namespace rcsim::replay {
+
+namespace fs = std::filesystem;
+
+namespace aimotive {
+
+namespace {
+
+constexpr const char* kBoxDir = "dynamic/box/3d_body";
+constexpr const char* kRadarDir = "sensor/radar";
+constexpr const char* kCalibrationFile = "sensor/calibration/calibration.json";
+
+bool is_sequence(const fs::path& dir) {
+  return fs::is_directory(dir / kBoxDir) && fs::is_directory(dir / kRadarDir) && fs::is_regular_file(dir / kCalibrationFile);
+}
+
+std::int64_t parse_timestamp_ns(const JsonField& root) {
+  const auto found = root.json().find("Timestamp");
+  if (found == root.json().end()) root.fail("Timestamp", "missing");
+  const nlohmann::json& value = *found;
+  std::int64_t ns = 0;
+  if (value.is_number_integer()) return value.get<std::int64_t>();
+  const std::string text = value.is_string() ? value.get<std::string>() : std::string();
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), ns);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() || ns < 0) {
+    root.fail("Timestamp", "must be a non-negative integer of nanoseconds");
+  }
+  return ns;
+}
+
+Eigen::Matrix4d read_matrix4(const JsonField& sensor, std::string_view key) {
+  const std::vector<JsonField> rows = sensor.array(key);
+  if (rows.size() != 4) sensor.fail(key, "must be a 4 x 4 matrix");
+  Eigen::Matrix4d m;
+  for (int r = 0; r < 4; ++r) {
+    const nlohmann::json& row = rows[static_cast<std::size_t>(r)].json();
+    if (!row.is_array() || row.size() != 4) sensor.fail(key, fmt::format("row {} must hold 4 numbers", r));
+    for (int c = 0; c < 4; ++c) {
+      const auto& v = row[static_cast<std::size_t>(c)];
+      if (!v.is_number() || !std::isfinite(v.get<double>())) sensor.fail(key, fmt::format("element ({}, {}) is not a finite number", r, c));
+      m(r, c) = v.get<double>();
+    }
+  }
+  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+  if ((R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3 || R.determinant() < 0.0 ||
+      m.row(3) != Eigen::RowVector4d(0.0, 0.0, 0.0, 1.0)) {
+    sensor.fail(key, "is no rigid transform (rotation not orthonormal, or last row not 0 0 0 1)");
+  }
+  return m;
+}
+
+}  // namespace
+
+fs::path find_sequence(const fs::path& raw_dir) {
+  if (!fs::is_directory(raw_dir)) throw InputError(raw_dir.string(), "", "not a directory");
+  if (is_sequence(raw_dir)) return raw_dir;
+  std::vector<fs::path> found;
+  for (auto it = fs::recursive_directory_iterator(raw_dir); it != fs::recursive_directory_iterator(); ++it) {
+    if (it.depth() > 5) it.disable_recursion_pending();
+    if (it->is_directory() && is_sequence(it->path())) {
+      found.push_back(it->path());
+      it.disable_recursion_pending();
+    }
+  }
+  if (found.empty()) {
+    throw InputError(raw_dir.string(), "",
+                     fmt::format("no aiMotive sequence here (a directory with {}, {}/ and {})", kBoxDir, kRadarDir,
+                                 kCalibrationFile));
+  }
+  if (found.size() > 1) {
+    std::sort(found.begin(), found.end());
+    throw InputError(raw_dir.string(), "",
+                     fmt::format("{} sequences here (first {}): give one sequence directory, one recording each",
+                                 found.size(), found.front().string()));
+  }
+  return found.front();
+}
+
+std::vector<RadarMount> read_radar_mounts(const fs::path& sequence) {
+  const std::string path = (sequence / kCalibrationFile).string();
+  const nlohmann::json json = parse_json_file(path);
+  const JsonField root(json, path, "");
+  std::vector<std::string> labels;
+  for (const auto& entry : fs::directory_iterator(sequence / kRadarDir)) {
+    if (entry.is_directory()) labels.push_back(entry.path().filename().string());
+  }
+  std::sort(labels.begin(), labels.end());
+  if (labels.empty()) throw InputError((sequence / kRadarDir).string(), "", "no radar directories");
+  std::vector<RadarMount> mounts;
+  for (const std::string& label : labels) {
+    const JsonField sensor = root.member(label);
+    RadarMount mount;
+    mount.label = label;
+    mount.T_body_sensor = read_matrix4(sensor, "RT_body_from_sensor");
+    const Eigen::Matrix4d& T = mount.T_body_sensor;
+    mount.X_VS = {T(0, 3), T(1, 3), std::atan2(T(1, 0), T(0, 0))};
+    mounts.push_back(mount);
+  }
+  return mounts;
+}
+
+std::vector<Keyframe> list_keyframes(const fs::path& sequence) {
+  std::vector<Keyframe> frames;
+  for (const auto& entry : fs::directory_iterator(sequence / kBoxDir)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".json" || name.rfind("frame_", 0) != 0) continue;
+    Keyframe k;
+    k.number = entry.path().stem().string().substr(6);
+    k.box_file = entry.path();
+    frames.push_back(k);
+  }
+  std::sort(frames.begin(), frames.end(), [](const Keyframe& a, const Keyframe& b) { return a.number < b.number; });
+  if (frames.size() < 2) throw InputError((sequence / kBoxDir).string(), "", "fewer than two keyframes (frame_N.json)");
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const nlohmann::json json = parse_json_file(frames[i].box_file.string());
+    frames[i].timestamp_ns = parse_timestamp_ns(JsonField(json, frames[i].box_file.string(), ""));
+    if (i > 0 && frames[i].timestamp_ns <= frames[i - 1].timestamp_ns) {
+      throw InputError(frames[i].box_file.string(), "Timestamp",
+                       "not after the previous keyframe's (" + frames[i - 1].box_file.filename().string() + ")");
+    }
+  }
+  return frames;
+}
+
+std::vector<RadarDetection> read_radar_file(const fs::path& path) {
+  if (!fs::is_regular_file(path)) throw InputError(path.string(), "", "missing: every keyframe needs every radar's file");
+  const nlohmann::json json = parse_json_file(path.string());
+  const JsonField root(json, path.string(), "");
+  std::vector<RadarDetection> detections;
+  for (const JsonField& t : root.array("targets")) {
+    RadarDetection d{t.number("range"), t.number("azimuth"), t.number("elevation"), t.number("speed"),
+                     t.number("rcs"), t.number("power"), t.number("noise")};
+    if (d.range_m < 0.0) t.fail("range", "must not be negative");
+    if (std::abs(d.azimuth_rad) > kPi || std::abs(d.elevation_rad) > kPi / 2) t.fail("azimuth", "angles must be in radians");
+    detections.push_back(d);
+  }
+  return detections;
+}
+
+RecordedTarget planar_target(const RadarDetection& d, const RadarMount& mount) {
+  const double c = std::cos(d.elevation_rad);
+  const Eigen::Vector4d p_S(d.range_m * c * std::cos(d.azimuth_rad), d.range_m * c * std::sin(d.azimuth_rad),
+                            d.range_m * std::sin(d.elevation_rad), 1.0);
+  const Eigen::Vector4d p_B = mount.T_body_sensor * p_S;
+  const Vec2 p_ST_S = rotate(-mount.X_VS.yaw_rad, Vec2(p_B.x(), p_B.y()) - mount.X_VS.translation());
+  RecordedTarget t;
+  t.range_m = p_ST_S.norm();
+  t.azimuth_rad = std::atan2(p_ST_S.y(), p_ST_S.x());
+  t.range_rate_mps = d.speed_mps;
+  t.amplitude_db = d.power_db - d.noise_db;
+  return t;
+}
+
+}  // namespace aimotive
+
+namespace {
+
+using aimotive::Keyframe;
+using aimotive::RadarDetection;
+using aimotive::RadarMount;
+
+// The dataset's object types as object models; others are left out (with a warning).
+const std::map<std::string, std::string>& model_of_type() {
+  static const std::map<std::string, std::string> models{
+      {"CAR", "passenger_car"}, {"VAN", "passenger_car"}, {"PICKUP", "passenger_car"},
+      {"TRUCK", "truck_trailer"}, {"BUS", "truck_trailer"}};
+  return models;
+}
+
+// "CAR 04" -> "car_04".
+std::string object_id(std::string actor) {
+  for (char& ch : actor) ch = ch == ' ' ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return actor;
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// One annotated box of one keyframe, as the dataset gives it: in the body (vehicle) frame.
+struct BodyBox {
+  std::string id, model;
+  Pose2 X_VO;
+  double length_m = 0.0, width_m = 0.0;
+  Vec2 v_rel_V = Vec2::Zero();  // the box's velocity relative to the ego, body frame
+};
+
+// boxes[k]: the boxes of keyframe k that have an object model (the others counted in warnings).
+std::vector<std::vector<BodyBox>> read_body_boxes(const std::vector<Keyframe>& frames, std::vector<std::string>& warnings) {
+  std::vector<std::vector<BodyBox>> boxes(frames.size());
+  std::map<std::string, std::string> model_of_id;
+  std::map<std::string, int> skipped;  // type -> boxes left out
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const std::string file = frames[k].box_file.string();
+    const nlohmann::json json = parse_json_file(file);
+    const JsonField root(json, file, "");
+    for (const JsonField& o : root.array("CapturedObjects")) {
+      const std::string type = o.string("ObjectType");
+      const auto model = model_of_type().find(type);
+      if (model == model_of_type().end()) {
+        ++skipped[type];
+        continue;
+      }
+      BodyBox box;
+      box.id = object_id(o.string("ActorName"));
+      box.model = model->second;
+      const double qw = o.number("BoundingBox3D Orientation Quat W"), qx = o.number("BoundingBox3D Orientation Quat X"),
+                   qy = o.number("BoundingBox3D Orientation Quat Y"), qz = o.number("BoundingBox3D Orientation Quat Z");
+      box.X_VO = {o.number("BoundingBox3D Origin X"), o.number("BoundingBox3D Origin Y"),
+                  std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))};
+      box.length_m = o.number("BoundingBox3D Extent X");
+      box.width_m = o.number("BoundingBox3D Extent Y");
+      if (!(box.length_m > 0.0) || !(box.width_m > 0.0)) o.fail("BoundingBox3D Extent X", "box extents must be positive");
+      box.v_rel_V = {o.number("Relative Velocity X"), o.number("Relative Velocity Y")};
+      const auto [known, added] = model_of_id.emplace(box.id, box.model);
+      if (!added && known->second != box.model) {
+        o.fail("ObjectType", "'" + type + "' for " + box.id + ", which earlier keyframes call a " + known->second);
+      }
+      boxes[k].push_back(std::move(box));
+    }
+  }
+  for (const auto& [type, count] : skipped) {
+    warnings.push_back(fmt::format("{} boxes of type {} left out: no object model for it", count, type));
+  }
+  return boxes;
+}
+
+// The ego's yaw rate from the annotated vehicles' headings in the body frame: vehicles follow the
+// road, so their headings seen from the ego drift by minus the ego's yaw rate. Per object the
+// heading's slope by local quadratic regression; per keyframe the median over the objects.
+// Empty where fewer than two objects are annotated for `min_cycles` keyframes or more.
+std::vector<double> yaw_rate_from_box_headings(const std::vector<std::vector<BodyBox>>& boxes,
+                                               const std::vector<double>& t_s, double half_window_s) {
+  constexpr std::size_t kMinCycles = 5;
+  std::map<std::string, std::vector<std::pair<std::size_t, double>>> headings;  // id -> (keyframe, yaw_VO)
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    for (const BodyBox& b : boxes[k]) headings[b.id].emplace_back(k, b.X_VO.yaw_rad);
+  }
+  std::vector<std::vector<double>> slopes(boxes.size());
+  for (const auto& [id, series] : headings) {
+    if (series.size() < kMinCycles) continue;
+    std::vector<double> t, yaw;
+    for (const auto& [k, yaw_rad] : series) {
+      t.push_back(t_s[k]);
+      // Unwrapped against the previous sample, so that a heading near pi does not jump.
+      yaw.push_back(yaw.empty() ? yaw_rad : yaw.back() + angle_difference_rad(yaw_rad, yaw.back()));
+    }
+    const auto fits = smooth_local_quadratic(t, yaw, half_window_s);
+    for (std::size_t i = 0; i < series.size(); ++i) slopes[series[i].first].push_back(fits[i].slope_per_s);
+  }
+  std::vector<double> yaw_rate_radps(boxes.size());
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    if (slopes[k].size() < 2) return {};
+    yaw_rate_radps[k] = 0.0 - median(slopes[k]);  // never -0
+  }
+  return yaw_rate_radps;
+}
+
+// The boxes into the world through the ego pose of their keyframe; sizes the median over keyframes.
+void add_world_boxes(const std::vector<std::vector<BodyBox>>& boxes, const std::vector<double>& t_s, Recording& rec) {
+  std::map<std::string, std::size_t> index;  // object id -> position in rec.objects
+  std::map<std::string, std::vector<double>> lengths, widths;
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const EgoSample& ego = rec.ego[k];
+    const Pose2 X_WV{ego.x_m, ego.y_m, ego.yaw_rad};
+    for (const BodyBox& b : boxes[k]) {
+      const auto [it, added] = index.emplace(b.id, rec.objects.size());
+      if (added) {
+        rec.objects.push_back({b.id, b.model, 0.0, 0.0});
+        rec.boxes.emplace_back();
+      }
+      // The box's own velocity: the ego's at that point (v + w x p) plus the relative one.
+      const Vec2 p_VO_V = b.X_VO.translation();
+      const Vec2 v_VO_V = Vec2(ego.speed_mps, 0.0) + ego.yaw_rate_radps * Vec2(-p_VO_V.y(), p_VO_V.x()) + b.v_rel_V;
+      const Pose2 X_WO = compose(X_WV, b.X_VO);
+      rec.boxes[it->second].push_back({t_s[k], X_WO.x_m, X_WO.y_m, X_WO.yaw_rad,
+                                       v_VO_V.dot(Vec2(std::cos(b.X_VO.yaw_rad), std::sin(b.X_VO.yaw_rad))), 0});
+      lengths[b.id].push_back(b.length_m);
+      widths[b.id].push_back(b.width_m);
+    }
+  }
+  for (RecordingObject& object : rec.objects) {
+    object.length_m = median(lengths[object.id]);
+    object.width_m = median(widths[object.id]);
+  }
+}
+
+// A sensor configuration for these radars until one is fitted (docs/importers.md): the paper's
+// srr24 with the carrier, cycle time, view field and range of what the radar reported.
+std::string placeholder_sensor_config(const std::string& name, double cycle_time_s, double azimuth_half_rad,
+                                      double max_range_m) {
+  std::string srr24;
+  for (const auto& f : embedded_sensor_configs()) {
+    if (f.name == "srr24") srr24 = std::string(f.text);
+  }
+  nlohmann::ordered_json json = nlohmann::ordered_json::parse(srr24);
+  json["name"] = name;
+  json["description"] =
+      "Placeholder for the aiMotive long-range radars made by rcsim import --from aimotive: carrier, cycle time, "
+      "view field and maximum range from the recording; amplitude law, cells, noise and tracker copied from srr24, "
+      "not fitted.";
+  json["carrier_frequency_hz"] = 77.0e9;
+  json["cycle_time_s"] = std::round(cycle_time_s * 1e6) / 1e6;
+  json["field_of_view"]["azimuth_half_deg"] = std::ceil(rad_to_deg(azimuth_half_rad));
+  json["field_of_view"]["max_range_m"] = 5.0 * std::ceil(max_range_m / 5.0);
+  return json.dump(2) + "\n";
+}
+
+}  // namespace
+
+DatasetRecording import_aimotive(const fs::path& raw_dir) {
+  const fs::path sequence = aimotive::find_sequence(raw_dir);
+  const std::vector<RadarMount> mounts = aimotive::read_radar_mounts(sequence);
+  const std::vector<Keyframe> frames = aimotive::list_keyframes(sequence);
+  DatasetRecording out;
+  Recording& rec = out.recording;
+  rec.name = sequence.filename().string();
+
+  // detections[k][s]: radar s at keyframe k.
+  std::vector<std::vector<std::vector<RadarDetection>>> detections(frames.size());
+  std::vector<double> t_s(frames.size());
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    t_s[k] = 1e-9 * static_cast<double>(frames[k].timestamp_ns - frames.front().timestamp_ns);
+    for (const RadarMount& m : mounts) {
+      detections[k].push_back(aimotive::read_radar_file(sequence / "sensor/radar" / m.label /
+                                                        (m.label + "_" + frames[k].number + ".json")));
+    }
+  }
+  std::vector<double> steps_s;
+  for (std::size_t k = 1; k < t_s.size(); ++k) steps_s.push_back(t_s[k] - t_s[k - 1]);
+  rec.cycle_time_s = median(steps_s);
+
+  // The ego motion from the stationary world's Doppler.
+  std::vector<std::vector<std::vector<DopplerTarget>>> doppler(frames.size());
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    for (const auto& radar : detections[k]) {
+      auto& list = doppler[k].emplace_back();
+      for (const RadarDetection& d : radar) list.push_back({d.azimuth_rad, d.elevation_rad, d.speed_mps});
+    }
+  }
+  std::vector<Pose2> X_VS;
+  std::vector<std::string> labels;
+  for (const RadarMount& m : mounts) X_VS.push_back(m.X_VS), labels.push_back(m.label);
+  // The boxes first: their heading drift gives the yaw rate (the Doppler one is only reported).
+  const std::vector<std::vector<BodyBox>> boxes = read_body_boxes(frames, out.warnings);
+  const std::vector<double> yaw_rate_radps = yaw_rate_from_box_headings(boxes, t_s, 0.5);
+  DopplerEgoTrack ego = ego_track_from_doppler(t_s, doppler, X_VS, labels,
+                                               yaw_rate_radps.empty() ? nullptr : &yaw_rate_radps);
+  if (ego.samples.empty()) {
+    throw InputError((sequence / "sensor/radar").string(), "",
+                     "no cycle has enough stationary targets to estimate the ego motion from their Doppler");
+  }
+  rec.ego = std::move(ego.samples);
+  out.warnings.insert(out.warnings.end(), ego.warnings.begin(), ego.warnings.end());
+
+  double azimuth_half_rad = 0.0, max_range_m = 0.0;
+  for (std::size_t s = 0; s < mounts.size(); ++s) {
+    rec.sensors.push_back({mounts[s].label, "sensor_aimotive_lrr.json", mounts[s].X_VS.x_m, mounts[s].X_VS.y_m,
+                           mounts[s].X_VS.yaw_rad});
+  }
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    for (std::size_t s = 0; s < mounts.size(); ++s) {
+      for (const RadarDetection& d : detections[k][s]) {
+        RecordedTarget t = aimotive::planar_target(d, mounts[s]);
+        t.t_s = t_s[k];
+        t.cycle = static_cast<int>(k);
+        t.sensor = static_cast<int>(s);
+        azimuth_half_rad = std::max(azimuth_half_rad, std::abs(t.azimuth_rad));
+        max_range_m = std::max(max_range_m, t.range_m);
+        rec.targets.push_back(t);
+      }
+    }
+  }
+  add_world_boxes(boxes, t_s, rec);
+  out.extra_files["sensor_aimotive_lrr.json"] =
+      placeholder_sensor_config("aimotive_lrr_placeholder", rec.cycle_time_s, azimuth_half_rad, max_range_m);
+
+  rec.description = fmt::format(
+      "aiMotive Multimodal Dataset sequence {}: {} keyframes at {:.1f} Hz, radars {}, {} annotated objects; "
+      "ego motion estimated from the radars' Doppler (no ego log)",
+      rec.name, frames.size(), 1.0 / rec.cycle_time_s, fmt::join(labels, " and "), rec.objects.size());
+  rec.source = {{"dataset", "aiMotive Multimodal Dataset (Matuszka et al. 2022, arXiv:2211.09445)"},
+                {"licence", "CC BY-NC-SA 4.0"},
+                {"importer", "rcsim import --from aimotive"},
+                {"sequence", rec.name},
+                {"first_timestamp_ns", frames.front().timestamp_ns},
+                {"amplitude_db", "power - noise (SNR) of each detection"},
+                {"ego_motion", ego.report}};
+  return out;
+}
+
+}  // namespace rcsim::replay

@@ -1,0 +1,32 @@
+#pragma once
+// Importers of real datasets (`rcsim import --from DATASET RAW_DIR -o RECORDING_DIR`): each turns
+// one dataset's own layout into an rcsim recording (schemas/recording.md). One file per dataset
+// behind this interface; docs/importers.md says how to add one for your own logs.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/recording.hpp"
+
+namespace rcsim::replay {
+
+struct DatasetRecording {
+  Recording recording;
+  std::map<std::string, std::string> extra_files;  // written beside it (sensor configurations)
+  std::vector<std::string> warnings;               // what a person should know (skipped objects, ...)
+};
+
+struct DatasetImporter {
+  std::string_view name;         // the value of --from
+  std::string_view description;  // one line for --help and docs
+  DatasetRecording (*import)(const std::filesystem::path& raw_dir);
+};
+
+// Every importer, by name.
+const std::vector<DatasetImporter>& dataset_importers();
+// The importer of that name; an InputError listing the known ones otherwise.
+const DatasetImporter& find_dataset_importer(std::string_view name);
+
+}  // namespace rcsim::replay
