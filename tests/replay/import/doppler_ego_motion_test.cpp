@@ -1,0 +1,93 @@
+// Ego motion from the stationary world's Doppler (replay/import/doppler_ego_motion.hpp), on
+// targets computed by hand from v_r = -cos(el) (v_Sx cos(az) + v_Sy sin(az)) (Kellner et al. 2013):
+// the fit recovers the sensor velocity and rejects moving targets; two sensors give speed and
+// yaw rate; one sensor alone gives the speed; the track integrates the pose.
+#include "replay/import/doppler_ego_motion.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace rcsim::replay {
+namespace {
+
+// The velocity over the ground of a sensor mounted at X_VS on a vehicle with speed v and yaw
+// rate w (no lateral speed at the origin), in the sensor's frame.
+Vec2 sensor_velocity_S(const Pose2& X_VS, double v_mps, double w_radps) {
+  return rotate(-X_VS.yaw_rad, Vec2(v_mps - w_radps * X_VS.y_m, w_radps * X_VS.x_m));
+}
+
+// Stationary targets over the view field, and `moving` targets with their own radial speeds.
+std::vector<DopplerTarget> targets_for(const Vec2& v_S_S, int stationary, int moving) {
+  std::vector<DopplerTarget> targets;
+  for (int i = 0; i < stationary; ++i) {
+    const double az = -0.3 + 0.6 * i / (stationary - 1), el = 0.01 * (i % 3);
+    targets.push_back({az, el, -std::cos(el) * (v_S_S.x() * std::cos(az) + v_S_S.y() * std::sin(az))});
+  }
+  for (int i = 0; i < moving; ++i) targets.push_back({0.05 * i, 0.0, -2.0 - 1.5 * i});  // cars, not the world
+  return targets;
+}
+
+TEST(DopplerEgoMotion, OneSensorsVelocityAndItsStationaryTargets) {
+  const Vec2 v_S_S(29.9, -0.4);
+  const auto targets = targets_for(v_S_S, 20, 6);
+  const SensorVelocityFit fit = fit_sensor_velocity(targets, {});
+  ASSERT_TRUE(fit.valid);
+  EXPECT_NEAR(fit.v_S_S.x(), 29.9, 1e-9);
+  EXPECT_NEAR(fit.v_S_S.y(), -0.4, 1e-9);
+  ASSERT_EQ(fit.inliers.size(), 20u);  // exactly the stationary ones
+  EXPECT_EQ(fit.inliers.back(), 19u);
+  EXPECT_NEAR(fit.residual_rms_mps, 0.0, 1e-9);
+}
+
+TEST(DopplerEgoMotion, TooFewStationaryTargetsIsNoFit) {
+  EXPECT_FALSE(fit_sensor_velocity(targets_for(Vec2(10.0, 0.0), 3, 0), {}).valid);
+  EXPECT_FALSE(fit_sensor_velocity({}, {}).valid);
+}
+
+TEST(DopplerEgoMotion, TwoSensorsGiveSpeedAndYawRate) {
+  const std::vector<Pose2> X_VS{{3.8, 0.0, -0.012}, {-1.1, 0.0, 3.1346}};
+  const double v = 30.0, w = 0.1;
+  std::vector<std::vector<DopplerTarget>> targets;
+  std::vector<SensorVelocityFit> fits;
+  for (const Pose2& m : X_VS) {
+    targets.push_back(targets_for(sensor_velocity_S(m, v, w), 15, 4));
+    fits.push_back(fit_sensor_velocity(targets.back(), {}));
+  }
+  const EgoMotionFit ego = fit_ego_motion(targets, fits, X_VS);
+  ASSERT_TRUE(ego.valid);
+  EXPECT_NEAR(ego.speed_mps, 30.0, 1e-9);
+  EXPECT_NEAR(ego.yaw_rate_radps, 0.1, 1e-9);
+  EXPECT_EQ(ego.inliers, 30u);
+  // Each sensor alone, under the same Ackermann condition, implies the same speed.
+  EXPECT_NEAR(speed_from_one_sensor_mps(fits[0], X_VS[0]), 30.0, 1e-9);
+  EXPECT_NEAR(speed_from_one_sensor_mps(fits[1], X_VS[1]), 30.0, 1e-9);
+}
+
+TEST(DopplerEgoMotion, TrackIntegratesThePoseAndTakesAGivenYawRate) {
+  const std::vector<Pose2> X_VS{{3.8, 0.0, 0.0}, {-1.1, 0.0, 3.14159}};
+  std::vector<double> t_s;
+  std::vector<std::vector<std::vector<DopplerTarget>>> targets;
+  for (int k = 0; k < 30; ++k) {
+    t_s.push_back(0.1 * k);
+    targets.push_back({targets_for(sensor_velocity_S(X_VS[0], 20.0, 0.0), 12, 2),
+                       targets_for(sensor_velocity_S(X_VS[1], 20.0, 0.0), 12, 2)});
+  }
+  targets[5][0].resize(2);  // one cycle with too few targets in one sensor: the other still fits
+  const DopplerEgoTrack track = ego_track_from_doppler(t_s, targets, X_VS, {"front", "back"});
+  ASSERT_EQ(track.samples.size(), 30u);
+  EXPECT_NEAR(track.samples[29].x_m, 20.0 * 2.9, 1e-6);
+  EXPECT_NEAR(track.samples[29].y_m, 0.0, 1e-6);
+  EXPECT_NEAR(track.samples[12].speed_mps, 20.0, 1e-9);
+  EXPECT_EQ(track.report["cycles_fitted"], 30);
+  EXPECT_EQ(track.report["yaw_rate_source"], "Doppler");
+  EXPECT_NEAR(track.report["speed_difference_mps"]["mean"].get<double>(), 0.0, 1e-9);
+
+  const std::vector<double> yaw_rate(30, 0.05);
+  const DopplerEgoTrack turning = ego_track_from_doppler(t_s, targets, X_VS, {"front", "back"}, &yaw_rate);
+  EXPECT_NEAR(turning.samples[29].yaw_rad, 0.05 * 2.9, 1e-9);
+  EXPECT_NEAR(turning.report["doppler_yaw_rate_minus_used_radps"]["mean"].get<double>(), -0.05, 1e-9);
+}
+
+}  // namespace
+}  // namespace rcsim::replay
