@@ -7,6 +7,7 @@
 #include <set>
 
 #include "common/atomic_file.hpp"
+#include "common/decibel.hpp"
 #include "common/embedded_data.hpp"
 #include "common/input_error.hpp"
 #include "common/text_file.hpp"
@@ -76,7 +77,7 @@ std::map<std::string, Json> start_documents(const std::string& dir) {
 double moved(const CalibrationParameter& p, double step_db, int direction) {
   double v = p.value;
   switch (p.group) {
-    case ParameterGroup::ercs: v *= std::pow(10.0, direction * step_db / 20.0); break;
+    case ParameterGroup::ercs: v *= db_to_amplitude(direction * step_db); break;
     case ParameterGroup::level:
     case ParameterGroup::multibounce: v += direction * step_db; break;
     case ParameterGroup::slope: v += direction * step_db / 20.0; break;
@@ -300,7 +301,7 @@ class Fitter {
         if (wanted(ParameterGroup::ercs)) {
           const double ercs = value(i, "ercs");
           add(key, prefix + "ercs", ParameterGroup::ercs, targets("ercs", false), ercs,
-              ercs * std::pow(10.0, kErcsLowerDb / 20.0), ercs * std::pow(10.0, kErcsUpperDb / 20.0), "ercs");
+              ercs * db_to_amplitude(kErcsLowerDb), ercs * db_to_amplitude(kErcsUpperDb), "ercs");
         }
         if (wanted(ParameterGroup::position) && !plane) {
           const double x = value(i, "x_m"), y = value(i, "y_m");

@@ -7,6 +7,7 @@
 #include "common/angles.hpp"
 #include "common/cpu_time.hpp"
 #include "metrics/sensor_view.hpp"
+#include "sim/amplitude.hpp"
 #include "replay/run/latency_episodes.hpp"
 #include "replay/run/run_accumulators.hpp"
 #include "replay/run/simulated_source.hpp"
@@ -20,11 +21,9 @@ Vec2 cartesian_S(double range_m, double azimuth_rad) {
 }
 
 // The largest range at which an object's strongest reflector still passes the detection
-// threshold on boresight: L0 − s R + 20 log10(ERCS_max) = threshold (paper eq. (1)).
+// threshold on boresight (paper eq. (1)), within the view range.
 double detectable_range_m(const SensorConfig& config, const ObjectModel& model) {
-  const AmplitudeLaw& law = config.amplitude;
-  const double margin_db = law.reference_level_db + 20.0 * std::log10(model.max_ercs()) - law.detection_threshold_db;
-  return std::min(config.fov.max_range_m, std::max(0.0, margin_db / law.reference_slope_db_per_m));
+  return std::min(config.fov.max_range_m, std::max(0.0, detection_range_bound_m(config.amplitude, model.max_ercs())));
 }
 
 // What stays fixed over a run: the scene, its sensors' detectable ranges per object.

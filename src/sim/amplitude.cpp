@@ -1,17 +1,21 @@
 #include "sim/amplitude.hpp"
 
 #include <cmath>
-#include <numbers>
+#include <vector>
 
 namespace rcsim {
 
-// Through the natural exp and log (20 log10 a = (20 / ln 10) ln a), each faster than pow and log10.
-double amplitude_to_db(double amplitude) { return (20.0 / std::numbers::ln10) * std::log(amplitude); }
-double db_to_amplitude(double level_db) { return std::exp((std::numbers::ln10 / 20.0) * level_db); }
-double power_to_db(double power) { return (10.0 / std::numbers::ln10) * std::log(power); }
-
 double reference_range_amplitude(const AmplitudeLaw& law, double range_m) {
   return db_to_amplitude(law.reference_level_db - law.reference_slope_db_per_m * range_m);  // eq. (1)
+}
+
+double detection_range_bound_m(const AmplitudeLaw& law, double ercs, double headroom_db) {
+  return (law.reference_level_db - law.detection_threshold_db + headroom_db + amplitude_to_db(ercs)) /
+         law.reference_slope_db_per_m;  // eq. (1)
+}
+
+void apply_detection_threshold(double threshold_db, Detections& detections) {
+  std::erase_if(detections, [&](const Detection& d) { return d.amplitude_db < threshold_db; });
 }
 
 void compute_echoes(const AmplitudeLaw& law, const MonopulseAntenna& antenna, const IdealTargets& ideal, Echoes& out) {

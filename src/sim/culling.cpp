@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "common/angles.hpp"
+#include "sim/amplitude.hpp"
+#include "sim/effects.hpp"
 
 namespace rcsim {
 namespace {
@@ -39,12 +41,12 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
   b.sin_half = std::sin(config.fov.azimuth_half_rad);
   const AmplitudeLaw& law = config.amplitude;
   if (!range_culling || !(law.reference_slope_db_per_m > 0.0)) return b;
-  // Multibounce copies (effects.cpp): orders 2..max_order, each with the ERCS times 10^(-loss (k-1) / 20).
+  // Multibounce copies (effects.cpp): orders 2..max_order, each with its ERCS factor.
   double copies_ercs_factor = 1.0, max_copy_factor = 1.0;
   int orders = 1;
   if (effects.multibounce) {
     for (int k = 2; k <= config.multibounce.max_order; ++k) {
-      const double f = std::pow(10.0, -config.multibounce.loss_per_bounce_db * (k - 1) / 20.0);
+      const double f = multibounce_ercs_factor(config.multibounce, k);
       copies_ercs_factor += f;
       max_copy_factor = std::max(max_copy_factor, f);
       ++orders;
@@ -59,16 +61,15 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
   ercs_sum *= copies_ercs_factor;
   echo_count *= orders;
   const double tiny = std::numeric_limits<double>::min();
-  const double excess_db = law.reference_level_db - law.detection_threshold_db + kMarginDb;
   // (a): L0 - s (R - range_cell) + 20 log10(sum ERCS) < threshold.
   const double range_a_m =
-      (excess_db + 20.0 * std::log10(std::max(ercs_sum, tiny))) / law.reference_slope_db_per_m + config.resolution.range_cell_m;
+      detection_range_bound_m(law, std::max(ercs_sum, tiny), kMarginDb) + config.resolution.range_cell_m;
   b.by_range = true;
   b.cull_distance_m.reserve(objects.size());
   for (std::size_t i = 0; i < objects.size(); ++i) {
     // (b): L0 - s R + 20 log10(N max_ercs) < threshold.
     const double strongest = std::max(objects[i].model.max_ercs() * max_copy_factor, tiny);
-    const double range_b_m = (excess_db + 20.0 * std::log10(echo_count * strongest)) / law.reference_slope_db_per_m;
+    const double range_b_m = detection_range_bound_m(law, echo_count * strongest, kMarginDb);
     const double range_m = std::max({range_a_m, range_b_m, 0.0});
     b.cull_distance_m.push_back(range_m + b.radius_m[i]);
   }

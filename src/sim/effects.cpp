@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/decibel.hpp"
+
 namespace rcsim {
 
 bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, double length_m, double width_m) {
@@ -44,6 +46,10 @@ void remove_occluded_targets(const SensorKinematics& sensor, std::span<const Sce
   });
 }
 
+double multibounce_ercs_factor(const MultibounceConfig& config, int order) {
+  return db_to_amplitude(-config.loss_per_bounce_db * (order - 1));
+}
+
 void add_multibounce_targets(const MultibounceConfig& config, IdealTargets& ideal) {
   const std::size_t direct_count = ideal.size();
   for (std::size_t i = 0; i < direct_count; ++i) {
@@ -52,7 +58,7 @@ void add_multibounce_targets(const MultibounceConfig& config, IdealTargets& idea
       IdealTarget copy = ideal[i];
       copy.range_m *= order;
       copy.range_rate_mps *= order;
-      copy.ercs *= std::pow(10.0, -config.loss_per_bounce_db * (order - 1) / 20.0);
+      copy.ercs *= multibounce_ercs_factor(config, order);
       copy.bounce_order = order;
       ideal.push_back(copy);
     }

@@ -19,6 +19,10 @@ void remove_occluded_targets(const SensorKinematics& sensor, std::span<const Sce
                              std::span<const BodyState> object_states, std::span<const unsigned char> candidates,
                              IdealTargets& ideal);
 
+// The ERCS factor of a multibounce copy of order k >= 2: -loss_per_bounce_db per extra bounce,
+// 10^(-loss (k - 1) / 20).
+double multibounce_ercs_factor(const MultibounceConfig& config, int order);
+
 // Paper VI: duplicates of each target nearer than max_range_m at k = 2..max_order times its
 // range and range rate (the path runs k times back and forth), same angle, weaker by
 // loss_per_bounce_db per extra round trip (on top of the longer range in eq. (1)).

@@ -56,8 +56,4 @@ void estimate_ideal_angles(double angle_sigma_rad, const ResolutionCells& cells,
   }
 }
 
-void apply_detection_threshold(double threshold_db, Detections& detections) {
-  std::erase_if(detections, [&](const Detection& d) { return d.amplitude_db < threshold_db; });
-}
-
 }  // namespace rcsim

@@ -19,8 +19,4 @@ void estimate_monopulse_angles(const MonopulseAntenna& antenna, double pointer_n
 void estimate_ideal_angles(double angle_sigma_rad, const ResolutionCells& cells, const IdealTargets& ideal, Rng* rng,
                            Detections& out);
 
-// The detection decision on the cell's resulting amplitude (paper III-B): keeps detections at or
-// above the threshold.
-void apply_detection_threshold(double threshold_db, Detections& detections);
-
 }  // namespace rcsim
