@@ -145,12 +145,17 @@ void Tracker::associate(const Detections& detections) {
     track.object_index = d.object_index;
     ++track.hits;
     track.misses = 0;
-    if (track.hits >= config_.confirmation_hits) track.status = TrackStatus::Confirmed;
+    confirm_if_due(track);
     detection_taken_[static_cast<std::size_t>(c.detection)] = 1;
   }
   for (auto& t : tracks_) {
     if (!t.updated) ++t.misses;
   }
+}
+
+void Tracker::confirm_if_due(Track& track) const {
+  // Paper III-E: a track is confirmed (and reported from then on) after confirmation_hits hits.
+  if (track.hits >= config_.confirmation_hits) track.status = TrackStatus::Confirmed;
 }
 
 void Tracker::initiate(const Detections& detections) {
@@ -168,7 +173,7 @@ void Tracker::initiate(const Detections& detections) {
     t.object_index = d.object_index;
     t.x << d.range_m, d.range_rate_mps, d.azimuth_rad, d.amplitude_db;
     t.P = model_.R;
-    if (t.hits >= config_.confirmation_hits) t.status = TrackStatus::Confirmed;
+    confirm_if_due(t);
     tracks_.push_back(t);
   }
 }

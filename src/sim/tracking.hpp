@@ -70,6 +70,7 @@ class Tracker {
   void predict();
   void associate(const Detections& detections);
   void initiate(const Detections& detections);
+  void confirm_if_due(Track& track) const;  // the M-of-N initiator's confirmation rule
   void delete_stale();
 
   TrackerConfig config_;

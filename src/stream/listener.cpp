@@ -21,6 +21,7 @@
 #include "stream/endpoints.hpp"
 #include "stream/pcap_writer.hpp"
 #include "stream/reassembly.hpp"
+#include "stream/stop_signals.hpp"
 
 namespace rcsim::stream {
 
@@ -333,10 +334,7 @@ ListenSummary Listener::run() {
   }
   if (s.options.idle_timeout_s > 0.0) s.idle_tick();
   if (s.options.handle_signals) {
-    s.signals.add(SIGINT);
-    s.signals.add(SIGTERM);
-    s.signals.async_wait([&s](const boost::system::error_code& ec, int) {
-      if (ec) return;
+    stop_on_signals(s.signals, [&s] {
       s.summary.interrupted = true;
       s.finish();
     });

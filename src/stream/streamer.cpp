@@ -22,6 +22,7 @@
 #include "stream/endpoints.hpp"
 #include "stream/frame_producer.hpp"
 #include "stream/pacing.hpp"
+#include "stream/stop_signals.hpp"
 
 namespace rcsim::stream {
 
@@ -463,10 +464,7 @@ StreamSummary Streamer::run() {
   if (s.control) s.receive_control();
   s.housekeeping();
   if (s.options.handle_signals) {
-    s.signals.add(SIGINT);
-    s.signals.add(SIGTERM);
-    s.signals.async_wait([&s](const boost::system::error_code& ec, int) {
-      if (ec) return;
+    stop_on_signals(s.signals, [&s] {
       s.summary.interrupted = true;
       s.do_stop();
     });
