@@ -96,7 +96,7 @@ struct Clutter {
 };
 
 // The sensor-internal tracker (alpha-beta filters, nearest-neighbour association).
-struct Tracker {
+struct TrackerConfig {
   int confirmation_hits = 4;        // paper III-E
   int max_misses_tentative = 1;
   int max_misses_confirmed = 2;
@@ -128,7 +128,7 @@ struct SynthConfig {
   Propagation propagation;
   Processing processing;
   Clutter clutter;
-  Tracker tracker;
+  TrackerConfig tracker;
   Annotation annotation;
 };
 

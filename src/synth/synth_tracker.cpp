@@ -7,6 +7,10 @@
 
 namespace rcsim::synth {
 
+void SynthTracker::confirm_if_due(SynthTrack& track) const {
+  if (track.hits >= config_.confirmation_hits) track.status = TrackStatus::confirmed;
+}
+
 std::vector<ReportedTarget> SynthTracker::step(const std::vector<Detection>& detections) {
   const double dt = cycle_time_s_;
   // Predict: constant range rate and constant azimuth rate.
@@ -52,7 +56,7 @@ std::vector<ReportedTarget> SynthTracker::step(const std::vector<Detection>& det
     t.amplitude_db += config_.alpha_amplitude * (z.amplitude_db - t.amplitude_db);
     ++t.hits;
     t.misses = 0;
-    if (t.hits >= config_.confirmation_hits) t.status = TrackStatus::confirmed;
+    confirm_if_due(t);
   }
 
   // Delete tracks missed too often.
@@ -75,7 +79,7 @@ std::vector<ReportedTarget> SynthTracker::step(const std::vector<Detection>& det
     t.amplitude_db = detections[j].amplitude_db;
     t.hits = 1;
     t.updated = true;
-    if (t.hits >= config_.confirmation_hits) t.status = TrackStatus::confirmed;
+    confirm_if_due(t);
     tracks_.push_back(t);
   }
 

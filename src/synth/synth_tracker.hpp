@@ -31,14 +31,15 @@ struct ReportedTarget {
 
 class SynthTracker {
  public:
-  SynthTracker(const Tracker& config, double cycle_time_s) : config_(config), cycle_time_s_(cycle_time_s) {}
+  SynthTracker(const TrackerConfig& config, double cycle_time_s) : config_(config), cycle_time_s_(cycle_time_s) {}
 
   // predict => associate => update => initiate => delete; returns the confirmed, updated tracks.
   std::vector<ReportedTarget> step(const std::vector<Detection>& detections);
   const std::vector<SynthTrack>& tracks() const { return tracks_; }
 
  private:
-  Tracker config_;
+  void confirm_if_due(SynthTrack& track) const;  // paper III-E: confirmed after confirmation_hits hits
+  TrackerConfig config_;
   double cycle_time_s_;
   std::vector<SynthTrack> tracks_;
   int next_id_ = 0;

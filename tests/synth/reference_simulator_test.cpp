@@ -92,7 +92,7 @@ TEST(SynthPropagation, BackAndForthEchoesAtShortRangeOnly) {
 }
 
 TEST(SynthTracker, ConfirmsAfterFourHitsAndDropsAfterMisses) {
-  Tracker config;
+  TrackerConfig config;
   SynthTracker tracker(config, 0.04);
   Detection d;
   d.range_m = 10.0;
