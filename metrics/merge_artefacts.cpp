@@ -21,7 +21,7 @@ std::vector<MergePair> merge_pairs(const std::vector<BoxInSensor>& boxes, const 
 }
 
 int merge_artefact_of(const std::vector<BoxInSensor>& boxes, const std::vector<MergePair>& pairs, double range_m,
-                      double azimuth_rad, const Vec2& p_S, const MergeParameters& parameters) {
+                      double azimuth_rad, const Vec2& p_ST_S, const MergeParameters& parameters) {
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const BoxInSensor& a = boxes[pairs[i].box_a];
     const BoxInSensor& b = boxes[pairs[i].box_b];
@@ -31,8 +31,8 @@ int merge_artefact_of(const std::vector<BoxInSensor>& boxes, const std::vector<M
     const bool between = from_a * from_b < 0.0;
     const double near_m = std::min(a.range_m, b.range_m) - parameters.range_cell_m;
     const double far_m = std::max(a.range_m, b.range_m) + parameters.range_cell_m;
-    if (between && range_m >= near_m && range_m <= far_m && distance_to_box_m(a, p_S) > parameters.contour_margin_m &&
-        distance_to_box_m(b, p_S) > parameters.contour_margin_m) {
+    if (between && range_m >= near_m && range_m <= far_m && distance_to_box_m(a, p_ST_S) > parameters.contour_margin_m &&
+        distance_to_box_m(b, p_ST_S) > parameters.contour_margin_m) {
       return static_cast<int>(i);
     }
   }

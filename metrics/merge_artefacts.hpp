@@ -26,8 +26,8 @@ struct MergePair {
 // Pairs of boxes (all assumed in view) that share a resolution cell.
 std::vector<MergePair> merge_pairs(const std::vector<BoxInSensor>& boxes, const MergeParameters& parameters);
 
-// The pair (index into pairs) whose artefact the target at (range, azimuth, p_S) is, or -1.
+// The pair (index into pairs) whose artefact the target at (range, azimuth, p_ST_S) is, or -1.
 int merge_artefact_of(const std::vector<BoxInSensor>& boxes, const std::vector<MergePair>& pairs, double range_m,
-                      double azimuth_rad, const Vec2& p_S, const MergeParameters& parameters);
+                      double azimuth_rad, const Vec2& p_ST_S, const MergeParameters& parameters);
 
 }  // namespace rcsim::metrics

@@ -9,12 +9,12 @@ namespace rcsim::metrics {
 namespace {
 
 // Point relative to the box centre in the box frame.
-Vec2 in_box_frame(const BoxInSensor& box, const Vec2& p_S) { return inverse_transform_point(box.X_SO, p_S); }
+Vec2 in_box_frame(const BoxInSensor& box, const Vec2& p_ST_S) { return inverse_transform_point(box.X_SO, p_ST_S); }
 
 }  // namespace
 
-double distance_to_box_m(const BoxInSensor& box, const Vec2& p_S) {
-  const Vec2 p_O = in_box_frame(box, p_S);
+double distance_to_box_m(const BoxInSensor& box, const Vec2& p_ST_S) {
+  const Vec2 p_O = in_box_frame(box, p_ST_S);
   const double dx = std::max(std::abs(p_O.x()) - box.half_length_m, 0.0);
   const double dy = std::max(std::abs(p_O.y()) - box.half_width_m, 0.0);
   return std::hypot(dx, dy);
@@ -45,11 +45,11 @@ BoxInSensor box_in_sensor(int object, const Pose2& X_WS, const BodyState& ego_W,
   return box;
 }
 
-int nearest_box(const std::vector<BoxInSensor>& boxes, const Vec2& p_S, double gate_m) {
+int nearest_box(const std::vector<BoxInSensor>& boxes, const Vec2& p_ST_S, double gate_m) {
   int best = -1;
   double best_m = gate_m;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const double d = distance_to_box_m(boxes[i], p_S);
+    const double d = distance_to_box_m(boxes[i], p_ST_S);
     if (d <= best_m) {
       best_m = d;
       best = static_cast<int>(i);

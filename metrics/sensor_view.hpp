@@ -20,7 +20,7 @@ struct BoxInSensor {
 };
 
 // Distance from a point in the sensor frame to the box (0 inside).
-double distance_to_box_m(const BoxInSensor& box, const Vec2& p_S);
+double distance_to_box_m(const BoxInSensor& box, const Vec2& p_ST_S);
 
 // Builds the view of one box. X_WS: sensor pose in the world; sensor_W: the ego body state (for
 // the sensor's own velocity); object_W: the object's body state at its box centre.
@@ -28,6 +28,6 @@ BoxInSensor box_in_sensor(int object, const Pose2& X_WS, const BodyState& ego_W,
                           double length_m, double width_m);
 
 // The nearest box within gate_m of the point, or -1 (index into boxes).
-int nearest_box(const std::vector<BoxInSensor>& boxes, const Vec2& p_S, double gate_m);
+int nearest_box(const std::vector<BoxInSensor>& boxes, const Vec2& p_ST_S, double gate_m);
 
 }  // namespace rcsim::metrics

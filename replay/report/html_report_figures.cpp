@@ -110,7 +110,7 @@ void add_targets(const CycleWindow& window, const std::map<std::pair<int, int>, 
     t.simulated = row.simulated;
     t.age = window.cycle - row.cycle;
     t.merge_artefact = row.merge_artefact;
-    t.p_V = transform_point(X_VW, transform_point(pose->second, row.p_S));
+    t.p_V = transform_point(X_VW, transform_point(pose->second, row.p_ST_S));
     spec.targets.push_back(t);
     if (row.cycle != window.cycle) continue;
     if (t.simulated) {
@@ -163,7 +163,7 @@ std::vector<svg::PlotSpec> time_series(const RunData& run, int stride, const std
     const SensorInfo* info = find_sensor(run, row.sensor);
     if (info == nullptr) continue;
     const int origin = row.simulated ? 1 : 0;
-    const Vec2 p_V = transform_point(info->X_VS, row.p_S);
+    const Vec2 p_V = transform_point(info->X_VS, row.p_ST_S);
     PerSensor& p = series[row.sensor];
     p.range[origin].points.emplace_back(row.t_s, row.range_m);
     p.lateral[origin].points.emplace_back(row.t_s, p_V.y());

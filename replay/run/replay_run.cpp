@@ -74,18 +74,18 @@ void classify_targets(std::vector<ComparedTarget>& targets, const std::vector<me
                       const std::vector<metrics::BoxInSensor>& in_view, const std::vector<metrics::MergePair>& pairs,
                       const ReplayOptions& options, const metrics::MergeParameters& merge) {
   for (ComparedTarget& t : targets) {
-    t.p_S = cartesian_S(t.range_m, t.azimuth_rad);
-    const int box = metrics::nearest_box(boxes, t.p_S, options.association_gate_m);
+    t.p_ST_S = cartesian_S(t.range_m, t.azimuth_rad);
+    const int box = metrics::nearest_box(boxes, t.p_ST_S, options.association_gate_m);
     t.object = box >= 0 ? boxes[box].object : -1;
-    t.merge_pair = metrics::merge_artefact_of(in_view, pairs, t.range_m, t.azimuth_rad, t.p_S, merge);
+    t.merge_pair = metrics::merge_artefact_of(in_view, pairs, t.range_m, t.azimuth_rad, t.p_ST_S, merge);
   }
 }
 
 // GOSPA between the two lists (sensor Cartesian) and each target's assigned partner.
 void match_targets(CycleComparison& cycle, const metrics::GospaParameters& parameters) {
   std::vector<Vec2> p_rec_S, p_sim_S;
-  for (const auto& t : cycle.recorded) p_rec_S.push_back(t.p_S);
-  for (const auto& t : cycle.simulated) p_sim_S.push_back(t.p_S);
+  for (const auto& t : cycle.recorded) p_rec_S.push_back(t.p_ST_S);
+  for (const auto& t : cycle.simulated) p_sim_S.push_back(t.p_ST_S);
   cycle.gospa = metrics::gospa(p_rec_S, p_sim_S, parameters);
   for (std::size_t i = 0; i < cycle.recorded.size(); ++i) {
     const int j = cycle.gospa.simulated_of_recorded[i];

@@ -30,7 +30,7 @@ struct ReplayOptions {
 struct ComparedTarget {
   int track_id = -1;
   double range_m = 0.0, azimuth_rad = 0.0, range_rate_mps = 0.0, amplitude_db = 0.0;
-  Vec2 p_S = Vec2::Zero();  // Cartesian, sensor frame
+  Vec2 p_ST_S = Vec2::Zero();  // Cartesian, sensor frame
   int object = -1;          // recording object index it belongs to, or -1
   int match = -1;           // index of the GOSPA-assigned partner in the other list, or -1
   int merge_pair = -1;      // index into CycleComparison::merge_pairs if a merge artefact

@@ -30,8 +30,8 @@ void ReferenceSource::append_targets(std::size_t sensor, std::vector<ComparedTar
 void ReferenceSource::mark_detected_objects(std::size_t sensor, const std::vector<metrics::BoxInSensor>& boxes,
                                             double gate_m, std::vector<char>& detected) const {
   for (const synth::Detection& d : reference_.sensor_cycle(sensor).detections) {
-    const Vec2 p_S(d.range_m * std::cos(d.azimuth_rad), d.range_m * std::sin(d.azimuth_rad));
-    const int box = metrics::nearest_box(boxes, p_S, gate_m);
+    const Vec2 p_ST_S(d.range_m * std::cos(d.azimuth_rad), d.range_m * std::sin(d.azimuth_rad));
+    const int box = metrics::nearest_box(boxes, p_ST_S, gate_m);
     if (box >= 0) detected[static_cast<std::size_t>(boxes[static_cast<std::size_t>(box)].object)] = 1;
   }
 }

@@ -85,7 +85,7 @@ CycleWindow read_cycle_window(SQLite::Database& db, std::int64_t run_id, int fir
     t.sensor = targets.getColumn(1).getInt();
     t.simulated = targets.getColumn(2).getString() == "simulated";
     t.idx = targets.getColumn(3).getInt();
-    t.p_S = {targets.getColumn(4).getDouble(), targets.getColumn(5).getDouble()};
+    t.p_ST_S = {targets.getColumn(4).getDouble(), targets.getColumn(5).getDouble()};
     if (!targets.getColumn(6).isNull()) t.match_idx = targets.getColumn(6).getInt();
     t.merge_artefact = targets.getColumn(7).getInt() != 0;
     w.targets.push_back(t);

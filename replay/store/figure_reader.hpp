@@ -47,7 +47,7 @@ struct ObjectStateRow {
 struct TargetRow {
   int cycle = 0, sensor = 0, idx = 0;
   bool simulated = false;
-  Vec2 p_S = Vec2::Zero();
+  Vec2 p_ST_S = Vec2::Zero();
   std::optional<int> match_idx;
   bool merge_artefact = false;
 };
@@ -68,7 +68,7 @@ struct NearestTargetRow {
   int sensor = 0;
   bool simulated = false;
   double t_s = 0.0, range_m = 0.0;
-  Vec2 p_S = Vec2::Zero();
+  Vec2 p_ST_S = Vec2::Zero();
 };
 // Of every stride-th cycle, in cycle, sensor, origin order.
 std::vector<NearestTargetRow> read_nearest_targets(SQLite::Database& db, std::int64_t run_id, int stride);

@@ -202,8 +202,8 @@ void ReportWriter::insert_targets(const CycleComparison& c, const char* origin, 
     s.bind(8, t.azimuth_rad);
     s.bind(9, t.range_rate_mps);
     s.bind(10, t.amplitude_db);
-    s.bind(11, t.p_S.x());
-    s.bind(12, t.p_S.y());
+    s.bind(11, t.p_ST_S.x());
+    s.bind(12, t.p_ST_S.y());
     bind_index(s, 13, t.object);
     bind_index(s, 14, t.match);
     s.bind(15, t.merge_pair >= 0 ? 1 : 0);

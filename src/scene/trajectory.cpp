@@ -34,7 +34,7 @@ BodyState Trajectory::extrapolate(const Node& node, double dt_s) const {
   // Constant speed and yaw rate from the node (the exact integral of a constant turn).
   const double w = node.yaw_rate_radps;
   const double yaw_rad = node.yaw_rad + w * dt_s;
-  Vec2 p = node.p_W;
+  Vec2 p = node.p_WB_W;
   if (std::abs(w * dt_s) < 1e-9) {
     const double mid_yaw_rad = node.yaw_rad + 0.5 * w * dt_s;
     p += node.speed_mps * dt_s * Vec2(std::cos(mid_yaw_rad), std::sin(mid_yaw_rad));
@@ -66,10 +66,10 @@ BodyState Trajectory::state_at(double t_s) const {
   const Vec2& va = a.v_W;
   const Vec2& vb = b.v_W;
   BodyState state;
-  const Vec2 p = h00 * a.p_W + h10 * h * va + h01 * b.p_W + h11 * h * vb;
+  const Vec2 p = h00 * a.p_WB_W + h10 * h * va + h01 * b.p_WB_W + h11 * h * vb;
   const double yaw_rad = h00 * a.yaw_rad + h10 * h * a.yaw_rate_radps + h01 * b.yaw_rad + h11 * h * b.yaw_rate_radps;
   state.X_WB = {p.x(), p.y(), wrap_angle_rad(yaw_rad)};
-  state.v_WB_W = (d00 * a.p_W + d10 * h * va + d01 * b.p_W + d11 * h * vb) / h;
+  state.v_WB_W = (d00 * a.p_WB_W + d10 * h * va + d01 * b.p_WB_W + d11 * h * vb) / h;
   state.yaw_rate_radps = (d00 * a.yaw_rad + d10 * h * a.yaw_rate_radps + d01 * b.yaw_rad + d11 * h * b.yaw_rate_radps) / h;
   return state;
 }
@@ -79,8 +79,8 @@ Eigen::AlignedBox2d Trajectory::position_bounds(double t0_s, double t1_s) const 
   // Extrapolation from a node over dt in [dt0, dt1]: the path has length |speed| |dt| at most.
   const auto add_extrapolated = [&](const Node& node, double dt0_s, double dt1_s) {
     const double reach_m = std::abs(node.speed_mps) * std::max(std::abs(dt0_s), std::abs(dt1_s));
-    box.extend(node.p_W - Vec2::Constant(reach_m));
-    box.extend(node.p_W + Vec2::Constant(reach_m));
+    box.extend(node.p_WB_W - Vec2::Constant(reach_m));
+    box.extend(node.p_WB_W + Vec2::Constant(reach_m));
   };
   const Node& first = nodes_.front();
   const Node& last = nodes_.back();
@@ -102,7 +102,7 @@ Eigen::AlignedBox2d Trajectory::position_bounds(double t0_s, double t1_s) const 
     const Node& b = *(it + 1);
     if (b.t_s < t0_s) continue;
     const double h_s = b.t_s - a.t_s;
-    const std::array<Vec2, 4> control = {a.p_W, a.p_W + (h_s / 3.0) * a.v_W, b.p_W - (h_s / 3.0) * b.v_W, b.p_W};
+    const std::array<Vec2, 4> control = {a.p_WB_W, a.p_WB_W + (h_s / 3.0) * a.v_W, b.p_WB_W - (h_s / 3.0) * b.v_W, b.p_WB_W};
     const auto blossom = [&](double s1, double s2, double s3) {
       const auto lerp = [](const Vec2& p, const Vec2& q, double s) -> Vec2 { return p + s * (q - p); };
       const Vec2 q0 = lerp(control[0], control[1], s1), q1 = lerp(control[1], control[2], s1),

@@ -40,7 +40,7 @@ class Trajectory {
  private:
   struct Node {
     double t_s;
-    Vec2 p_W;
+    Vec2 p_WB_W;
     double yaw_rad;  // unwrapped along the trajectory
     double speed_mps;
     double yaw_rate_radps;

@@ -21,7 +21,8 @@ bool in_view(const FieldOfView& fov, double tan_half, const Vec2& p_ST_S) {
 
 SensorKinematics sensor_kinematics(const BodyState& ego, const Pose2& X_VS) {
   SensorKinematics k;
-  k.X_WS = compose(ego.X_WB, X_VS);
+  const Pose2& X_WV = ego.X_WB;  // the ego's body frame is the vehicle frame V
+  k.X_WS = compose(X_WV, X_VS);
   k.v_WS_W = ego.point_velocity_W(k.X_WS.translation());
   return k;
 }

@@ -66,21 +66,22 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
     if (members.size() > 1) std::sort(members.begin(), members.end());  // strongest first: sums in a fixed order
     ResolutionCellSum c;
     c.strongest_ideal_index = centre.ideal_index;
-    double weighted_range = 0.0, weighted_rate = 0.0;
+    // Sums of A_n R_n and A_n v_n (amplitude times metres, times metres per second), eqs. (4)-(5).
+    double amplitude_range_sum_m = 0.0, amplitude_rate_sum_mps = 0.0;
     for (const int r : members) {
       auto& rank = by_amplitude[static_cast<std::size_t>(r)];
       const Echo& e = echoes[static_cast<std::size_t>(rank.echo)];
       c.amplitude_upper += e.amplitude;
-      weighted_range += e.amplitude * e.range_m;
-      weighted_rate += e.amplitude * e.range_rate_mps;
+      amplitude_range_sum_m += e.amplitude * e.range_m;
+      amplitude_rate_sum_mps += e.amplitude * e.range_rate_mps;
       c.sum_pointer += e.sum_pointer;
       c.delta_pointer += e.delta_pointer;
       ++c.member_count;
       rank.echo = -1;
     }
     if (c.amplitude_upper < threshold_amplitude) continue;  // paper III-C: no entry for this cell
-    c.range_m = weighted_range / c.amplitude_upper;         // eqs. (4)-(5)
-    c.range_rate_mps = weighted_rate / c.amplitude_upper;
+    c.range_m = amplitude_range_sum_m / c.amplitude_upper;         // eqs. (4)-(5)
+    c.range_rate_mps = amplitude_rate_sum_mps / c.amplitude_upper;
     out.push_back(c);
   }
 }

@@ -27,7 +27,8 @@ void Simulation::run_at(double t_s) {
   // The scene's broad phase: only objects that are present and within some sensor's reach are
   // evaluated and visited (an absent one takes no part; a skipped state keeps its last value).
   for (std::size_t i = 0; i < models_.size(); ++i) {
-    p_WS_W_[i] = transform_point(snapshot_.ego.X_WB, models_[i].mount.X_VS.translation());
+    const Pose2& X_WV = snapshot_.ego.X_WB;  // the ego's body frame is the vehicle frame V
+    p_WS_W_[i] = transform_point(X_WV, models_[i].mount.X_VS.translation());
   }
   for (const std::uint32_t i : snapshot_.visited_indices) snapshot_.visited[i] = 0;
   scene_culling_.select(t_s, p_WS_W_, scene_.objects, snapshot_.visited_indices);

@@ -127,7 +127,7 @@ void Propagator::add_echo(std::vector<Echo>& out, const Scatterer& s, double sqr
 }
 
 std::vector<Echo> Propagator::echoes(const SensorState& sensor, const std::vector<PlacedBody>& bodies,
-                                      const std::vector<Scatterer>& world_scatterers) const {
+                                      const std::vector<WorldScatterer>& world_scatterers) const {
   std::vector<Echo> out;
   const double max_range_m = config_.if_filter.synthesis_max_range_m;
   const double cos_half_sector = std::cos(deg_to_rad(config_.antenna.azimuth_half_illuminated_deg));
@@ -177,7 +177,7 @@ std::vector<Echo> Propagator::echoes(const SensorState& sensor, const std::vecto
       visit(s, p_WP, placed.state.point_velocity_W(p_WP), placed.state.X_WB.yaw_rad, &placed);
     }
   }
-  for (const auto& s : world_scatterers) visit(s, s.p_O, Vec2::Zero(), 0.0, nullptr);
+  for (const auto& w : world_scatterers) visit(w.scatterer, w.p_WC_W, Vec2::Zero(), 0.0, nullptr);
   return out;
 }
 

@@ -41,7 +41,7 @@ class Propagator {
   // Echoes of all scatterers of all bodies (and the static world-frame scatterers, e.g. road
   // clutter) within the illuminated sector and the synthesis range.
   std::vector<Echo> echoes(const SensorState& sensor, const std::vector<PlacedBody>& bodies,
-                           const std::vector<Scatterer>& world_scatterers) const;
+                           const std::vector<WorldScatterer>& world_scatterers) const;
 
   // Two-way factor of the transmit element and the receive pair: (sum, delta) for one azimuth
   // and elevation; sum = 1 on boresight.

@@ -42,14 +42,15 @@ std::vector<PlacedBody> ReferenceSimulator::placed_bodies(double t_s) const {
 SensorState ReferenceSimulator::sensor_state(std::size_t sensor, double t_s) const {
   const BodyState ego = scene_.ego.state_at(t_s);
   SensorState state;
-  state.X_WS = compose(ego.X_WB, scene_.sensors[sensor].X_VS);
+  const Pose2& X_WV = ego.X_WB;  // the ego's body frame is the vehicle frame V
+  state.X_WS = compose(X_WV, scene_.sensors[sensor].X_VS);
   state.v_WS_W = ego.point_velocity_W(state.X_WS.translation());
   return state;
 }
 
 std::vector<Echo> ReferenceSimulator::echoes_at(std::size_t sensor, double t_s) const {
   const SensorState state = sensor_state(sensor, t_s);
-  std::vector<Scatterer> clutter;
+  std::vector<WorldScatterer> clutter;
   if (scene_.effects.clutter) clutter = road_clutter_near(config_.clutter, seed_, state.X_WS.translation(), clutter_radius_m(config_));
   return propagation_.echoes(state, placed_bodies(t_s), clutter);
 }

@@ -239,14 +239,14 @@ ScattererBody make_body(const std::string& object_class, double length_m, double
   return car_body(length_m, width_m);
 }
 
-std::vector<Scatterer> road_clutter_near(const Clutter& clutter, std::uint64_t seed, const Vec2& p_W, double radius_m) {
-  std::vector<Scatterer> out;
+std::vector<WorldScatterer> road_clutter_near(const Clutter& clutter, std::uint64_t seed, const Vec2& p_WS_W, double radius_m) {
+  std::vector<WorldScatterer> out;
   if (clutter.density_per_m2 <= 0.0) return out;
   const double tile = clutter.tile_m;
-  const auto lo_x = static_cast<long long>(std::floor((p_W.x() - radius_m) / tile));
-  const auto hi_x = static_cast<long long>(std::floor((p_W.x() + radius_m) / tile));
-  const auto lo_y = static_cast<long long>(std::floor((p_W.y() - radius_m) / tile));
-  const auto hi_y = static_cast<long long>(std::floor((p_W.y() + radius_m) / tile));
+  const auto lo_x = static_cast<long long>(std::floor((p_WS_W.x() - radius_m) / tile));
+  const auto hi_x = static_cast<long long>(std::floor((p_WS_W.x() + radius_m) / tile));
+  const auto lo_y = static_cast<long long>(std::floor((p_WS_W.y() - radius_m) / tile));
+  const auto hi_y = static_cast<long long>(std::floor((p_WS_W.y() + radius_m) / tile));
   for (long long ix = lo_x; ix <= hi_x; ++ix) {
     for (long long iy = lo_y; iy <= hi_y; ++iy) {
       const auto key = (static_cast<std::uint64_t>(ix) * 0x9E3779B97F4A7C15ULL) ^
@@ -257,8 +257,8 @@ std::vector<Scatterer> road_clutter_near(const Clutter& clutter, std::uint64_t s
         const Vec2 p(tile * (static_cast<double>(ix) + rng.uniform01()), tile * (static_cast<double>(iy) + rng.uniform01()));
         const double rcs_db = clutter.median_rcs_rel_db + clutter.rcs_spread_db * rng.normal();
         const double height_m = rng.uniform(0.02, 0.15);
-        if ((p - p_W).squaredNorm() > radius_m * radius_m) continue;
-        out.push_back(isotropic(p, height_m, 0.0, std::pow(10.0, rcs_db / 10.0)));
+        if ((p - p_WS_W).squaredNorm() > radius_m * radius_m) continue;
+        out.push_back({isotropic(Vec2::Zero(), height_m, 0.0, std::pow(10.0, rcs_db / 10.0)), p});
       }
     }
   }

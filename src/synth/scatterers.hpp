@@ -34,6 +34,12 @@ struct Scatterer {
   bool mirrors = false;    // a face that can bounce energy back and forth with the ego's front
 };
 
+// A scatterer fixed in the world (road clutter): its position in the world frame.
+struct WorldScatterer {
+  Scatterer scatterer;  // its p_O is unused (zero)
+  Vec2 p_WC_W = Vec2::Zero();  // world position of the clutter point C
+};
+
 // A body as the sensor sees it: scatterers in the object frame, and the box for occlusion.
 struct ScattererBody {
   std::vector<Scatterer> scatterers;
@@ -48,8 +54,7 @@ ScattererBody make_body(const std::string& object_class, double length_m, double
 
 // Road clutter near a world point: static isotropic scatterers on the road surface, drawn per
 // tile from Rng(seed, tile) so that a tile's content does not depend on the order of the visits.
-// Positions are in the world frame (p_O of each scatterer).
-std::vector<Scatterer> road_clutter_near(const Clutter& clutter, std::uint64_t seed, const Vec2& p_W,
+std::vector<WorldScatterer> road_clutter_near(const Clutter& clutter, std::uint64_t seed, const Vec2& p_WS_W,
                                          double radius_m);
 
 // Two-way physical-optics amplitude of a facet, sqrt(sigma) in m, at incidence theta from its

@@ -55,13 +55,13 @@ CenterlinePoint Centerline::at(double s_m) const {
   switch (kind_) {
     case Kind::Straight:
       pt.heading_rad = heading_rad_;
-      pt.p_W = origin_W_ + s_m * Vec2(std::cos(heading_rad_), std::sin(heading_rad_));
+      pt.p_WR_W = origin_W_ + s_m * Vec2(std::cos(heading_rad_), std::sin(heading_rad_));
       break;
     case Kind::Circle: {
       const double angle_rad = s_m / radius_m_;
       pt.heading_rad = wrap_angle_rad(angle_rad);
       pt.curvature_1pm = 1.0 / radius_m_;
-      pt.p_W = Vec2(radius_m_ * std::sin(angle_rad), -radius_m_ * std::cos(angle_rad));
+      pt.p_WR_W = Vec2(radius_m_ * std::sin(angle_rad), -radius_m_ * std::cos(angle_rad));
       break;
     }
     case Kind::Winding: {
@@ -72,7 +72,7 @@ CenterlinePoint Centerline::at(double s_m) const {
       const double f = u - static_cast<double>(i);
       // Beyond the table (vehicles leaving the road) continue straight along the last heading.
       const double beyond_m = std::max(0.0, s_m - static_cast<double>(table_W_.size() - 2) * table_step_m_);
-      pt.p_W = (1.0 - f) * table_W_[i] + f * table_W_[i + 1] +
+      pt.p_WR_W = (1.0 - f) * table_W_[i] + f * table_W_[i + 1] +
                beyond_m * Vec2(std::cos(pt.heading_rad), std::sin(pt.heading_rad));
       break;
     }
@@ -84,14 +84,14 @@ WorldMotion world_motion(const Centerline& line, double s_m, double d_m, double 
                          double speed_along_mps) {
   const CenterlinePoint c = line.at(s_m);
   const Vec2 normal_W(-std::sin(c.heading_rad), std::cos(c.heading_rad));
-  const Vec2 p_W = c.p_W + d_m * normal_W;
+  const Vec2 p_WR_W = c.p_WR_W + d_m * normal_W;
   // Path of the vehicle in road coordinates: dp/ds = (1 - kappa d) t + (dd/ds) n, so its
   // direction is heading + atan2(dd/ds, 1 - kappa d), also when standing.
   const double h = 1.0 - c.curvature_1pm * d_m;
   const double rel_yaw_rad = std::atan2(slope, h);
   WorldMotion m;
-  m.x_m = p_W.x();
-  m.y_m = p_W.y();
+  m.x_m = p_WR_W.x();
+  m.y_m = p_WR_W.y();
   m.yaw_rad = wrap_angle_rad(c.heading_rad + rel_yaw_rad);
   m.speed_mps = speed_along_mps * std::hypot(h, slope);
   // d/dt [heading + atan(slope / h)] with d(slope)/dt = slope' v and dh/dt = -kappa slope v

@@ -9,7 +9,7 @@
 namespace rcsim::traffic {
 
 struct CenterlinePoint {
-  Vec2 p_W = Vec2::Zero();
+  Vec2 p_WR_W = Vec2::Zero();
   double heading_rad = 0.0;
   double curvature_1pm = 0.0;  // d heading / d s, positive turning left
 };

@@ -52,14 +52,14 @@ class AimotiveImporter : public ::testing::Test {
       BodyState ego;
       ego.X_WB = {e.x_m, e.y_m, e.yaw_rad};
       const double az = azimuth_sign * t.azimuth_rad;
-      const Vec2 p_S(t.range_m * std::cos(az), t.range_m * std::sin(az));
+      const Vec2 p_ST_S(t.range_m * std::cos(az), t.range_m * std::sin(az));
       for (std::size_t o = 0; o < r.objects.size(); ++o) {
         for (const AnnotatedBox& b : r.boxes[o]) {
           if (std::abs(b.t_s - t.t_s) > 1e-6) continue;
           BodyState object;
           object.X_WB = {b.x_m, b.y_m, b.yaw_rad};
           const auto box = metrics::box_in_sensor(0, X_WS, ego, object, r.objects[o].length_m, r.objects[o].width_m);
-          if (metrics::distance_to_box_m(box, p_S) <= gate_m) {
+          if (metrics::distance_to_box_m(box, p_ST_S) <= gate_m) {
             ++on;
             goto next_target;
           }
