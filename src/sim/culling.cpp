@@ -76,4 +76,23 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
   return b;
 }
 
+bool keep_object(const CullingBounds& bounds, const FieldOfView& fov, std::size_t i, const Vec2& p_SO_S,
+                 double distance2_m2, unsigned char* may_occlude) {
+  const double margin_m = bounds.radius_m[i] + 1e-3 + 1e-9 * std::sqrt(distance2_m2);
+  if (bounds.by_view) {
+    // Signed distances beyond the wedge's two edges y = +-tan(half) x.
+    if (p_SO_S.y() * bounds.cos_half - p_SO_S.x() * bounds.sin_half > margin_m ||
+        -p_SO_S.y() * bounds.cos_half - p_SO_S.x() * bounds.sin_half > margin_m) {
+      return false;
+    }
+  }
+  const double occlude_reach_m = fov.max_range_m + margin_m;
+  if (may_occlude != nullptr && distance2_m2 <= occlude_reach_m * occlude_reach_m) *may_occlude = 1;
+  // Beyond the view range by more than the reflection circle: no reflection point in view.
+  const double reach_m = fov.max_range_m + bounds.radius_m[i];
+  if (distance2_m2 > reach_m * reach_m) return false;
+  const double cull_m = bounds.by_range ? bounds.cull_distance_m[i] : 0.0;
+  return !(bounds.by_range && distance2_m2 > cull_m * cull_m);
+}
+
 }  // namespace rcsim

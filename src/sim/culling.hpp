@@ -1,6 +1,6 @@
 #pragma once
 // The broad phase of the sensor cycle: objects that cannot produce or change a target are skipped
-// before their reflection centers are visited (issue 7).
+// before their reflection centers are visited (docs/fidelity.md, "Culling").
 #include <span>
 #include <vector>
 
@@ -39,5 +39,13 @@ double reflection_radius_m(const ObjectModel& model);
 // when the slope s is not positive.
 CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& effects,
                                   std::span<const SceneObject> objects, bool range_culling, bool view_culling);
+
+// The per-sensor pass of the broad phase for object i, whose origin lies at p_SO_S (sensor frame),
+// distance2_m2 from the sensor: false when it is outside the view wedge by more than its
+// reflection circle (plus a margin), or beyond the view range plus that circle, or beyond its
+// cull distance. Before the range tests, sets *may_occlude (when given) to 1 if the object can lie
+// on a line of sight to a point in view (a far or faint object still hides what is behind it).
+bool keep_object(const CullingBounds& bounds, const FieldOfView& fov, std::size_t i, const Vec2& p_SO_S,
+                 double distance2_m2, unsigned char* may_occlude);
 
 }  // namespace rcsim

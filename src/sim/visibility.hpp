@@ -1,21 +1,46 @@
 #pragma once
-// Visibility check of reflection centers (paper II-B, Fig. 7).
+// Visibility check of reflection centers (paper II-B, Fig. 7): which reflection points of one
+// object a sensor sees, and where. The ideal target list (ideal_targets.cpp) visits every object
+// through for_each_visible_reflector.
+#include <cstddef>
 #include <optional>
 
 #include "model/object_model.hpp"
+#include "sim/stage_types.hpp"
 
 namespace rcsim {
-
-// ERCS of a point reflection center seen from a sensor at p_OS_O (object frame): the scaled
-// visibility function of the impinging angle (paper II-C); 0 means invisible. Inline: the sensor
-// cycle asks it of every point reflector in range.
-inline double point_reflector_ercs(const PointReflector& point, const Vec2& p_OS_O) {
-  const Vec2 p_RS_O = p_OS_O - point.p_OR_O;  // reflector -> sensor (none if on the reflector)
-  return point.ercs_max * point.visibility.from_direction(p_RS_O.x(), p_RS_O.y());
-}
 
 // The reflection point of a plane reflector: where the line from the sensor to the circle centre
 // meets the arc; none if that line misses the sector or the sensor is inside the circle (Fig. 7).
 std::optional<Vec2> plane_reflection_point_O(const PlaneReflector& plane, const Vec2& p_OS_O);
+
+// One visible reflection point of an object, in the object frame.
+struct VisibleReflector {
+  Vec2 p_OT_O;
+  double ercs = 0.0;       // ercs_max for a point (its visibility applied later if in fall-off), ERCS for a plane
+  std::size_t index = 0;   // into model.points or model.planes
+  ReflectorKind kind = ReflectorKind::Point;
+  const PointReflector* point = nullptr;  // points only
+  VisibilityFunction::Zone zone;          // points only: one, or falloff (visibility still to evaluate)
+};
+
+// Calls visit(const VisibleReflector&) for every point reflector whose visibility function is
+// not zero seen from p_OS_O (the impinging direction reflector -> sensor, paper II-C) and, when
+// `planes`, for every plane reflector with a reflection point; points first, in model order.
+// Inline: the sensor cycle calls it for every object in range.
+template <typename Visit>
+void for_each_visible_reflector(const ObjectModel& model, const Vec2& p_OS_O, bool planes, Visit&& visit) {
+  for (std::size_t k = 0; k < model.points.size(); ++k) {
+    const PointReflector& point = model.points[k];
+    const Vec2 p_RS_O = p_OS_O - point.p_OR_O;  // reflector -> sensor: the impinging direction
+    const auto zone = point.visibility.zone(p_RS_O.x(), p_RS_O.y());
+    if (zone.kind == VisibilityFunction::Zone::zero) continue;
+    visit(VisibleReflector{point.p_OR_O, point.ercs_max, k, ReflectorKind::Point, &point, zone});
+  }
+  for (std::size_t k = 0; planes && k < model.planes.size(); ++k) {
+    const auto p_OT_O = plane_reflection_point_O(model.planes[k], p_OS_O);
+    if (p_OT_O) visit(VisibleReflector{*p_OT_O, model.planes[k].ercs, k, ReflectorKind::Plane, nullptr, {}});
+  }
+}
 
 }  // namespace rcsim

@@ -28,15 +28,57 @@ TEST(Visibility, WrapsAroundPi) {
   EXPECT_DOUBLE_EQ(v(deg_to_rad(-175)), 1.0);
 }
 
+// The visible reflectors of an object as the sensor cycle visits them (for_each_visible_reflector),
+// with the point's ERCS evaluated as the ideal target list does: ercs_max in the zone of 1, times
+// the fall-off value in the fall-off (paper II-C).
+std::vector<std::pair<VisibleReflector, double>> visible(const ObjectModel& model, const Vec2& p_OS_O, bool planes = true) {
+  std::vector<std::pair<VisibleReflector, double>> seen;
+  for_each_visible_reflector(model, p_OS_O, planes, [&](const VisibleReflector& r) {
+    double ercs = r.ercs;
+    if (r.kind == ReflectorKind::Point && r.zone.kind == VisibilityFunction::Zone::falloff) {
+      ercs *= r.point->visibility.falloff_value(r.zone.cos_delta, r.zone.sin_delta);
+    }
+    seen.emplace_back(r, ercs);
+  });
+  return seen;
+}
+
 TEST(Visibility, PointReflectorErcsFromSensorDirection) {
+  ObjectModel m;
   PointReflector p;
   p.p_OR_O = {2.3, 0.9};
   p.ercs_max = 2.0;
   p.visibility = {deg_to_rad(45), deg_to_rad(25), deg_to_rad(40)};
-  EXPECT_DOUBLE_EQ(point_reflector_ercs(p, {12.3, 10.9}), 2.0);  // from 45 deg
-  EXPECT_DOUBLE_EQ(point_reflector_ercs(p, {-7.7, 0.9}), 0.0);   // from behind (180 deg)
-  EXPECT_NEAR(point_reflector_ercs(p, {2.3, 10.9}), 1.0, 1e-12);  // from 90 deg: half
-  EXPECT_DOUBLE_EQ(point_reflector_ercs(p, {2.3, 0.9}), 0.0);     // sensor on the reflector
+  m.points.push_back(p);
+  // From 45 deg (the centre of the visibility function): fully visible, no fall-off to evaluate.
+  auto seen = visible(m, {12.3, 10.9});
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0].first.zone.kind, VisibilityFunction::Zone::one);
+  EXPECT_DOUBLE_EQ(seen[0].second, 2.0);
+  EXPECT_EQ(seen[0].first.p_OT_O, p.p_OR_O);
+  // From 90 deg: half-way down the raised cosine, ERCS 1.
+  seen = visible(m, {2.3, 10.9});
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0].first.zone.kind, VisibilityFunction::Zone::falloff);
+  EXPECT_NEAR(seen[0].second, 1.0, 1e-12);
+  EXPECT_TRUE(visible(m, {-7.7, 0.9}).empty());  // from behind (180 deg): not visited at all
+  EXPECT_TRUE(visible(m, {2.3, 0.9}).empty());   // sensor on the reflector: no impinging angle
+}
+
+TEST(Visibility, PointsFirstThenPlanesOnlyWhenAsked) {
+  ObjectModel m;
+  m.planes.push_back(plane_from_chord("front", {2.2, -0.75}, {2.2, 0.75}, 0.1, 0.7));
+  PointReflector corner;
+  corner.p_OR_O = {2.3, 0.9};
+  corner.visibility = {0.0, kPi, 0.0};  // seen from everywhere
+  m.points.push_back(corner);
+  const auto seen = visible(m, {20.0, 0.0});
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(seen[0].first.kind, ReflectorKind::Point);
+  EXPECT_EQ(seen[1].first.kind, ReflectorKind::Plane);
+  EXPECT_NEAR(seen[1].first.p_OT_O.x(), 2.3, 1e-12);  // the front apex
+  EXPECT_DOUBLE_EQ(seen[1].second, 0.7);
+  EXPECT_EQ(visible(m, {20.0, 0.0}, false).size(), 1u);  // Fidelity::points_only
 }
 
 TEST(Visibility, PlaneReflectionPointOnTheLineToTheCentre) {
