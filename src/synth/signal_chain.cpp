@@ -228,43 +228,49 @@ void SignalChain::transform() {
   }
 }
 
-std::vector<Detection> SignalChain::detect() const {
+struct SignalChain::CfarCandidate {
+  int r, d;
+  float power;
+  double noise;
+};
+
+namespace {
+
+// Local maximum of the 3 x 3 neighbourhood (Doppler wraps; ties go to the first cell).
+bool is_local_maximum(const Eigen::MatrixXf& power, int r, int d) {
+  const int nr = static_cast<int>(power.rows()), nd = static_cast<int>(power.cols());
+  const float cell = power(r, d);
+  for (int dr = -1; dr <= 1; ++dr) {
+    for (int dd = -1; dd <= 1; ++dd) {
+      if (dr == 0 && dd == 0) continue;
+      const int rr = r + dr;
+      if (rr < 0 || rr >= nr) continue;
+      const float other = power(rr, wrap_index(d + dd, nd));
+      if (other > cell || (other == cell && (dr < 0 || (dr == 0 && dd < 0)))) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<SignalChain::CfarCandidate> SignalChain::cfar_candidates(const Eigen::MatrixXf& power) const {
   const Processing& p = config_.processing;
   const int nr = map_.range_bins, nd = map_.doppler_bins;
-  Eigen::MatrixXf power(nr, nd);
-  for (int r = 0; r < nr; ++r) {
-    for (int d = 0; d < nd; ++d) power(r, d) = std::norm(map_.sum(r, d));
-  }
   const int r_lo = std::max(1, static_cast<int>(std::ceil(config_.antenna.min_range_m / derived_.range_bin_m)) - 1);
   const int r_hi = std::min(nr - 2, static_cast<int>(config_.antenna.max_range_m / derived_.range_bin_m) + 1);
   const double noise_cell_power = noise_sigma_ * noise_sigma_ * sum_of_squares(range_window_) * sum_of_squares(doppler_window_);
   const int g = p.cfar_guard_cells, tr = p.cfar_training_cells_range, td = p.cfar_training_cells_doppler;
   std::vector<float> range_training, doppler_training;
-
-  struct Candidate {
-    int r, d;
-    float power;
-    double noise;
+  const auto order_statistic = [&](std::vector<float>& v) {
+    const int rank = os_rank(static_cast<int>(v.size()));
+    std::nth_element(v.begin(), v.begin() + (rank - 1), v.end());
+    return static_cast<double>(v[rank - 1]);
   };
-  std::vector<Candidate> candidates;
+  std::vector<CfarCandidate> candidates;
   for (int r = r_lo; r <= r_hi; ++r) {
     for (int d = 0; d < nd; ++d) {
-      const float cell = power(r, d);
-      // Local maximum of the 3 x 3 neighbourhood (ties go to the first cell).
-      bool is_max = true;
-      for (int dr = -1; dr <= 1 && is_max; ++dr) {
-        for (int dd = -1; dd <= 1; ++dd) {
-          if (dr == 0 && dd == 0) continue;
-          const int rr = r + dr;
-          if (rr < 0 || rr >= nr) continue;
-          const float other = power(rr, wrap_index(d + dd, nd));
-          if (other > cell || (other == cell && (dr < 0 || (dr == 0 && dd < 0)))) {
-            is_max = false;
-            break;
-          }
-        }
-      }
-      if (!is_max) continue;
+      if (!is_local_maximum(power, r, d)) continue;
       // OS-CFAR along range and along Doppler, beyond the guard cells; the smaller of the two
       // estimates, so that an extended target or a row of echoes in one dimension cannot mask.
       range_training.clear();
@@ -279,28 +285,28 @@ std::vector<Detection> SignalChain::detect() const {
         doppler_training.push_back(power(r, wrap_index(d + i, nd)));
       }
       const int n = static_cast<int>(range_training.size());
-      const auto order_statistic = [&](std::vector<float>& v) {
-        const int rank = os_rank(static_cast<int>(v.size()));
-        std::nth_element(v.begin(), v.begin() + (rank - 1), v.end());
-        return static_cast<double>(v[rank - 1]);
-      };
       const double doppler_noise = order_statistic(doppler_training);
       // A receiver is never quieter than its thermal noise: the floor keeps noise-free test runs from
       // detecting window sidelobes far below it.
       const double noise = std::max(n > 0 ? std::min(order_statistic(range_training), doppler_noise) : doppler_noise,
                                     0.1 * noise_cell_power);
-      if (cell > cfar_factors_[n] * noise) candidates.push_back({r, d, cell, noise});
+      if (power(r, d) > cfar_factors_[n] * noise) candidates.push_back({r, d, power(r, d), noise});
     }
   }
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+  return candidates;
+}
+
+std::vector<SignalChain::CfarCandidate> SignalChain::blank_sidelobes(std::vector<CfarCandidate> candidates) const {
+  const Processing& p = config_.processing;
+  const int nd = map_.doppler_bins;
+  std::sort(candidates.begin(), candidates.end(), [](const CfarCandidate& a, const CfarCandidate& b) {
     return a.power != b.power ? a.power > b.power : (a.r != b.r ? a.r < b.r : a.d < b.d);
   });
-
-  // Sidelobe blanking: a peak far below a stronger neighbour in its range row or Doppler column is
-  // that neighbour's window sidelobe.
+  // A peak far below a stronger neighbour in its range row or Doppler column is that neighbour's
+  // window sidelobe.
   const double blank = std::pow(10.0, -p.sidelobe_blanking_db / 10.0);
   const int reach = p.sidelobe_blanking_cells;
-  std::vector<Candidate> kept;
+  std::vector<CfarCandidate> kept;
   for (const auto& c : candidates) {
     bool sidelobe = false;
     for (const auto& s : kept) {
@@ -314,7 +320,12 @@ std::vector<Detection> SignalChain::detect() const {
     if (!sidelobe) kept.push_back(c);
     if (static_cast<int>(kept.size()) >= p.max_detections) break;
   }
+  return kept;
+}
 
+std::vector<Detection> SignalChain::estimate_detections(const std::vector<CfarCandidate>& kept,
+                                                        const Eigen::MatrixXf& power) const {
+  const int nd = map_.doppler_bins;
   std::vector<Detection> detections;
   const double half_fov = deg_to_rad(config_.antenna.azimuth_half_fov_deg);
   const double to_db = 20.0 / std::log(10.0);
@@ -344,6 +355,16 @@ std::vector<Detection> SignalChain::detect() const {
     detections.push_back(det);
   }
   return detections;
+}
+
+std::vector<Detection> SignalChain::detect() const {
+  const int nr = map_.range_bins, nd = map_.doppler_bins;
+  Eigen::MatrixXf power(nr, nd);
+  for (int r = 0; r < nr; ++r) {
+    for (int d = 0; d < nd; ++d) power(r, d) = std::norm(map_.sum(r, d));
+  }
+  // power => CFAR peaks => sidelobes blanked => estimated detections
+  return estimate_detections(blank_sidelobes(cfar_candidates(power)), power);
 }
 
 std::vector<Detection> SignalChain::process(const std::vector<Echo>& echoes, Rng& rng, bool add_noise) {

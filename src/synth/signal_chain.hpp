@@ -62,6 +62,13 @@ class SignalChain {
   double cfar_factor(int range_cells) const;
 
  private:
+  struct CfarCandidate;  // a local maximum above its CFAR threshold (signal_chain.cpp)
+  // The stages of detect(): power map => local maxima over OS-CFAR => sidelobe blanking =>
+  // range, range rate, amplitude and monopulse angle of each kept peak.
+  std::vector<CfarCandidate> cfar_candidates(const Eigen::MatrixXf& power) const;
+  std::vector<CfarCandidate> blank_sidelobes(std::vector<CfarCandidate> candidates) const;
+  std::vector<Detection> estimate_detections(const std::vector<CfarCandidate>& kept, const Eigen::MatrixXf& power) const;
+
   SynthConfig config_;
   Derived derived_;
   int processed_range_bins_ = 0;
