@@ -13,11 +13,6 @@ namespace rcsim::replay::report {
 
 namespace {
 
-Pose2 inverse(const Pose2& X_AB) {
-  const Vec2 p = rotate(-X_AB.yaw_rad, -X_AB.translation());
-  return {p.x(), p.y(), -X_AB.yaw_rad};
-}
-
 const SensorInfo* find_sensor(const RunData& run, int sensor) {
   for (const auto& s : run.sensors) {
     if (s.sensor == sensor) return &s;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <tuple>
 
 #include "replay/report/svg_plot.hpp"
 #include "replay/report/svg_writer.hpp"
@@ -36,11 +37,19 @@ double fade(int age, int trace_cycles) {
   return 0.12 + 0.45 * (1.0 - static_cast<double>(age) / (trace_cycles + 1));
 }
 
-}  // namespace
+// The picture's geometry: the view in metres (square, equal scale) and where it sits on screen.
+struct View {
+  double x_lo = 0.0, x_hi = 0.0, y_lo = 0.0, y_hi = 0.0, span = 0.0;  // metres, vehicle frame
+  double left = 0.0, top = 0.0, size = 0.0, right = 0.0, bottom = 0.0;  // pixels
+  int width_px = 0, height_px = 0;
+  // Screen: x (forward) up, y (left) to the left.
+  LinearScale sx, sy;
+  std::string px(const Vec2& p_V) const { return fmt::format("{},{}", coord(sx(p_V.y())), coord(sy(p_V.x()))); }
+};
 
-std::string birdseye_svg(const BirdsEyeSpec& spec) {
-  // The view: everything worth seeing (targets, sensors, the vehicle origin, boxes near the
-  // sensors), padded, made square at equal scale.
+// Everything worth seeing (targets, sensors, the vehicle origin, boxes near the sensors), padded,
+// made square at equal scale.
+View make_view(const BirdsEyeSpec& spec) {
   double reach_m = 0.0;
   for (const auto& s : spec.sensors) reach_m = std::max(reach_m, s.max_range_m);
   Bounds bounds;
@@ -54,73 +63,87 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
   widen(bounds.x_lo, bounds.x_hi, 10.0, 0.0);
   widen(bounds.y_lo, bounds.y_hi, 10.0, 0.0);
   bounds.x_lo -= 2.0, bounds.x_hi += 2.0, bounds.y_lo -= 2.0, bounds.y_hi += 2.0;
-  const double span = std::max(bounds.x_hi - bounds.x_lo, bounds.y_hi - bounds.y_lo);
+  View v;
+  v.span = std::max(bounds.x_hi - bounds.x_lo, bounds.y_hi - bounds.y_lo);
   const double cx = 0.5 * (bounds.x_lo + bounds.x_hi), cy = 0.5 * (bounds.y_lo + bounds.y_hi);
-  const double x_lo = cx - 0.5 * span, x_hi = cx + 0.5 * span, y_lo = cy - 0.5 * span, y_hi = cy + 0.5 * span;
+  v.x_lo = cx - 0.5 * v.span, v.x_hi = cx + 0.5 * v.span, v.y_lo = cy - 0.5 * v.span, v.y_hi = cy + 0.5 * v.span;
+  v.left = 58.0, v.top = 30.0 + 14.0 * static_cast<double>(spec.notes.size()), v.size = spec.size_px;
+  v.right = v.left + v.size, v.bottom = v.top + v.size;
+  v.width_px = static_cast<int>(v.right + 16.0), v.height_px = static_cast<int>(v.bottom + 104.0);
+  v.sx = LinearScale{v.y_hi, v.y_lo, v.left, v.right};
+  v.sy = LinearScale{v.x_lo, v.x_hi, v.bottom, v.top};
+  return v;
+}
 
-  const double left = 58.0, top = 30.0 + 14.0 * static_cast<double>(spec.notes.size()), size = spec.size_px;
-  const double right = left + size, bottom = top + size;
-  const int width_px = static_cast<int>(right + 16.0), height_px = static_cast<int>(bottom + 104.0);
-  // Screen: x (forward) up, y (left) to the left.
-  const LinearScale sx{y_hi, y_lo, left, right}, sy{x_lo, x_hi, bottom, top};
-  const auto px = [&](const Vec2& p_V) { return fmt::format("{},{}", coord(sx(p_V.y())), coord(sy(p_V.x()))); };
-
-  std::string out;
+void draw_header(const BirdsEyeSpec& spec, const View& v, std::string& out) {
   out += fmt::format(R"(<svg class="birdseye" xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}" role="img" aria-label="{2}">)",
-                     width_px, height_px, escape(spec.title));
-  out += fmt::format(R"(<rect class="bg" x="0" y="0" width="{}" height="{}" fill="#fff"/>)", width_px, height_px);
+                     v.width_px, v.height_px, escape(spec.title));
+  if (spec.standalone) {
+    // The text styles of the report's page (html_report.cpp), for a picture opened on its own.
+    out += "<style>text{font-family:system-ui,sans-serif}.title{font-size:13px;font-weight:600}"
+           ".note{font-size:11px;fill:#666}.axis-label,.legend{font-size:12px;fill:#333}"
+           ".box-label{font-size:10px;fill:#343a40}</style>";
+  }
+  out += fmt::format(R"(<rect class="bg" x="0" y="0" width="{}" height="{}" fill="#fff"/>)", v.width_px, v.height_px);
   out += fmt::format(R"(<text x="8" y="16" class="title">{}</text>)", escape(spec.title));
   for (std::size_t i = 0; i < spec.notes.size(); ++i) {
     out += fmt::format(R"(<text x="8" y="{}" class="note">{}</text>)", 31 + 14 * i, escape(spec.notes[i]));
   }
+}
 
-  // Axes with a metre grid.
-  const Ticks tx = nice_ticks(x_lo, x_hi, 8), ty = nice_ticks(y_lo, y_hi, 8);
+// Axes with a metre grid.
+void draw_axes(const View& v, std::string& out) {
+  const auto& [sx, sy] = std::tie(v.sx, v.sy);
+  const Ticks tx = nice_ticks(v.x_lo, v.x_hi, 8), ty = nice_ticks(v.y_lo, v.y_hi, 8);
   out += R"(<g class="grid" stroke="#e6e6e6" stroke-width="1">)";
-  for (const double v : ty.values) {
-    out += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{0}" y2="{2}"/>)", coord(sx(v)), coord(top), coord(bottom));
+  for (const double tick : ty.values) {
+    out += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{0}" y2="{2}"/>)", coord(sx(tick)), coord(v.top), coord(v.bottom));
   }
-  for (const double v : tx.values) {
-    out += fmt::format(R"(<line x1="{1}" y1="{0}" x2="{2}" y2="{0}"/>)", coord(sy(v)), coord(left), coord(right));
+  for (const double tick : tx.values) {
+    out += fmt::format(R"(<line x1="{1}" y1="{0}" x2="{2}" y2="{0}"/>)", coord(sy(tick)), coord(v.left), coord(v.right));
   }
   out += "</g>";
   out += R"(<g class="ticks" font-size="11" fill="#333">)";
-  for (const double v : ty.values) {
-    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle">{}</text>)", coord(sx(v)), coord(bottom + 14),
-                       fixed(v, ty.decimals));
+  for (const double tick : ty.values) {
+    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle">{}</text>)", coord(sx(tick)), coord(v.bottom + 14),
+                       fixed(tick, ty.decimals));
   }
-  for (const double v : tx.values) {
-    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="end">{}</text>)", coord(left - 5), coord(sy(v) + 4),
-                       fixed(v, tx.decimals));
+  for (const double tick : tx.values) {
+    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="end">{}</text>)", coord(v.left - 5), coord(sy(tick) + 4),
+                       fixed(tick, tx.decimals));
   }
   out += "</g>";
   out += fmt::format(R"(<text class="axis-label" x="{}" y="{}" text-anchor="middle">y / m (vehicle frame, left positive)</text>)",
-                     coord(0.5 * (left + right)), coord(bottom + 32));
+                     coord(0.5 * (v.left + v.right)), coord(v.bottom + 32));
   out += fmt::format(R"~(<text class="axis-label" x="14" y="{0}" text-anchor="middle" transform="rotate(-90 14 {0})">x / m (vehicle frame, forward)</text>)~",
-                     coord(0.5 * (top + bottom)));
+                     coord(0.5 * (v.top + v.bottom)));
 
-  // The drawing, clipped to the plot area by a nested viewport.
-  out += fmt::format(R"(<svg x="{0}" y="{1}" width="{2}" height="{2}" viewBox="{0} {1} {2} {2}" overflow="hidden">)",
-                     coord(left), coord(top), coord(size));
+}
+
+void draw_fields_of_view(const BirdsEyeSpec& spec, const View& v, std::string& out) {
   out += R"(<g class="fovs">)";
   for (const auto& s : spec.sensors) {
-    std::string points = px(s.X_VS.translation());
+    std::string points = v.px(s.X_VS.translation());
     constexpr int kArcSegments = 32;
     for (int i = 0; i <= kArcSegments; ++i) {
       const double a = -s.azimuth_half_rad + 2.0 * s.azimuth_half_rad * i / kArcSegments;
       points += ' ';
-      points += px(transform_point(s.X_VS, {s.max_range_m * std::cos(a), s.max_range_m * std::sin(a)}));
+      points += v.px(transform_point(s.X_VS, {s.max_range_m * std::cos(a), s.max_range_m * std::sin(a)}));
     }
     out += fmt::format(R"(<polygon class="fov" points="{}" fill="#2b8a3e" fill-opacity="0.06" stroke="#2b8a3e" stroke-opacity="0.5" stroke-dasharray="5 4"/>)",
                        points);
   }
   out += "</g>";
+}
+
+void draw_boxes(const BirdsEyeSpec& spec, const View& v, std::string& out) {
+  const auto& [sx, sy] = std::tie(v.sx, v.sy);
   out += R"(<g class="boxes">)";
   for (const auto& box : spec.boxes) {
     std::string points;
     for (const Vec2& c : box_corners_V(box)) {
       if (!points.empty()) points += ' ';
-      points += px(c);
+      points += v.px(c);
     }
     out += fmt::format(R"(<polygon class="box" points="{}" fill="#868e96" fill-opacity="0.18" stroke="{}" stroke-width="{}"/>)",
                        points, box.in_merge_pair ? "#862e9c" : "#495057", box.in_merge_pair ? "2" : "1.2");
@@ -129,15 +152,19 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
                        coord(sy(c.x()) + 3), escape(box.label));
   }
   out += "</g>";
-  // The ego vehicle's reference point and its sensors.
+}
+
+// The ego vehicle's reference point, its sensors and the assigned pairs' links.
+void draw_ego_sensors_and_links(const BirdsEyeSpec& spec, const View& v, std::string& out) {
+  const auto& [sx, sy] = std::tie(v.sx, v.sy);
   out += fmt::format(R"(<g class="ego" stroke="#111" stroke-width="1.5"><line x1="{0}" y1="{1}" x2="{0}" y2="{2}"/><line x1="{3}" y1="{4}" x2="{5}" y2="{4}"/></g>)",
                      coord(sx(0.0)), coord(sy(-0.8)), coord(sy(0.8)), coord(sx(0.8)), coord(sy(0.0)), coord(sx(-0.8)));
   for (const auto& s : spec.sensors) {
-    const double k = span / size;  // metres per pixel: a marker of fixed pixel size
+    const double k = v.span / v.size;  // metres per pixel: a marker of fixed pixel size
     const Vec2 tip = transform_point(s.X_VS, {9.0 * k, 0.0}), l = transform_point(s.X_VS, {-4.0 * k, 5.0 * k}),
                r = transform_point(s.X_VS, {-4.0 * k, -5.0 * k});
     out += fmt::format(R"(<polygon class="sensor" points="{} {} {}" fill="#2b8a3e" stroke="#111" stroke-width="0.8"><title>{}</title></polygon>)",
-                       px(tip), px(l), px(r), escape(s.label));
+                       v.px(tip), v.px(l), v.px(r), escape(s.label));
   }
   out += R"(<g class="links" stroke="#444" stroke-width="0.8">)";
   for (const auto& link : spec.links) {
@@ -146,7 +173,11 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
                        coord(sy(link.p_simulated_V.x())));
   }
   out += "</g>";
-  // Oldest first, so that the pictured cycle is drawn on top.
+}
+
+// Oldest first, so that the pictured cycle is drawn on top.
+void draw_targets(const BirdsEyeSpec& spec, const View& v, std::string& out) {
+  const auto& [sx, sy] = std::tie(v.sx, v.sy);
   std::vector<const BirdsEyeTarget*> order;
   for (const auto& t : spec.targets) order.push_back(&t);
   std::stable_sort(order.begin(), order.end(), [](const auto* a, const auto* b) { return a->age > b->age; });
@@ -170,19 +201,19 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
                          coord(x), coord(y));
     }
   }
-  out += "</g></svg>";
-  out += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#555"/>)", coord(left),
-                     coord(top), coord(size), coord(size));
+  out += "</g>";
+}
 
-  // Legend under the axis label, three rows.
-  const double ly = bottom + 54.0, ly2 = bottom + 72.0, ly3 = bottom + 90.0;
-  const double l0 = left + 8.0, l1 = left + 160.0, l2 = left + 310.0;
+// Legend under the axis label, three rows.
+void draw_legend(const BirdsEyeSpec& spec, const View& v, std::string& out) {
+  const double ly = v.bottom + 54.0, ly2 = v.bottom + 72.0, ly3 = v.bottom + 90.0;
+  const double l0 = v.left + 8.0, l1 = v.left + 160.0, l2 = v.left + 310.0;
   out += R"(<g class="legend-block">)";
-  out += fmt::format(R"(<circle cx="{}" cy="{}" r="4.5" fill="{}"/><text x="{}" y="{}" class="legend">recorded target</text>)",
-                     coord(l0), coord(ly - 4), kRecordedColour, coord(l0 + 10), coord(ly));
-  out += fmt::format(R"(<polygon points="{0},{1} {2},{3} {0},{4} {5},{3}" fill="none" stroke="{6}" stroke-width="1.8"/><text x="{7}" y="{8}" class="legend">simulated target</text>)",
+  out += fmt::format(R"(<circle cx="{}" cy="{}" r="4.5" fill="{}"/><text x="{}" y="{}" class="legend">{}</text>)",
+                     coord(l0), coord(ly - 4), kRecordedColour, coord(l0 + 10), coord(ly), escape(spec.recorded_label));
+  out += fmt::format(R"(<polygon points="{0},{1} {2},{3} {0},{4} {5},{3}" fill="none" stroke="{6}" stroke-width="1.8"/><text x="{7}" y="{8}" class="legend">{9}</text>)",
                      coord(l1), coord(ly - 10), coord(l1 + 6), coord(ly - 4), coord(ly + 2), coord(l1 - 6),
-                     kSimulatedColour, coord(l1 + 10), coord(ly));
+                     kSimulatedColour, coord(l1 + 10), coord(ly), escape(spec.simulated_label));
   out += fmt::format(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#444"/><text x="{}" y="{}" class="legend">assigned pair (GOSPA)</text>)",
                      coord(l2 - 8), coord(ly - 4), coord(l2 + 6), coord(ly - 4), coord(l2 + 10), coord(ly));
   out += fmt::format(R"(<circle cx="{}" cy="{}" r="7" fill="none" stroke="#862e9c" stroke-width="1.5"/><text x="{}" y="{}" class="legend">merge artefact</text>)",
@@ -193,6 +224,26 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
   out += fmt::format(R"(<rect x="{}" y="{}" width="12" height="8" fill="#868e96" fill-opacity="0.18" stroke="#495057"/><text x="{}" y="{}" class="legend">annotated box; purple outline: shares a range-speed cell with another</text>)",
                      coord(l0 - 6), coord(ly3 - 8), coord(l0 + 10), coord(ly3));
   out += "</g>";
+}
+
+}  // namespace
+
+std::string birdseye_svg(const BirdsEyeSpec& spec) {
+  const View v = make_view(spec);
+  std::string out;
+  draw_header(spec, v, out);
+  draw_axes(v, out);
+  // The drawing, clipped to the plot area by a nested viewport.
+  out += fmt::format(R"(<svg x="{0}" y="{1}" width="{2}" height="{2}" viewBox="{0} {1} {2} {2}" overflow="hidden">)",
+                     coord(v.left), coord(v.top), coord(v.size));
+  draw_fields_of_view(spec, v, out);
+  draw_boxes(spec, v, out);
+  draw_ego_sensors_and_links(spec, v, out);
+  draw_targets(spec, v, out);
+  out += "</svg>";
+  out += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#555"/>)", coord(v.left),
+                     coord(v.top), coord(v.size), coord(v.size));
+  draw_legend(spec, v, out);
   out += "</svg>";
   return out;
 }

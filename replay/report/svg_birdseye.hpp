@@ -44,6 +44,8 @@ struct BirdsEyeSpec {
   std::vector<BirdsEyeSensor> sensors;
   std::vector<BirdsEyeTarget> targets;
   std::vector<BirdsEyeLink> links;
+  std::string recorded_label = "recorded target", simulated_label = "simulated target";  // legend
+  bool standalone = false;  // a file of its own: carries its own text styles (the report's page has them)
 };
 
 std::string birdseye_svg(const BirdsEyeSpec& spec);

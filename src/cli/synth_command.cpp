@@ -10,9 +10,9 @@
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "io/recording.hpp"
+#include "replay/report/recording_birdseye.hpp"
 #include "scene/scene.hpp"
 #include "synth/reference_simulator.hpp"
-#include "synth/svg_plot.hpp"
 
 namespace rcsim::cli {
 namespace {
@@ -65,11 +65,13 @@ void run_synth(const SynthArgs& args) {
   const synth::SynthConfig config;
   const Recording recording = synth::make_recording(scene, config, seed, info);
   if (!args.svg.empty()) {
-    synth::SvgOptions options;
+    replay::svg::RecordingPictureOptions options;
     options.time_s = args.svg_time_s;
     options.compare_path = args.svg_compare;
     options.title = info.name;
-    const std::string svg = synth::birds_eye_svg(recording, options);
+    options.recorded_label = "reference target";
+    options.compared_label = "compared target";
+    const std::string svg = replay::svg::recording_birdseye_svg(recording, options);
     AtomicFileWriter file(args.svg);
     file.stream() << svg;
     file.commit();

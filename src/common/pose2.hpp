@@ -40,6 +40,12 @@ inline Pose2 compose(const Pose2& X_AB, const Pose2& X_BC) {
   return {p.x(), p.y(), X_AB.yaw_rad + X_BC.yaw_rad};
 }
 
+// X_BA from X_AB.
+inline Pose2 inverse(const Pose2& X_AB) {
+  const Vec2 p = rotate(-X_AB.yaw_rad, -X_AB.translation());
+  return {p.x(), p.y(), -X_AB.yaw_rad};
+}
+
 // Planar cross product a x b (the z component): positive when b lies counter-clockwise of a,
 // within a half turn.
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }

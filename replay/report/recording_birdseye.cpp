@@ -1,0 +1,83 @@
+#include "replay/report/recording_birdseye.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <optional>
+
+#include "io/csv_reader.hpp"
+#include "replay/report/svg_writer.hpp"
+#include "sensor/sensor_config.hpp"
+
+namespace rcsim::replay::svg {
+
+namespace {
+
+// A sensor's view field from its configuration (built-in, or a file beside the recording).
+std::optional<FieldOfView> field_of_view(const Recording& rec, const RecordingSensor& sensor) {
+  if (is_builtin_sensor_config(sensor.type)) return builtin_sensor_config(sensor.type).fov;
+  const std::filesystem::path file = rec.dir / sensor.type;
+  if (rec.dir.empty() || !std::filesystem::is_regular_file(file)) return std::nullopt;
+  return load_sensor_config_file(file.string()).fov;
+}
+
+// The last cycle at or before time_s (all cycles when time_s < 0).
+int pictured_cycle(const Recording& rec, double time_s) {
+  int last = rec.cycle_count() - 1;
+  if (time_s >= 0.0) {
+    for (int k = 0; k < rec.cycle_count(); ++k) {
+      if (rec.ego[static_cast<std::size_t>(k)].t_s <= time_s + 1e-9) last = k;
+    }
+  }
+  return last;
+}
+
+}  // namespace
+
+BirdsEyeSpec recording_birdseye(const Recording& rec, const RecordingPictureOptions& options) {
+  BirdsEyeSpec spec;
+  if (rec.cycle_count() == 0) return spec;
+  const int last = pictured_cycle(rec, options.time_s), first = std::max(0, last - options.cycles + 1);
+  const EgoSample& ego = rec.ego[static_cast<std::size_t>(last)];
+  const Pose2 X_WV{ego.x_m, ego.y_m, ego.yaw_rad};
+  spec.title = options.title.empty() ? rec.name : options.title;
+  spec.notes.push_back(fmt::format("cycle {} at t = {:.2f} s; targets of cycles {} to {}", last, ego.t_s, first, last));
+  spec.trace_cycles = last - first;
+  spec.recorded_label = options.recorded_label;
+  spec.simulated_label = options.compared_label;
+  spec.standalone = true;
+  for (const RecordingSensor& s : rec.sensors) {
+    const auto fov = field_of_view(rec, s);
+    spec.sensors.push_back({s.id, Pose2{s.x_m, s.y_m, s.yaw_rad}, fov ? fov->azimuth_half_rad : 0.0,
+                            fov ? fov->max_range_m : 0.0});
+  }
+  for (std::size_t i = 0; i < rec.boxes.size(); ++i) {
+    for (const AnnotatedBox& b : rec.boxes[i]) {
+      if (std::abs(b.t_s - ego.t_s) > 1e-6) continue;
+      const Pose2 X_VO = compose(inverse(X_WV), Pose2{b.x_m, b.y_m, b.yaw_rad});
+      spec.boxes.push_back({shorten(rec.objects[i].id, 14), X_VO, rec.objects[i].length_m, rec.objects[i].width_m, false});
+    }
+  }
+  // A target of cycle k and sensor s, into the pictured cycle's vehicle frame.
+  const auto add_target = [&](int cycle, int sensor, double range_m, double azimuth_rad, bool compared) {
+    if (cycle < first || cycle > last) return;
+    const EgoSample& e = rec.ego[static_cast<std::size_t>(cycle)];
+    const RecordingSensor& s = rec.sensors[static_cast<std::size_t>(sensor)];
+    const Pose2 X_WS = compose(Pose2{e.x_m, e.y_m, e.yaw_rad}, Pose2{s.x_m, s.y_m, s.yaw_rad});
+    const Vec2 p_WT_W = transform_point(X_WS, Vec2(range_m * std::cos(azimuth_rad), range_m * std::sin(azimuth_rad)));
+    spec.targets.push_back({inverse_transform_point(X_WV, p_WT_W), compared, last - cycle, false});
+  };
+  for (const RecordedTarget& t : rec.targets) add_target(t.cycle, t.sensor, t.range_m, t.azimuth_rad, false);
+  if (!options.compare_path.empty()) {
+    CsvReader csv(options.compare_path, {"cycle", "sensor", "range_m", "azimuth_rad"});
+    const int c = csv.column("cycle"), s = csv.column("sensor"), r = csv.column("range_m"), az = csv.column("azimuth_rad");
+    while (csv.next()) {
+      const int sensor = rec.sensor_index(csv.text(s));
+      if (sensor < 0) csv.fail(s, "sensor '" + csv.text(s) + "' is not a sensor of the recording");
+      add_target(static_cast<int>(csv.integer(c)), sensor, csv.number(r), csv.number(az), true);
+    }
+  }
+  return spec;
+}
+
+}  // namespace rcsim::replay::svg
