@@ -76,7 +76,8 @@ TEST_F(SynthCli, SvgPictureOnRequest) {
   ASSERT_EQ(run("synth " + kScenes + "standstill_1m.json -o " + (dir_ / "r").string() + " --svg " + svg.string()).exit_code, 0);
   const std::string text = read(svg);
   EXPECT_EQ(text.rfind("<svg", 0), 0u);
-  EXPECT_NE(text.find("reference (rcsim synth)"), std::string::npos);
+  EXPECT_NE(text.find("reference target"), std::string::npos);  // the legend names the reference
+  EXPECT_NE(text.find("class=\"box-label\""), std::string::npos);   // the annotated boxes are drawn
 }
 
 TEST_F(SynthCli, RefusesBadInputWithoutPartialOutput) {
