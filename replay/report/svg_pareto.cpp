@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <tuple>
 #include <numeric>
 
 #include "replay/report/svg_writer.hpp"
@@ -175,8 +176,19 @@ std::vector<bool> pareto_front(const std::vector<ParetoPoint>& points) {
   return front;
 }
 
-std::string pareto_svg(const ParetoSpec& spec) {
-  const std::vector<bool> front = pareto_front(spec.points);
+namespace {
+
+// The plot's axes: x = log10(sensor cycles per CPU second), y = error from zero.
+struct ParetoView {
+  double x_lo = 0.0, x_hi = 0.0, y_hi = 0.0;
+  std::size_t drawn = 0;  // points with a CPU time
+  Box frame;
+  LinearScale sx, sy;
+  double px(const ParetoPoint& p) const { return sx(std::log10(p.cycles_per_cpu_s)); }
+  double py(const ParetoPoint& p) const { return sy(p.error_m); }
+};
+
+ParetoView make_pareto_view(const ParetoSpec& spec) {
   // x in log10 units.
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_hi = 0.0;
   std::size_t drawn = 0;
@@ -210,13 +222,15 @@ std::string pareto_svg(const ParetoSpec& spec) {
   if (std::ceil(x_hi) - x_hi < 0.3) x_hi = std::ceil(x_hi);
   y_hi = y_hi > 0.0 ? y_hi * 1.12 : 1.0;
 
-  const Box frame{kMarginLeft, kMarginTop, spec.width_px - kMarginRight, spec.height_px - kMarginBottom};
-  const LinearScale sx{x_lo, x_hi, frame.x0, frame.x1}, sy{0.0, y_hi, frame.y1, frame.y0};
-  const auto px = [&](const ParetoPoint& p) { return sx(std::log10(p.cycles_per_cpu_s)); };
-  const auto py = [&](const ParetoPoint& p) { return sy(p.error_m); };
-  const Ticks ty = nice_ticks(0.0, y_hi, 5);
+  ParetoView v;
+  v.x_lo = x_lo, v.x_hi = x_hi, v.y_hi = y_hi, v.drawn = drawn;
+  v.frame = Box{kMarginLeft, kMarginTop, spec.width_px - kMarginRight, spec.height_px - kMarginBottom};
+  v.sx = LinearScale{x_lo, x_hi, v.frame.x0, v.frame.x1};
+  v.sy = LinearScale{0.0, y_hi, v.frame.y1, v.frame.y0};
+  return v;
+}
 
-  std::string out;
+void draw_pareto_header(const ParetoSpec& spec, std::string& out) {
   out += fmt::format(
       R"(<svg class="pareto" xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" role="img" aria-label="{}">)",
       spec.width_px, spec.height_px, spec.width_px, spec.height_px, escape(spec.title));
@@ -224,7 +238,13 @@ std::string pareto_svg(const ParetoSpec& spec) {
                      spec.height_px);
   out += fmt::format(R"(<text x="8" y="16" class="title">{}</text>)", escape(spec.title));
   if (!spec.note.empty()) out += fmt::format(R"(<text x="8" y="30" class="note">{}</text>)", escape(spec.note));
+}
 
+void draw_pareto_axes(const ParetoSpec& spec, const ParetoView& view, std::string& out) {
+  const double x_lo = view.x_lo, x_hi = view.x_hi;
+  const Box& frame = view.frame;
+  const auto& [sx, sy] = std::tie(view.sx, view.sy);
+  const Ticks ty = nice_ticks(0.0, view.y_hi, 5);
   // Grid: every power of ten, lighter lines at its multiples 2..9; labels at the powers of ten,
   // and at 2 and 5 times them when fewer than three powers of ten lie on the axis.
   const int first_decade = static_cast<int>(std::floor(x_lo)), last_decade = static_cast<int>(std::ceil(x_hi));
@@ -266,8 +286,10 @@ std::string pareto_svg(const ParetoSpec& spec) {
       R"~(<text class="axis-label" x="14" y="{0}" text-anchor="middle" transform="rotate(-90 14 {0})">{1}</text>)~",
       coord(cy), escape(spec.y_label));
 
-  // Legend, right-aligned in the title line.
-  if (spec.legend) {
+}
+
+// Legend, right-aligned in the title line.
+void draw_pareto_legend(const Box& frame, std::string& out) {
     double x = frame.x1;
     const auto legend_text = [&](const char* text) {
       x -= kLegendCharWidthPx * static_cast<double>(std::string_view(text).size());
@@ -288,30 +310,18 @@ std::string pareto_svg(const ParetoSpec& spec) {
     legend_text("default level");
     out += fmt::format(R"(<circle cx="{}" cy="12" r="6" fill="none" stroke="{}" stroke-width="2"/>)", coord(x - 10),
                        kDefaultColour);
-  }
+}
 
-  if (drawn == 0) {
-    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle" class="note">no level with a CPU time</text>)",
-                       coord(0.5 * (frame.x0 + frame.x1)), coord(cy));
-  }
-
-  // Everything a label must keep off: markers, the noise-floor line and its label, the front,
-  // and the labels and leaders placed before it.
-  LabelLayout layout;
-  layout.bounds = frame;
-  for (const ParetoPoint& p : spec.points) {
-    const double r = (p.highlighted ? kDefaultRingPx : kMarkerRadiusPx) + 1.5;
-    layout.markers.push_back(drawable(p) ? Box{px(p) - r, py(p) - r, px(p) + r, py(p) + r} : Box{0, 0, 0, 0});
-  }
-  layout.occupied = layout.markers;
-  if (spec.noise_floor_m && std::isfinite(*spec.noise_floor_m)) {
-    const double y = sy(*spec.noise_floor_m);
+// The noise floor's dashed line and its label, placed where it overlaps the least.
+void draw_noise_floor(double floor_m, const ParetoView& view, LabelLayout& layout, std::string& out) {
+  const Box& frame = view.frame;
+    const double y = view.sy(floor_m);
     out += fmt::format(
         R"(<line class="noise-floor" x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="1.5" stroke-dasharray="6 3"/>)",
         coord(frame.x0), coord(y), coord(frame.x1), coord(y), kFloorColour);
     // Under the line at the fast end first: the levels lie above the floor, the slow reference
     // often close to it.
-    const std::string text = fmt::format("noise floor {} m", fixed(*spec.noise_floor_m, 3));
+    const std::string text = fmt::format("noise floor {} m", fixed(floor_m, 3));
     const double w = kCharWidthPx * static_cast<double>(text.size());
     const double right = frame.x1 - 6.0, left = frame.x0 + 6.0;
     const std::array<Box, 4> candidates{{{right - w, y + 3, right, y + 15},
@@ -332,9 +342,11 @@ std::string pareto_svg(const ParetoSpec& spec) {
                        coord(at->y1 - 3), text);
     layout.occupied.push_back(*at);
     layout.add_line({frame.x0, y, frame.x1, y});
-  }
+}
 
-  // The front, from the slowest to the fastest level.
+// The front, from the slowest to the fastest level; its segments keep labels off.
+void draw_front(const ParetoSpec& spec, const std::vector<bool>& front, const ParetoView& view, LabelLayout& layout,
+                std::string& out) {
   std::vector<std::size_t> on_front;
   for (std::size_t i = 0; i < spec.points.size(); ++i) {
     if (front[i]) on_front.push_back(i);
@@ -346,10 +358,10 @@ std::string pareto_svg(const ParetoSpec& spec) {
     std::string d;
     for (std::size_t k = 0; k < on_front.size(); ++k) {
       const ParetoPoint& p = spec.points[on_front[k]];
-      d += fmt::format("{}{} {}", k == 0 ? "M" : "L", coord(px(p)), coord(py(p)));
+      d += fmt::format("{}{} {}", k == 0 ? "M" : "L", coord(view.px(p)), coord(view.py(p)));
       if (k > 0) {
         const ParetoPoint& q = spec.points[on_front[k - 1]];
-        layout.add_line({px(q), py(q), px(p), py(p)});
+        layout.add_line({view.px(q), view.py(q), view.px(p), view.py(p)});
       }
     }
     out += fmt::format(
@@ -357,7 +369,12 @@ std::string pareto_svg(const ParetoSpec& spec) {
         kFrontColour);
   }
 
-  // Labels: the default level placed first, then the front, then the rest.
+}
+
+// Labels: the default level placed first, then the front, then the rest; leaders where a label
+// had to move away from its point. Returns the labels (drawn last, above the markers).
+std::string draw_point_labels(const ParetoSpec& spec, const std::vector<bool>& front, const ParetoView& view,
+                              LabelLayout& layout, std::string& out) {
   std::vector<std::size_t> order(spec.points.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -370,7 +387,7 @@ std::string pareto_svg(const ParetoSpec& spec) {
     if (!drawable(p)) continue;
     const double marker_px = p.highlighted ? kDefaultRingPx : kMarkerRadiusPx;
     const double width = (p.highlighted ? kBoldCharWidthPx : kCharWidthPx) * static_cast<double>(p.label.size());
-    const Label l = place_label(layout, i, px(p), py(p), width, marker_px);
+    const Label l = place_label(layout, i, view.px(p), view.py(p), width, marker_px);
     layout.occupied.push_back(l.box);
     if (l.leader) {
       const Segment& s = *l.leader;
@@ -386,10 +403,14 @@ std::string pareto_svg(const ParetoSpec& spec) {
   }
   out += leaders + "</g>";
 
+  return labels;
+}
+
+void draw_markers(const ParetoSpec& spec, const std::vector<bool>& front, const ParetoView& view, std::string& out) {
   for (std::size_t i = 0; i < spec.points.size(); ++i) {
     const ParetoPoint& p = spec.points[i];
     if (!drawable(p)) continue;
-    const std::string x = coord(px(p)), y = coord(py(p));
+    const std::string x = coord(view.px(p)), y = coord(view.py(p));
     out += fmt::format(
         R"(<g class="point {}{}" data-level="{}"><title>{}: {} sensor cycles per CPU s, error {} m{}</title>)",
         front[i] ? "front" : "dominated", p.highlighted ? " default" : "", escape(p.label), escape(p.label),
@@ -404,6 +425,35 @@ std::string pareto_svg(const ParetoSpec& spec) {
                                   y, kMarkerRadiusPx - 0.5, kDominatedColour);
     out += "</g>";
   }
+}
+
+}  // namespace
+
+std::string pareto_svg(const ParetoSpec& spec) {
+  const std::vector<bool> front = pareto_front(spec.points);
+  const ParetoView view = make_pareto_view(spec);
+  const Box& frame = view.frame;
+  std::string out;
+  draw_pareto_header(spec, out);
+  draw_pareto_axes(spec, view, out);
+  if (spec.legend) draw_pareto_legend(frame, out);
+  if (view.drawn == 0) {
+    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle" class="note">no level with a CPU time</text>)",
+                       coord(0.5 * (frame.x0 + frame.x1)), coord(0.5 * (frame.y0 + frame.y1)));
+  }
+  // Everything a label must keep off: markers, the noise-floor line and its label, the front,
+  // and the labels and leaders placed before it.
+  LabelLayout layout;
+  layout.bounds = frame;
+  for (const ParetoPoint& p : spec.points) {
+    const double r = (p.highlighted ? kDefaultRingPx : kMarkerRadiusPx) + 1.5;
+    layout.markers.push_back(drawable(p) ? Box{view.px(p) - r, view.py(p) - r, view.px(p) + r, view.py(p) + r} : Box{0, 0, 0, 0});
+  }
+  layout.occupied = layout.markers;
+  if (spec.noise_floor_m && std::isfinite(*spec.noise_floor_m)) draw_noise_floor(*spec.noise_floor_m, view, layout, out);
+  draw_front(spec, front, view, layout, out);
+  const std::string labels = draw_point_labels(spec, front, view, layout, out);
+  draw_markers(spec, front, view, out);
   out += labels;
   out += "</svg>";
   return out;

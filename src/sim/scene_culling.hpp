@@ -1,5 +1,5 @@
 #pragma once
-// The scene's broad phase (issue 7): which objects a cycle needs at all. The sensors' own culling
+// The scene's broad phase (docs/fidelity.md, "Culling"): which objects a cycle needs at all. The sensors' own culling
 // (culling.hpp) visits only objects within max range + reflection radius of the sensor; this
 // stage finds them without evaluating every object's trajectory. The scene's run is cut into time
 // slices; per slice, a box holds each object's origin while it is present

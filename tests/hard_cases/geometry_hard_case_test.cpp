@@ -1,4 +1,4 @@
-// Hard cases of the geometric stages (issue 7): degenerate sensor/reflector positions, cell
+// Hard cases of the geometric stages (docs/fidelity.md): degenerate sensor/reflector positions, cell
 // boundaries, huge coordinates and long times. No NaN or infinity may leave any stage.
 #include <gtest/gtest.h>
 

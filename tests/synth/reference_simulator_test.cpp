@@ -147,7 +147,7 @@ TEST(SynthReference, CarCloseByGivesSeveralTargetsAndAnnotationsAreImperfect) {
   EXPECT_LT(max_error_m, 0.25);                         // but a few centimetres
 }
 
-// Independence (issue 3): the reference uses neither the reflection-center object models nor the
+// Independence (docs/synth.md): the reference uses neither the reflection-center object models nor the
 // sensor model's stages.
 TEST(SynthReference, IndependentOfTheReflectionCenterModel) {
   const fs::path dir = fs::path(RCSIM_SOURCE_DIR) / "src" / "synth";

@@ -1,4 +1,4 @@
-// The signal chain alone (issue 3, "How we will know"): one point scatterer comes out at its
+// The signal chain alone (docs/synth.md): one point scatterer comes out at its
 // range, range rate and azimuth; two scatterers inside one range-Doppler cell merge into one
 // detection between them; the CFAR false-alarm rate on noise alone is near its design value; the
 // amplitude scale is calibrated to paper eq. (1) at 10 m.
