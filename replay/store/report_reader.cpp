@@ -3,16 +3,12 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "replay/store/sql_column.hpp"
 #include "common/input_error.hpp"
 
 namespace rcsim::replay::report {
 
 namespace {
-
-std::optional<double> optional_double(const SQLite::Column& column) {
-  if (column.isNull()) return std::nullopt;
-  return column.getDouble();
-}
 
 }  // namespace
 

@@ -4,16 +4,12 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "replay/store/sql_column.hpp"
 #include "common/input_error.hpp"
 
 namespace rcsim::replay::report {
 
 namespace {
-
-std::optional<double> optional_double(const SQLite::Column& column) {
-  if (column.isNull()) return std::nullopt;
-  return column.getDouble();
-}
 
 }  // namespace
 

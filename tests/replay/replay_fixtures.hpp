@@ -20,6 +20,12 @@ inline Recording model_recording(const Scene& scene, std::uint64_t seed, double 
   return replay::model_recording(scene, "model_made", seed, {position_noise_m, yaw_noise_rad});
 }
 
+// A recording written to dir/name and read back, as replay reads files (rounded as written).
+inline Recording write_and_read(const Recording& rec, const std::filesystem::path& dir) {
+  write_recording(dir, rec);
+  return read_recording(dir);
+}
+
 // Two cars side by side driving towards a standing ego with two sensors, as in paper Fig. 10.
 inline Scene two_cars_scene(double duration_s = 3.0) {
   Scene scene = single_sensor_scene(duration_s);

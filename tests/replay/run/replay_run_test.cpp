@@ -18,10 +18,7 @@ class ReplayRun : public testing::ScratchDirTest {
  protected:
   ReplayRun() : ScratchDirTest("replay") {}
 
-  Recording write_and_read(const Recording& rec, const std::string& name) {
-    write_recording(dir_ / name, rec);
-    return read_recording(dir_ / name);
-  }
+  Recording write_and_read(const Recording& rec, const std::string& name) { return testing::write_and_read(rec, dir_ / name); }
 };
 
 TEST_F(ReplayRun, ModelAgainstItselfWithTheSameSeedAgreesToFileRounding) {

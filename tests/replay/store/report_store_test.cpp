@@ -19,10 +19,7 @@ class ReportStore : public testing::ScratchDirTest {
  protected:
   ReportStore() : ScratchDirTest("report_store") {}
 
-  Recording write_and_read(const Recording& rec, const std::string& name) {
-    write_recording(dir_ / name, rec);
-    return read_recording(dir_ / name);
-  }
+  Recording write_and_read(const Recording& rec, const std::string& name) { return testing::write_and_read(rec, dir_ / name); }
 };
 
 TEST_F(ReportStore, FailedRunLeavesEarlierRunsIntact) {
