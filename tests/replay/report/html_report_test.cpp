@@ -11,9 +11,6 @@
 #include "common/input_error.hpp"
 #include "replay/replay_fixtures.hpp"
 #include "replay/store/report_store.hpp"
-#include "replay/report/svg_birdseye.hpp"
-#include "replay/report/svg_plot.hpp"
-#include "replay/report/svg_writer.hpp"
 
 namespace rcsim::replay {
 namespace {
@@ -244,86 +241,6 @@ TEST(HtmlReportLarge, LongRunsAreThinnedAndTheFileStaysSmall) {
   }
   EXPECT_EQ(series, 8);  // range, lateral, counts (recorded and simulated each), GOSPA mean and max
   fs::remove_all(dir);
-}
-
-TEST(HtmlReportSvg, EscapesMarkupAndQuotes) {
-  EXPECT_EQ(svg::escape(kEvilName), "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &quot;x&quot;");
-  EXPECT_EQ(svg::escape("a'b"), "a&#39;b");
-  EXPECT_EQ(svg::escape("plain"), "plain");
-}
-
-TEST(HtmlReportSvg, TicksAreRoundAndCoverTheInterval) {
-  const svg::Ticks t = svg::nice_ticks(0.3, 9.7, 5);
-  EXPECT_DOUBLE_EQ(t.step, 2.0);
-  ASSERT_EQ(t.values.size(), 4u);
-  EXPECT_DOUBLE_EQ(t.values.front(), 2.0);
-  EXPECT_DOUBLE_EQ(t.values.back(), 8.0);
-  const svg::Ticks small = svg::nice_ticks(-0.012, 0.013, 5);
-  EXPECT_DOUBLE_EQ(small.step, 0.005);
-  EXPECT_EQ(small.decimals, 3);
-  EXPECT_EQ(svg::fixed(-0.0001, 2), "0.00");
-  EXPECT_EQ(svg::coord(-0.01), "0");
-}
-
-TEST(HtmlReportSvg, PlotBreaksLinesAtGapsAndLabelsItsAxes) {
-  svg::PlotSpec spec;
-  spec.title = "T <1>";
-  spec.x_label = "t / s";
-  spec.y_label = "range / m";
-  spec.series.push_back({"a", "#000", false, false, {{0, 1}, {1, 2}, {2, std::nan("")}, {3, 1}, {4, 2}}});
-  const std::string out = svg::plot_svg(spec);
-  const std::regex line_re("class=\"series line\" d=\"([^\"]*)\"");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(out, m, line_re));
-  EXPECT_EQ(count(m[1], "M"), 2u);
-  EXPECT_EQ(count(m[1], "L"), 2u);
-  EXPECT_NE(out.find("T &lt;1&gt;"), std::string::npos);
-  EXPECT_NE(out.find(">range / m<"), std::string::npos);
-  EXPECT_NE(out.find(">t / s<"), std::string::npos);
-}
-
-TEST(HtmlReportSvg, BirdsEyeDrawsBoxesSensorsTargetsAndLinks) {
-  svg::BirdsEyeSpec spec;
-  spec.title = "cycle";
-  spec.trace_cycles = 2;
-  spec.sensors.push_back({"s", {3.7, 0.0, 0.0}, 1.0, 40.0});
-  spec.boxes.push_back({"car", {15.0, 0.0, 3.14}, 4.5, 1.8, false});
-  spec.targets.push_back({{13.0, 0.5}, false, 0, false});
-  spec.targets.push_back({{13.1, 0.4}, true, 0, true});
-  spec.targets.push_back({{13.5, 0.4}, true, 2, false});
-  spec.links.push_back({{13.0, 0.5}, {13.1, 0.4}});
-  const std::string out = svg::birdseye_svg(spec);
-  EXPECT_EQ(count(out, "<polygon class=\"box\""), 1u);
-  EXPECT_EQ(count(out, "<polygon class=\"fov\""), 1u);
-  EXPECT_EQ(count(out, "<polygon class=\"sensor\""), 1u);
-  EXPECT_EQ(count(out, "<circle class=\"t rec current\""), 1u);
-  EXPECT_EQ(count(out, "<polygon class=\"t sim current\""), 1u);
-  EXPECT_EQ(count(out, "<polygon class=\"t sim trace\""), 1u);
-  EXPECT_EQ(count(out, "<circle class=\"merge\""), 1u);
-  EXPECT_NE(out.find("x / m (vehicle frame, forward)"), std::string::npos);
-  // x forward is up: the target at x = 13 m is drawn above the vehicle origin.
-  const std::regex cy_re("class=\"t rec current\" cx=\"([-0-9.]+)\" cy=\"([-0-9.]+)\"");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(out, m, cy_re));
-  const std::regex ego_re("<g class=\"ego\"[^>]*><line x1=\"([-0-9.]+)\" y1=\"([-0-9.]+)\" x2=\"[-0-9.]+\" y2=\"([-0-9.]+)\"");
-  std::smatch e;
-  ASSERT_TRUE(std::regex_search(out, e, ego_re));
-  EXPECT_LT(std::stod(m[2]), std::stod(e[2]));
-  EXPECT_LT(std::stod(m[1]), std::stod(e[1]));  // y = +0.5 m (left) is drawn left of the origin
-}
-
-TEST(HtmlReportSvg, HistogramClampsOutliersIntoTheEndBins) {
-  svg::HistogramSpec h;
-  h.title = "r";
-  h.x_label = "range / m";
-  h.lo = -1.0;
-  h.bin_width = 0.5;
-  h.counts = {3, 1, 0, 2};
-  h.below = 2;
-  h.above = 1;
-  const std::string out = svg::histogram_svg(h);
-  EXPECT_EQ(count(out, "<rect class=\"bar\""), 3u);
-  EXPECT_NE(out.find("2 below / 1 above"), std::string::npos);
 }
 
 }  // namespace
