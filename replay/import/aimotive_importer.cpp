@@ -377,7 +377,7 @@ DatasetRecording import_aimotive(const fs::path& raw_dir) {
   double azimuth_half_rad = 0.0, max_range_m = 0.0;
   for (std::size_t s = 0; s < mounts.size(); ++s) {
     rec.sensors.push_back({mounts[s].label, "sensor_aimotive_lrr.json", mounts[s].X_VS.x_m, mounts[s].X_VS.y_m,
-                           mounts[s].X_VS.yaw_rad});
+                           mounts[s].X_VS.yaw_rad, ReportedLevel::detections});
   }
   for (std::size_t k = 0; k < frames.size(); ++k) {
     for (std::size_t s = 0; s < mounts.size(); ++s) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/input_error.hpp"
+#include "io/recording.hpp"
 #include "sim/fidelity.hpp"
 
 namespace rcsim::cli {
@@ -11,6 +12,13 @@ namespace rcsim::cli {
 inline void add_fidelity_option(CLI::App& cmd, std::string& name) {
   cmd.add_option("--fidelity", name, std::string("fidelity level: ") + std::string(kFidelityNames) + " (docs/fidelity.md)")
       ->capture_default_str();
+}
+
+// The level a recording is compared at unless --fidelity says otherwise: what its sensors report
+// (schemas/recording.md): raw detections are compared without the tracker (no_tracking), tracks
+// with it (full).
+inline Fidelity default_fidelity_for(const Recording& recording) {
+  return recording.all_sensors_report(ReportedLevel::detections) ? Fidelity::no_tracking : Fidelity::full;
 }
 
 // An unknown name is an input error (exit 2).

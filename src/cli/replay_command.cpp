@@ -21,7 +21,7 @@ struct ReplayArgs {
   std::string db_path;
   std::int64_t seed = 0;
   bool json = false;
-  std::string fidelity = "full";
+  std::string fidelity;  // empty: from what the recording's sensors report
   double cutoff_m = 2.0;
   double order_p = 2.0;
   double gate_m = 1.0;
@@ -103,7 +103,7 @@ void run_replay(const ReplayArgs& args) {
   const Recording recording = read_recording(args.recording_dir);
   replay::ReplayOptions options;
   options.seed = static_cast<std::uint64_t>(args.seed);
-  options.fidelity = fidelity_from_arg(args.fidelity);
+  options.fidelity = args.fidelity.empty() ? default_fidelity_for(recording) : fidelity_from_arg(args.fidelity);
   options.import = import_options(args.import);
   options.import.calibration_dir = args.calibration;
   options.gospa = {args.cutoff_m, args.order_p};
@@ -140,7 +140,10 @@ void add_replay_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the run's summary as JSON");
-  add_fidelity_option(*cmd, args->fidelity);
+  cmd->add_option("--fidelity", args->fidelity,
+                  std::string("fidelity level: ") + std::string(kFidelityNames) +
+                      " (docs/fidelity.md); default: full, or no_tracking where every sensor of the recording reports "
+                      "raw detections");
   cmd->add_option("--gospa-cutoff-m", args->cutoff_m, "GOSPA/OSPA cut-off c")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--gospa-order", args->order_p, "GOSPA/OSPA order p")->check(CLI::Range(1.0, 100.0))->capture_default_str();
   cmd->add_option("--gate-m", args->gate_m, "target-to-object association gate")->check(CLI::PositiveNumber)->capture_default_str();

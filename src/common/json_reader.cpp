@@ -142,6 +142,16 @@ void JsonField::expect_format(std::string_view format, int version) const {
   if (v != version) fail("version", fmt::format("unsupported version {} (this rcsim reads version {})", v, version));
 }
 
+int JsonField::expect_format_versions(std::string_view format, int min_version, int max_version) const {
+  const std::string found = string("format");
+  if (found != format) fail("format", fmt::format("expected \"{}\", got \"{}\"", format, found));
+  const double v = number("version");
+  for (int version = min_version; version <= max_version; ++version) {
+    if (v == version) return version;
+  }
+  fail("version", fmt::format("unsupported version {} (this rcsim reads versions {} to {})", v, min_version, max_version));
+}
+
 void require_positive(const JsonField& field, std::string_view key, double value) {
   if (!(value > 0.0)) field.fail(key, fmt::format("must be positive, got {}", value));
 }

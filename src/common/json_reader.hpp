@@ -41,6 +41,8 @@ class JsonField {
   void expect_only(std::initializer_list<std::string_view> keys) const;
   // Checks "format" and "version".
   void expect_format(std::string_view format, int version) const;
+  // Checks "format" and that "version" is one of min_version..max_version; returns it.
+  int expect_format_versions(std::string_view format, int min_version, int max_version) const;
 
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
   [[noreturn]] void fail(const std::string& message) const;

@@ -26,7 +26,7 @@ void read_header(Recording& rec, const fs::path& path) {
   const std::string file = path.string();
   const nlohmann::json json = parse_json_text(read_text_file(path), file);
   const JsonField root(json, file, "");
-  root.expect_format("rcsim-recording", 1);
+  const int version = root.expect_format_versions("rcsim-recording", 1, 2);
   root.expect_only({"format", "version", "name", "description", "cycle_time_s", "sensors", "objects", "source"});
   rec.name = root.string("name");
   if (root.has("description")) rec.description = root.string("description");
@@ -37,8 +37,20 @@ void read_header(Recording& rec, const fs::path& path) {
     rec.source = source->json();
   }
   for (const JsonField& s : root.array("sensors")) {
-    s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad"});
+    if (version >= 2) {
+      s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad", "reports"});
+    } else {
+      s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad"});
+    }
     RecordingSensor sensor{s.string("id"), s.string("type"), s.number("x_m"), s.number("y_m"), s.number("yaw_rad")};
+    if (s.has("reports")) {
+      const std::string reports = s.string("reports");
+      if (reports == "detections") {
+        sensor.reports = ReportedLevel::detections;
+      } else if (reports != "tracks") {
+        s.fail("reports", "must be \"tracks\" or \"detections\", got \"" + reports + "\"");
+      }
+    }
     if (sensor.id.empty()) s.fail("id", "must not be empty");
     if (rec.sensor_index(sensor.id) >= 0) s.fail("id", fmt::format("sensor '{}' is listed twice", sensor.id));
     rec.sensors.push_back(std::move(sensor));
@@ -161,14 +173,17 @@ void write_file(const fs::path& path, const std::string& text) {
 
 std::string header_text(const Recording& rec) {
   nlohmann::ordered_json json;
+  // Version 2 only where a version 2 field is used, so that version 1 recordings are rewritten as they were.
+  const bool v2 = !rec.all_sensors_report(ReportedLevel::tracks);
   json["format"] = "rcsim-recording";
-  json["version"] = 1;
+  json["version"] = v2 ? 2 : 1;
   json["name"] = rec.name;
   if (!rec.description.empty()) json["description"] = rec.description;
   json["cycle_time_s"] = rec.cycle_time_s;
   json["sensors"] = nlohmann::ordered_json::array();
   for (const auto& s : rec.sensors) {
     json["sensors"].push_back({{"id", s.id}, {"type", s.type}, {"x_m", s.x_m}, {"y_m", s.y_m}, {"yaw_rad", s.yaw_rad}});
+    if (v2) json["sensors"].back()["reports"] = s.reports == ReportedLevel::detections ? "detections" : "tracks";
   }
   json["objects"] = nlohmann::ordered_json::array();
   for (const auto& o : rec.objects) {
@@ -179,6 +194,10 @@ std::string header_text(const Recording& rec) {
 }
 
 }  // namespace
+
+bool Recording::all_sensors_report(ReportedLevel level) const {
+  return std::all_of(sensors.begin(), sensors.end(), [&](const RecordingSensor& s) { return s.reports == level; });
+}
 
 int Recording::sensor_index(const std::string& id) const {
   for (std::size_t i = 0; i < sensors.size(); ++i) {

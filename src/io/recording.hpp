@@ -1,5 +1,5 @@
 #pragma once
-// A recorded measurement campaign (`rcsim-recording` v1, schemas/recording.md): a directory with
+// A recorded measurement campaign (`rcsim-recording` v1 and v2, schemas/recording.md): a directory with
 // recording.json, ego.csv (one row per sensor cycle), objects.csv (annotated boxes) and
 // targets.csv (what the sensors reported). Read once, validated, then read-only.
 #include <cstdint>
@@ -11,10 +11,16 @@
 
 namespace rcsim {
 
+// What a sensor's target list holds: confirmed tracks (the paper's sensor, rcsim's own
+// recordings) or raw detections, one per cycle and reflection (today's radars' detection
+// interfaces). Replay compares the simulation at that level by default.
+enum class ReportedLevel { tracks, detections };
+
 struct RecordingSensor {
   std::string id;
   std::string type;  // built-in sensor configuration name or a path relative to the recording
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  // pose in the ego vehicle frame
+  ReportedLevel reports = ReportedLevel::tracks;  // version 2; version 1 recordings report tracks
 };
 
 struct RecordingObject {
@@ -57,6 +63,7 @@ struct Recording {
   std::uint64_t checksum = 0;                           // FNV-1a 64 over the four files
 
   int cycle_count() const { return static_cast<int>(ego.size()); }
+  bool all_sensors_report(ReportedLevel level) const;
   int sensor_index(const std::string& id) const;  // -1 if unknown
 };
 

@@ -54,6 +54,25 @@ TEST_F(ReplayCli, JsonSummaryAccountsForEveryRecordedTarget) {
   EXPECT_GT(summary["targets_simulated"].get<int>(), 0);
 }
 
+// A recording whose sensors report raw detections is compared with the model's detections
+// (no_tracking) unless --fidelity says otherwise; one that reports tracks, with the tracker.
+TEST_F(ReplayCli, ComparesAtTheLevelTheSensorsReport) {
+  Recording rec = testing::model_recording(testing::two_cars_scene(1.0), 2);
+  const fs::path tracks = dir_ / "tracks", raw = dir_ / "raw";
+  write_recording(tracks, rec);
+  for (auto& s : rec.sensors) s.reports = ReportedLevel::detections;
+  write_recording(raw, rec);
+  const std::string db = (dir_ / "r.sqlite").string();
+  for (const auto& [dir, extra] : {std::pair{tracks, ""}, std::pair{raw, ""}, std::pair{raw, " --fidelity full"}}) {
+    ASSERT_EQ(run_rcsim("replay " + dir.string() + " --db " + db + extra).exit_code, 0);
+  }
+  SQLite::Database d(db);
+  std::vector<std::string> levels;
+  SQLite::Statement q(d, "SELECT json_extract(parameters, '$.fidelity.level') FROM runs ORDER BY run_id");
+  while (q.executeStep()) levels.push_back(q.getColumn(0).getString());
+  EXPECT_EQ(levels, (std::vector<std::string>{"full", "no_tracking", "full"}));
+}
+
 // What the import noticed reaches the user of replay too (stderr), not only of rcsim import.
 TEST_F(ReplayCli, PrintsImportWarnings) {
   Recording rec = testing::model_recording(testing::two_cars_scene(2.0), 2, 0.03, 0.01);

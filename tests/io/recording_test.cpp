@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
 
 namespace rcsim {
@@ -67,6 +68,34 @@ TEST_F(RecordingFiles, RoundTripKeepsEveryRowAndIsByteStable) {
   EXPECT_EQ(read_recording(dir_ / "b").checksum, back.checksum);
 }
 
+// Version 2: a sensor that reports raw detections, without track ids; version 1 stays as it was.
+TEST_F(RecordingFiles, VersionTwoDeclaresRawDetectionsAndVersionOneStaysReadable) {
+  write_recording(dir_ / "v1", rec_);
+  EXPECT_NE(testing::read_file(dir_ / "v1" / "recording.json").find("\"version\": 1"), std::string::npos);
+  EXPECT_TRUE(read_recording(dir_ / "v1").all_sensors_report(ReportedLevel::tracks));
+  Recording raw = rec_;
+  raw.sensors[0].reports = ReportedLevel::detections;
+  for (auto& t : raw.targets) t.id = -1;
+  write_recording(dir_ / "v2", raw);
+  const std::string header = testing::read_file(dir_ / "v2" / "recording.json");
+  EXPECT_NE(header.find("\"version\": 2"), std::string::npos);
+  EXPECT_NE(header.find("\"reports\": \"detections\""), std::string::npos);
+  EXPECT_EQ(testing::read_file(dir_ / "v2" / "targets.csv").rfind("t_s,cycle,sensor,range_m,", 0), 0u);  // no id column
+  const Recording back = read_recording(dir_ / "v2");
+  EXPECT_TRUE(back.all_sensors_report(ReportedLevel::detections));
+  EXPECT_EQ(back.targets[1].id, -1);
+  // Version 1 has no "reports"; an unknown level and an unknown version are refused.
+  std::string v1_with_reports = header;
+  v1_with_reports.replace(v1_with_reports.find("\"version\": 2"), 12, "\"version\": 1");
+  expect_refused("recording.json", v1_with_reports, "reports");
+  std::string bad_level = header;
+  bad_level.replace(bad_level.find("\"detections\""), 12, "\"plots\"");
+  expect_refused("recording.json", bad_level, "plots");
+  std::string v3 = header;
+  v3.replace(v3.find("\"version\": 2"), 12, "\"version\": 3");
+  expect_refused("recording.json", v3, "versions 1 to 2");
+}
+
 TEST_F(RecordingFiles, RewritingReplacesAnEarlierRecordingWhole) {
   write_recording(dir_ / "a", rec_);
   rec_.targets.pop_back();
@@ -96,7 +125,7 @@ TEST_F(RecordingFiles, RefusesBadTargetsAndObjects) {
   expect_refused("targets.csv", header + "0.000000,0,front_left,10m,0,0,10\n", "not a number");
   expect_refused("objects.csv", "t_s,object,x_m,y_m,yaw_rad,speed_mps\n0,truck9,1,1,0,0\n", "'truck9'");
   expect_refused("objects.csv", "t_s,object,x_m,y_m,yaw_rad,speed_mps\n", "has no rows");
-  expect_refused("recording.json", R"({"format": "rcsim-recording", "version": 2})", "version");
+  expect_refused("recording.json", R"({"format": "rcsim-recording", "version": 9})", "version");
   expect_refused("recording.json",
                  R"({"format": "rcsim-recording", "version": 1, "name": "x", "cycle_time_s": 0.04,
                      "sensors": [{"id": "a", "type": "srr24", "x_m": 0, "y_m": 0, "yaw_deg": 0}], "objects": []})",

@@ -88,6 +88,7 @@ TEST_F(AimotiveImporter, CountsAndMountingAsTheSampleHasThem) {
     EXPECT_EQ(o.object_class, o.id.rfind("truck", 0) == 0 ? "truck_trailer" : "passenger_car") << o.id;
   }
   EXPECT_EQ(imported_->extra_files.count("sensor_aimotive_lrr.json"), 1u);
+  EXPECT_TRUE(rec().all_sensors_report(ReportedLevel::detections));  // raw detections: replay compares without the tracker
 }
 
 TEST_F(AimotiveImporter, MovingDetectionsLandOnTheBoxesAndWouldNotWithTheAzimuthFlipped) {
