@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/angles.hpp"
+#include "common/decibel.hpp"
 #include "common/embedded_data.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
@@ -167,6 +168,9 @@ RecordedTarget planar_target(const RadarDetection& d, const RadarMount& mount) {
   t.azimuth_rad = std::atan2(p_ST_S.y(), p_ST_S.x());
   t.range_rate_mps = d.speed_mps;
   t.amplitude_db = d.power_db - d.noise_db;
+  t.snr_db = t.amplitude_db;
+  t.rcs_dbsm = d.rcs_m2 > 0.0 ? power_to_db(d.rcs_m2) : -100.0;  // 10 log10(sigma / 1 m^2); 0 m^2 as -100 dBsm
+  t.elevation_rad = d.elevation_rad;
   return t;
 }
 

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <stdexcept>
 #include "io/recording.hpp"
 
 #include <cerrno>
@@ -122,6 +123,7 @@ void read_targets(Recording& rec, const fs::path& path) {
   const int t = csv.column("t_s"), k = csv.column("cycle"), s = csv.column("sensor"), id = csv.column("id"),
             r = csv.column("range_m"), az = csv.column("azimuth_rad"), rr = csv.column("range_rate_mps"),
             amp = csv.column("amplitude_db");
+  const int rcs = csv.column("rcs_dbsm"), snr = csv.column("snr_db"), el = csv.column("elevation_rad");  // optional
   int previous_cycle = 0;
   while (csv.next()) {
     RecordedTarget target;
@@ -151,6 +153,12 @@ void read_targets(Recording& rec, const fs::path& path) {
     if (std::abs(target.azimuth_rad) > 3.15) csv.fail(az, "azimuth beyond ±π: is it in degrees?");
     target.range_rate_mps = csv.number(rr);
     target.amplitude_db = csv.number(amp);
+    if (rcs >= 0) target.rcs_dbsm = csv.number(rcs);
+    if (snr >= 0) target.snr_db = csv.number(snr);
+    if (el >= 0) {
+      target.elevation_rad = csv.number(el);
+      if (std::abs(target.elevation_rad) > 1.58) csv.fail(el, "elevation beyond ±π/2: is it in degrees?");
+    }
     rec.targets.push_back(target);
   }
 }
@@ -263,13 +271,32 @@ void write_recording(const fs::path& dir, const Recording& rec, const std::map<s
 
     // The id column only when the sensors report track ids (raw detections have none).
     const bool ids = std::any_of(rec.targets.begin(), rec.targets.end(), [](const RecordedTarget& t) { return t.id >= 0; });
-    std::string targets = ids ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db\n"
-                              : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db\n";
+    // The optional columns only where some target has the value.
+    const auto any = [&](double RecordedTarget::*field) {
+      return std::any_of(rec.targets.begin(), rec.targets.end(), [&](const RecordedTarget& t) { return std::isfinite(t.*field); });
+    };
+    const bool rcs = any(&RecordedTarget::rcs_dbsm), snr = any(&RecordedTarget::snr_db),
+               elevation = any(&RecordedTarget::elevation_rad);
+    // A column holds a number in every row (the reader refuses empty fields and nan).
+    for (const auto& t : rec.targets) {
+      if ((rcs && !std::isfinite(t.rcs_dbsm)) || (snr && !std::isfinite(t.snr_db)) ||
+          (elevation && !std::isfinite(t.elevation_rad))) {
+        throw std::invalid_argument("targets.csv: an optional column (rcs_dbsm, snr_db, elevation_rad) is given for "
+                                    "some targets only");
+      }
+    }
+    std::string targets = ids ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db"
+                              : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db";
+    targets += std::string(rcs ? ",rcs_dbsm" : "") + (snr ? ",snr_db" : "") + (elevation ? ",elevation_rad" : "") + "\n";
     for (const auto& t : rec.targets) {
       fmt::format_to(std::back_inserter(targets), "{:.6f},{},{},", t.t_s, t.cycle, csv_field(rec.sensors[t.sensor].id));
       if (ids) fmt::format_to(std::back_inserter(targets), "{},", t.id);
-      fmt::format_to(std::back_inserter(targets), "{:.4f},{:.6f},{:.4f},{:.3f}\n", t.range_m, t.azimuth_rad,
+      fmt::format_to(std::back_inserter(targets), "{:.4f},{:.6f},{:.4f},{:.3f}", t.range_m, t.azimuth_rad,
                      t.range_rate_mps, t.amplitude_db);
+      if (rcs) fmt::format_to(std::back_inserter(targets), ",{:.3f}", t.rcs_dbsm);
+      if (snr) fmt::format_to(std::back_inserter(targets), ",{:.3f}", t.snr_db);
+      if (elevation) fmt::format_to(std::back_inserter(targets), ",{:.6f}", t.elevation_rad);
+      targets += '\n';
     }
     write_file(temp / "targets.csv", targets);
     for (const auto& [file, content] : extra_files) write_file(temp / fs::path(file).filename(), content);

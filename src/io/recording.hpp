@@ -3,6 +3,7 @@
 // recording.json, ego.csv (one row per sensor cycle), objects.csv (annotated boxes) and
 // targets.csv (what the sensors reported). Read once, validated, then read-only.
 #include <cstdint>
+#include <limits>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -47,6 +48,9 @@ struct RecordedTarget {
   int sensor = 0;  // index into Recording::sensors
   int id = -1;     // the sensor's track id, -1 when the file has no id column
   double range_m = 0.0, azimuth_rad = 0.0, range_rate_mps = 0.0, amplitude_db = 0.0;
+  // Optional columns, NaN where the file has none: what real radars report besides.
+  double rcs_dbsm = kNoValue, snr_db = kNoValue, elevation_rad = kNoValue;
+  static constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Recording {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -94,6 +95,25 @@ TEST_F(RecordingFiles, VersionTwoDeclaresRawDetectionsAndVersionOneStaysReadable
   std::string v3 = header;
   v3.replace(v3.find("\"version\": 2"), 12, "\"version\": 3");
   expect_refused("recording.json", v3, "versions 1 to 2");
+}
+
+// Optional per-target columns: RCS, SNR and elevation, written only where given, read back.
+TEST_F(RecordingFiles, OptionalTargetColumnsRoundTrip) {
+  Recording extra = rec_;
+  for (auto& t : extra.targets) t.rcs_dbsm = 4.25, t.snr_db = 31.5, t.elevation_rad = -0.02;
+  write_recording(dir_ / "x", extra);
+  EXPECT_NE(testing::read_file(dir_ / "x" / "targets.csv").find("amplitude_db,rcs_dbsm,snr_db,elevation_rad\n"),
+            std::string::npos);
+  const Recording back = read_recording(dir_ / "x");
+  EXPECT_DOUBLE_EQ(back.targets[1].rcs_dbsm, 4.25);
+  EXPECT_DOUBLE_EQ(back.targets[1].snr_db, 31.5);
+  EXPECT_DOUBLE_EQ(back.targets[1].elevation_rad, -0.02);
+  EXPECT_TRUE(std::isnan(read_recording((write_recording(dir_ / "y", rec_), dir_ / "y")).targets[0].rcs_dbsm));
+  extra.targets[2].snr_db = RecordedTarget::kNoValue;  // given for some targets only: no such file is written
+  EXPECT_THROW(write_recording(dir_ / "z", extra), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(dir_ / "z"));
+  const std::string header = "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db,elevation_rad\n";
+  expect_refused("targets.csv", header + "0.000000,0,front_left,10,0,0,10,5.0\n", "degrees");
 }
 
 TEST_F(RecordingFiles, RewritingReplacesAnEarlierRecordingWhole) {

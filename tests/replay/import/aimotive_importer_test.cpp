@@ -88,7 +88,13 @@ TEST_F(AimotiveImporter, CountsAndMountingAsTheSampleHasThem) {
     EXPECT_EQ(o.object_class, o.id.rfind("truck", 0) == 0 ? "truck_trailer" : "passenger_car") << o.id;
   }
   EXPECT_EQ(imported_->extra_files.count("sensor_aimotive_lrr.json"), 1u);
-  EXPECT_TRUE(rec().all_sensors_report(ReportedLevel::detections));  // raw detections: replay compares without the tracker
+  EXPECT_TRUE(rec().all_sensors_report(ReportedLevel::detections));
+  // RCS (dBsm), SNR and elevation kept as the optional columns.
+  for (const RecordedTarget& t : rec().targets) {
+    EXPECT_DOUBLE_EQ(t.snr_db, t.amplitude_db);
+    EXPECT_GT(t.rcs_dbsm, -20.0);  // the sample's RCS: 0.087 to 11811 m^2
+    EXPECT_LT(std::abs(t.elevation_rad), 0.2);
+  }  // raw detections: replay compares without the tracker
 }
 
 TEST_F(AimotiveImporter, MovingDetectionsLandOnTheBoxesAndWouldNotWithTheAzimuthFlipped) {
