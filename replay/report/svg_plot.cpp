@@ -54,11 +54,18 @@ void draw_axes(std::string& out, const Frame& f, const LinearScale& sx, const Li
                      coord(cy), escape(y_label));
 }
 
-}  // namespace
 
-std::string plot_svg(const PlotSpec& spec) {
+// The data ranges of a time-series plot, its plot area, scales and ticks.
+struct PlotAxes {
+  std::size_t n_points = 0;  // finite points over all series
+  Frame frame{};
+  LinearScale sx, sy;
+  Ticks tx, ty;
+};
+
+PlotAxes plot_axes(const PlotSpec& spec) {
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
-  std::size_t n_points = 0;
+  PlotAxes a;
   for (const auto& s : spec.series) {
     for (const auto& [x, y] : s.points) {
       if (!std::isfinite(x) || !std::isfinite(y)) continue;
@@ -66,30 +73,27 @@ std::string plot_svg(const PlotSpec& spec) {
       x_hi = std::max(x_hi, x);
       y_lo = std::min(y_lo, y);
       y_hi = std::max(y_hi, y);
-      ++n_points;
+      ++a.n_points;
     }
   }
-  if (n_points == 0) {
+  if (a.n_points == 0) {
     x_lo = 0.0, x_hi = 1.0, y_lo = 0.0, y_hi = 1.0;
   }
   widen(x_lo, x_hi, 1e-3, 0.0);
   if (spec.y_from_zero) {
     y_lo = 0.0;
-    y_hi = n_points == 0 ? 1.0 : std::max(y_hi * 1.08, 1e-3);
+    y_hi = a.n_points == 0 ? 1.0 : std::max(y_hi * 1.08, 1e-3);
   } else {
     widen(y_lo, y_hi, 1.0, 0.06);
   }
-  const Frame f{kMarginLeft, kMarginTop, spec.width_px - kMarginRight, spec.height_px - kMarginBottom};
-  const Ticks tx = nice_ticks(x_lo, x_hi, 8), ty = nice_ticks(y_lo, y_hi, 5);
-  const LinearScale sx{x_lo, x_hi, f.left, f.right}, sy{y_lo, y_hi, f.bottom, f.top};
+  a.frame = Frame{kMarginLeft, kMarginTop, spec.width_px - kMarginRight, spec.height_px - kMarginBottom};
+  a.tx = nice_ticks(x_lo, x_hi, 8), a.ty = nice_ticks(y_lo, y_hi, 5);
+  a.sx = LinearScale{x_lo, x_hi, a.frame.left, a.frame.right}, a.sy = LinearScale{y_lo, y_hi, a.frame.bottom, a.frame.top};
+  return a;
+}
 
-  std::string out;
-  open_svg(out, spec.width_px, spec.height_px, "plot", spec.title);
-  if (!spec.note.empty()) {
-    out += fmt::format(R"(<text x="8" y="30" class="note">{}</text>)", escape(spec.note));
-  }
-  draw_axes(out, f, sx, sy, tx, ty, spec.x_label, spec.y_label);
-  // Legend, right-aligned in the title line.
+// Legend, right-aligned in the title line: the last series rightmost.
+void draw_plot_legend(const PlotSpec& spec, std::string& out) {
   double legend_x = spec.width_px - kMarginRight;
   for (auto it = spec.series.rbegin(); it != spec.series.rend(); ++it) {
     const double text_w = 6.5 * static_cast<double>(it->label.size());
@@ -104,34 +108,51 @@ std::string plot_svg(const PlotSpec& spec) {
     }
     legend_x -= 14.0;
   }
-  if (n_points == 0) {
-    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle" class="note">no data</text>)",
-                       coord(0.5 * (f.left + f.right)), coord(0.5 * (f.top + f.bottom)));
-  }
-  for (const auto& s : spec.series) {
-    std::string d;
-    bool pen_down = false;
-    for (const auto& [x, y] : s.points) {
-      if (!std::isfinite(x) || !std::isfinite(y)) {
-        pen_down = false;
-        continue;
-      }
-      if (s.dots) {
-        d += fmt::format("M{} {}h0", coord(sx(x)), coord(sy(y)));
-      } else {
-        d += fmt::format("{}{} {}", pen_down ? "L" : "M", coord(sx(x)), coord(sy(y)));
-        pen_down = true;
-      }
+}
+
+// One path per series: dots as zero-length round-capped segments; a line lifts its pen at a
+// non-finite point, so that a gap in the data stays a gap.
+void draw_series(const PlotSeries& s, const LinearScale& sx, const LinearScale& sy, std::string& out) {
+  std::string d;
+  bool pen_down = false;
+  for (const auto& [x, y] : s.points) {
+    if (!std::isfinite(x) || !std::isfinite(y)) {
+      pen_down = false;
+      continue;
     }
-    if (d.empty()) continue;
     if (s.dots) {
-      out += fmt::format(R"(<path class="series dots" d="{}" stroke="{}" stroke-width="4" stroke-linecap="round" fill="none"/>)",
-                         d, s.colour);
+      d += fmt::format("M{} {}h0", coord(sx(x)), coord(sy(y)));
     } else {
-      out += fmt::format(R"(<path class="series line" d="{}" stroke="{}" stroke-width="{}" stroke-linejoin="round" fill="none"{}/>)",
-                         d, s.colour, s.dashed ? "1.6" : "2.2", s.dashed ? R"( stroke-dasharray="6 3")" : "");
+      d += fmt::format("{}{} {}", pen_down ? "L" : "M", coord(sx(x)), coord(sy(y)));
+      pen_down = true;
     }
   }
+  if (d.empty()) return;
+  if (s.dots) {
+    out += fmt::format(R"(<path class="series dots" d="{}" stroke="{}" stroke-width="4" stroke-linecap="round" fill="none"/>)",
+                       d, s.colour);
+  } else {
+    out += fmt::format(R"(<path class="series line" d="{}" stroke="{}" stroke-width="{}" stroke-linejoin="round" fill="none"{}/>)",
+                       d, s.colour, s.dashed ? "1.6" : "2.2", s.dashed ? R"( stroke-dasharray="6 3")" : "");
+  }
+}
+
+}  // namespace
+
+std::string plot_svg(const PlotSpec& spec) {
+  const PlotAxes a = plot_axes(spec);
+  std::string out;
+  open_svg(out, spec.width_px, spec.height_px, "plot", spec.title);
+  if (!spec.note.empty()) {
+    out += fmt::format(R"(<text x="8" y="30" class="note">{}</text>)", escape(spec.note));
+  }
+  draw_axes(out, a.frame, a.sx, a.sy, a.tx, a.ty, spec.x_label, spec.y_label);
+  draw_plot_legend(spec, out);
+  if (a.n_points == 0) {
+    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle" class="note">no data</text>)",
+                       coord(0.5 * (a.frame.left + a.frame.right)), coord(0.5 * (a.frame.top + a.frame.bottom)));
+  }
+  for (const auto& s : spec.series) draw_series(s, a.sx, a.sy, out);
   out += "</svg>";
   return out;
 }
