@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <regex>
 
 #include "common/input_error.hpp"
 #include "scratch_dir.hpp"
@@ -55,6 +56,35 @@ TEST(RecordingBirdseye, ObjectIdsAreEscapedAndTheSvgIsStandalone) {
   EXPECT_NE(svg.find("&lt;x&amp;&quot;y&gt;"), std::string::npos);
   EXPECT_NE(svg.find("<style>"), std::string::npos);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+}
+
+TEST(RecordingBirdseye, AScriptTagAsObjectIdOrTitleIsDrawnEscapedNeverRaw) {
+  RecordingPictureOptions options;
+  options.title = "<script>&\"title";
+  const std::string svg = recording_birdseye_svg(straight_drive("<script>&\""), options);
+  EXPECT_EQ(svg.find("<script"), std::string::npos);
+  EXPECT_EQ(svg.find("&\""), std::string::npos);
+  EXPECT_NE(svg.find(">&lt;script&gt;&amp;&quot;</text>"), std::string::npos);  // the box label
+  EXPECT_NE(svg.find("class=\"title\">&lt;script&gt;&amp;&quot;title</text>"), std::string::npos);
+}
+
+TEST(RecordingBirdseye, ABoxAheadOfTheEgoIsDrawnAboveItsSensor) {
+  const std::string svg = recording_birdseye_svg(straight_drive("car1"), {});
+  std::smatch label, sensor;
+  ASSERT_TRUE(std::regex_search(svg, label, std::regex(R"re(class="box-label" x="([-0-9.]+)" y="([-0-9.]+)")re")));
+  ASSERT_TRUE(std::regex_search(svg, sensor, std::regex(R"re(class="sensor" points="([-0-9.]+),([-0-9.]+))re")));
+  EXPECT_LT(std::stod(label[2]), std::stod(sensor[2]) - 50.0);  // 17 m ahead of the sensor's tip
+  EXPECT_NEAR(std::stod(label[1]), std::stod(sensor[1]), 1.0);  // straight ahead
+}
+
+TEST(RecordingBirdseye, AnEmptyRecordingGivesAnEmptyValidPicture) {
+  const Recording empty;
+  const BirdsEyeSpec spec = recording_birdseye(empty, {});
+  EXPECT_TRUE(spec.boxes.empty());
+  EXPECT_TRUE(spec.targets.empty());
+  const std::string svg = recording_birdseye_svg(empty, {});
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_EQ(svg.substr(svg.size() - 6), "</svg>");
 }
 
 class RecordingBirdseyeCompare : public rcsim::testing::ScratchDirTest {
