@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <regex>
+#include <stdexcept>
+#include <utility>
 
 #include "replay/replay_fixtures.hpp"
 
@@ -40,6 +42,69 @@ TEST(SvgBirdseye, BirdsEyeDrawsBoxesSensorsTargetsAndLinks) {
   ASSERT_TRUE(std::regex_search(out, e, ego_re));
   EXPECT_LT(std::stod(m[2]), std::stod(e[2]));
   EXPECT_LT(std::stod(m[1]), std::stod(e[1]));  // y = +0.5 m (left) is drawn left of the origin
+}
+
+// The screen position (x, y in pixels) of the first element matched by `re`'s two groups.
+std::pair<double, double> screen_xy(const std::string& svg, const std::string& re) {
+  std::smatch m;
+  if (!std::regex_search(svg, m, std::regex(re))) throw std::runtime_error("not drawn: " + re);
+  return {std::stod(m[1]), std::stod(m[2])};
+}
+
+std::pair<double, double> box_label_xy(const std::string& svg, const std::string& label) {
+  return screen_xy(svg, "class=\"box-label\" x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" text-anchor=\"middle\">" + label + "<");
+}
+
+TEST(SvgBirdseye, EmptySpecRendersAValidSvg) {
+  const std::string out = svg::birdseye_svg({});
+  EXPECT_EQ(out.rfind("<svg class=\"birdseye\"", 0), 0u);
+  EXPECT_EQ(out.substr(out.size() - 6), "</svg>");
+  EXPECT_EQ(count(out, "<svg"), 2u);  // the picture and its clipping viewport
+  EXPECT_EQ(count(out, "</svg>"), 2u);
+  EXPECT_EQ(count(out, "<g"), count(out, "</g>"));
+  EXPECT_EQ(out.find("nan"), std::string::npos);
+  EXPECT_EQ(out.find("inf"), std::string::npos);
+  EXPECT_EQ(count(out, "<polygon class=\"box\""), 0u);
+  EXPECT_EQ(count(out, "class=\"t "), 0u);
+  EXPECT_EQ(out.find("<style>"), std::string::npos);  // only a standalone picture carries styles
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"re(width="([0-9]+)" height="([0-9]+)")re")));
+  EXPECT_GT(std::stoi(m[1]), 500);
+  EXPECT_GT(std::stoi(m[2]), 500);
+}
+
+TEST(SvgBirdseye, ABoxAheadIsAboveTheSensorAndABoxToTheLeftIsLeftOfIt) {
+  svg::BirdsEyeSpec spec;
+  spec.sensors.push_back({"front", {0.0, 0.0, 0.0}, 0.5, 30.0});
+  spec.boxes.push_back({"ahead", {10.0, 0.0, 0.0}, 4.0, 2.0, false});
+  spec.boxes.push_back({"left", {0.0, 8.0, 0.0}, 4.0, 2.0, false});
+  const std::string out = svg::birdseye_svg(spec);
+  // The sensor marker's first point is its tip, 9 px ahead of the sensor on its axis.
+  const auto [sensor_x, sensor_y] = screen_xy(out, R"re(class="sensor" points="([-0-9.]+),([-0-9.]+))re");
+  const auto [ahead_x, ahead_y] = box_label_xy(out, "ahead");
+  const auto [left_x, left_y] = box_label_xy(out, "left");
+  EXPECT_LT(ahead_y, sensor_y - 100.0);  // 10 m forward: well above the sensor
+  EXPECT_NEAR(ahead_x, sensor_x, 0.5);   // and straight above it
+  EXPECT_LT(left_x, sensor_x - 100.0);   // 8 m left: well left of it
+  EXPECT_NEAR(left_y, sensor_y, 15.0);   // at the sensor's height (the tip and the label's baseline offsets)
+  // Equal scale: pixels per metre up and to the left agree.
+  EXPECT_NEAR((sensor_y - ahead_y) / 10.0, (sensor_x - left_x) / 8.0, 2.0);
+}
+
+TEST(SvgBirdseye, EveryTextFromDataIsEscaped) {
+  const std::string hostile = "<script>&\"";
+  svg::BirdsEyeSpec spec;
+  spec.title = hostile;
+  spec.notes = {hostile};
+  spec.sensors.push_back({hostile, {0.0, 0.0, 0.0}, 0.5, 30.0});
+  spec.boxes.push_back({hostile, {10.0, 0.0, 0.0}, 4.0, 2.0, false});
+  spec.recorded_label = hostile;
+  spec.simulated_label = hostile;
+  const std::string out = svg::birdseye_svg(spec);
+  EXPECT_EQ(out.find("<script"), std::string::npos);
+  EXPECT_EQ(out.find("&\""), std::string::npos);
+  // aria-label and title, note, sensor tooltip, box label, two legend entries
+  EXPECT_EQ(count(out, "&lt;script&gt;&amp;&quot;"), 7u);
 }
 
 }  // namespace

@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <regex>
+#include <utility>
 
 namespace rcsim::replay {
 namespace {
@@ -34,6 +37,36 @@ TEST(SvgPareto, PlotWithoutDrawablePointsSaysSo) {
   EXPECT_NE(out.find("no level with a CPU time"), std::string::npos);
   EXPECT_NE(out.find("t &lt;1&gt;"), std::string::npos);
   EXPECT_EQ(out.find("<g class=\"point"), std::string::npos);
+}
+
+TEST(SvgPareto, FasterPointsAreRightAndMoreAccurateOnesLowerAndLabelsAreEscaped) {
+  svg::ParetoSpec spec;
+  spec.title = "speed <&>";
+  spec.note = "note \"1\"";
+  spec.x_label = "cycles / CPU s <log>";
+  spec.y_label = "GOSPA / m <mean>";
+  spec.points = {{"<slow>", 1e3, 0.5, true}, {"fast&rough", 1e5, 2.0, false}};
+  spec.noise_floor_m = 0.3;
+  const std::string out = svg::pareto_svg(spec);
+  EXPECT_EQ(out.rfind("<svg", 0), 0u);
+  EXPECT_EQ(out.substr(out.size() - 6), "</svg>");
+  for (const char* raw : {"<slow>", "fast&rough", "speed <&>", "note \"1\"", "<log>", "<mean>"}) {
+    EXPECT_EQ(out.find(raw), std::string::npos) << raw;
+  }
+  for (const char* escaped : {"&lt;slow&gt;", "fast&amp;rough", "speed &lt;&amp;&gt;", "note &quot;1&quot;",
+                              "cycles / CPU s &lt;log&gt;", "GOSPA / m &lt;mean&gt;"}) {
+    EXPECT_NE(out.find(escaped), std::string::npos) << escaped;
+  }
+  EXPECT_NE(out.find("class=\"point front default\" data-level=\"&lt;slow&gt;\""), std::string::npos);
+  // Both points are on the front; the first marker after each point's group opens at its screen position.
+  const std::regex marker_re(R"re(data-level="([^"]*)"><title>[^<]*</title><circle cx="([-0-9.]+)" cy="([-0-9.]+)")re");
+  std::map<std::string, std::pair<double, double>> at;
+  for (auto it = std::sregex_iterator(out.begin(), out.end(), marker_re); it != std::sregex_iterator(); ++it) {
+    at[(*it)[1]] = {std::stod((*it)[2]), std::stod((*it)[3])};
+  }
+  ASSERT_EQ(at.size(), 2u) << out;
+  EXPECT_LT(at["&lt;slow&gt;"].first, at["fast&amp;rough"].first);   // slower: further left
+  EXPECT_GT(at["&lt;slow&gt;"].second, at["fast&amp;rough"].second);  // smaller error: lower on screen
 }
 
 }  // namespace

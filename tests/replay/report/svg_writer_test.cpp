@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 
 namespace rcsim::replay {
 namespace {
@@ -24,6 +25,38 @@ TEST(SvgWriter, TicksAreRoundAndCoverTheInterval) {
   EXPECT_EQ(small.decimals, 3);
   EXPECT_EQ(svg::fixed(-0.0001, 2), "0.00");
   EXPECT_EQ(svg::coord(-0.01), "0");
+}
+
+TEST(SvgWriter, ShortenCountsCodePointsNotBytes) {
+  EXPECT_EQ(svg::shorten("abcdef", 3), "abc\u2026");
+  EXPECT_EQ(svg::shorten("abc", 3), "abc");
+  EXPECT_EQ(svg::shorten("\u00e4\u00f6\u00fc\u00df", 2), "\u00e4\u00f6\u2026");  // never cuts a character in two
+  EXPECT_EQ(svg::shorten("", 0), "");
+}
+
+TEST(SvgWriter, FixedDashesNaNAndScalesMapLinearly) {
+  EXPECT_EQ(svg::fixed(std::nan(""), 2), "\u2013");
+  EXPECT_EQ(svg::fixed(1.005, 0), "1");
+  EXPECT_EQ(svg::coord(12.34), "12.3");
+  EXPECT_EQ(svg::coord(3.0), "3");
+  const svg::LinearScale down{0.0, 10.0, 100.0, 0.0};  // a y axis: larger values higher on screen
+  EXPECT_DOUBLE_EQ(down(0.0), 100.0);
+  EXPECT_DOUBLE_EQ(down(2.5), 75.0);
+}
+
+TEST(SvgWriter, WidenGivesANonEmptyPaddedInterval) {
+  double lo = 2.0, hi = 2.0;
+  svg::widen(lo, hi, 1.0, 0.0);
+  EXPECT_DOUBLE_EQ(lo, 1.5);
+  EXPECT_DOUBLE_EQ(hi, 2.5);
+  lo = 0.0, hi = 10.0;
+  svg::widen(lo, hi, 1.0, 0.1);
+  EXPECT_DOUBLE_EQ(lo, -1.0);
+  EXPECT_DOUBLE_EQ(hi, 11.0);
+  lo = std::nan(""), hi = 1.0;
+  svg::widen(lo, hi, 4.0, 0.0);
+  EXPECT_DOUBLE_EQ(lo, 0.0);
+  EXPECT_DOUBLE_EQ(hi, 4.0);
 }
 
 }  // namespace
