@@ -8,6 +8,7 @@
 #include "replay/store/report_reader.hpp"
 #include "replay/report/html_report_figures.hpp"
 #include "replay/report/html_report_tables.hpp"
+#include "replay/report/real_drive_sections.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/report/svg_writer.hpp"
 
@@ -23,6 +24,7 @@ body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif;
 h1 { font-size: 24px; margin-bottom: 4px; }
 h2 { font-size: 20px; border-bottom: 2px solid #343a40; padding-bottom: 3px; margin-top: 40px; }
 h3 { font-size: 16px; margin: 22px 0 6px; }
+h4 { font-size: 14px; margin: 16px 0 6px; }
 p.meta, p.hint { color: #555; font-size: 13px; }
 table { border-collapse: collapse; margin: 6px 0 14px; font-size: 13px; }
 th, td { border: 1px solid #ced4da; padding: 3px 8px; vertical-align: top; }
@@ -91,6 +93,11 @@ void write_run_section(std::ostream& out, SQLite::Database& db, const report::Ru
   for (const auto& h : histograms.specs()) out << svg::histogram_svg(h);
   out << "</div>";
 
+  out << fmt::format(R"(<h3 id="run-{}-objects">Annotated objects</h3>)", i.run_id)
+      << report::object_section(db, run, options.object_pictures);
+  out << fmt::format(R"(<h3 id="run-{}-background">Stationary background</h3>)", i.run_id)
+      << report::background_section(db, run);
+
   out << fmt::format(R"(<h3 id="run-{}-merge">Merge artefacts per object pair and sensor</h3>)", i.run_id)
       << report::merge_artefact_table(run);
   out << "<h3>Confirmation latency per object and sensor</h3>" << report::latency_table(run);
@@ -126,10 +133,11 @@ void write_html_report(SQLite::Database& db, const std::string& db_label, const 
   if (bench) out << fmt::format(", and bench {} of its {} benches", bench->info.bench_id, report::bench_ids(db).size());
   out << fmt::format("; written by rcsim {}.", RCSIM_VERSION) << "</p>";
   if (!runs.empty()) {
-    out << "<p class=\"hint\">Recorded targets are drawn in"
-        << fmt::format(R"(<span class="swatch" style="background:{}"></span>blue, simulated targets in)",
-                       svg::kRecordedColour)
-        << fmt::format(R"(<span class="swatch" style="background:{}"></span>orange.)", svg::kSimulatedColour)
+    out << "<p class=\"hint\">Recorded targets are drawn as dots, simulated targets as diamonds; targets of "
+           "annotated objects in"
+        << fmt::format(R"(<span class="swatch" style="background:{}"></span>blue (recorded) and)", svg::kRecordedColour)
+        << fmt::format(R"(<span class="swatch" style="background:{}"></span>orange (simulated),)", svg::kSimulatedColour)
+        << " the stationary background grey, other targets teal."
         << " GOSPA (&alpha; = 2) and OSPA are computed per cycle and sensor in the sensor's Cartesian frame; the "
            "localisation, missed and false parts are in m^p and add up to GOSPA^p. Residuals are simulated minus "
            "recorded of the assigned pairs. Latency is the time from when an object becomes detectable to its "

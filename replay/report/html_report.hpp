@@ -24,6 +24,7 @@ struct HtmlReportOptions {
   int pictures = 5;      // bird's-eye pictures per run
   int trace_cycles = 5;  // earlier cycles drawn as fading traces
   int histogram_bins = 41;
+  int object_pictures = 12;  // objects drawn in their own frame per run (the most targets first)
   std::optional<std::int64_t> bench_id;  // the bench shown as "Speed against error"; absent: the latest
 };
 

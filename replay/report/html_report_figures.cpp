@@ -105,6 +105,8 @@ void add_targets(const CycleWindow& window, const std::map<std::pair<int, int>, 
     t.simulated = row.simulated;
     t.age = window.cycle - row.cycle;
     t.merge_artefact = row.merge_artefact;
+    t.target_class = row.target_class;
+    spec.class_legend = spec.class_legend || !row.target_class.empty();
     t.p_V = transform_point(X_VW, transform_point(pose->second, row.p_ST_S));
     spec.targets.push_back(t);
     if (row.cycle != window.cycle) continue;

@@ -6,43 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include "common/angles.hpp"
+#include "replay/report/html_cells.hpp"
 #include "replay/report/svg_writer.hpp"
 
 namespace rcsim::replay::report {
 
-namespace {
-
 using svg::escape;
-
-std::string num(double value, int decimals) { return svg::fixed(value, decimals); }
-
-std::string opt(const std::optional<double>& value, int decimals, const char* none = "never") {
-  return value ? svg::fixed(*value, decimals) : std::string(none);
-}
-
-std::string deg(double angle_rad, int decimals) { return svg::fixed(rad_to_deg(angle_rad), decimals); }
-
-// A two-column row of a key-value table; `key` names the value for machine checks.
-std::string kv(const char* key, const std::string& label, const std::string& value, const std::string& unit,
-               bool text = false) {
-  return fmt::format(R"(<tr><th>{}</th><td class="{}" data-key="{}">{}</td><td>{}</td></tr>)", escape(label),
-                     text ? "text" : "num", key, escape(value), escape(unit));
-}
-
-std::string header_row(std::initializer_list<const char*> names) {
-  std::string out = "<tr>";
-  for (const char* n : names) out += fmt::format("<th>{}</th>", n);
-  return out + "</tr>";
-}
-
-std::string cell(const std::string& text) { return "<td>" + escape(text) + "</td>"; }
-std::string cell_num(const std::string& text) { return R"(<td class="num">)" + escape(text) + "</td>"; }
-
-std::string percent(std::int64_t part, std::int64_t whole) {
-  return whole > 0 ? fmt::format("{:.1f} %", 100.0 * static_cast<double>(part) / static_cast<double>(whole)) : "-";
-}
-
-}  // namespace
 
 std::string run_information_table(const RunData& run) {
   const RunInfo& i = run.info;
@@ -76,6 +45,18 @@ std::string summary_table(const RunData& run) {
   out += kv("gospa_missed", "  missed part (mean)", num(s.gospa_missed_mean_mp, 3), "m^p");
   out += kv("gospa_false", "  false part (mean)", num(s.gospa_false_mean_mp, 3), "m^p");
   out += kv("ospa_mean", "OSPA, mean", num(s.ospa_mean_m, 3), "m");
+  if (s.classes) {
+    const RunSummary::Classes& k = *s.classes;
+    out += kv("gospa_object_mean", "GOSPA on the object targets, mean", num(k.gospa_object_mean_m, 3), "m");
+    out += kv("ospa_object_mean", "OSPA on the object targets, mean", num(k.ospa_object_mean_m, 3), "m");
+    out += kv("targets_object", "object targets, recorded / simulated",
+              fmt::format("{} / {}", k.object[0], k.object[1]), percent(k.object[0], s.targets_recorded) + " of recorded");
+    out += kv("targets_background", "stationary background, recorded / simulated",
+              fmt::format("{} / {}", k.background[0], k.background[1]),
+              percent(k.background[0], s.targets_recorded) + " of recorded");
+    out += kv("targets_other", "other targets, recorded / simulated", fmt::format("{} / {}", k.other[0], k.other[1]),
+              percent(k.other[0], s.targets_recorded) + " of recorded");
+  }
   out += kv("residual_range_rms", "residual RMS, range", num(s.residual_range_rms_m, 3), "m");
   out += kv("residual_azimuth_rms", "residual RMS, azimuth", deg(s.residual_azimuth_rms_rad, 3), "deg");
   out += kv("residual_range_rate_rms", "residual RMS, range rate", num(s.residual_range_rate_rms_mps, 3), "m/s");
@@ -123,10 +104,11 @@ std::string object_table(const RunData& run) {
   return out + "</table>";
 }
 
-std::string distance_table(const RunData& run) {
+std::string distance_table(const RunData& run, bool background) {
   std::string out = R"(<table class="distances">)";
   out += header_row({"quantity", "unit", "W1 (area metric)", "KS statistic", "n recorded", "n simulated"});
   for (const DistanceRow& d : run.distances) {
+    if (d.quantity.starts_with("background_") != background) continue;
     out += "<tr>" + cell(d.quantity) + cell(d.unit) + cell_num(opt(d.wasserstein1, 4, "-")) +
            cell_num(opt(d.kolmogorov_smirnov, 4, "-")) + cell_num(std::to_string(d.n_recorded)) +
            cell_num(std::to_string(d.n_simulated)) + "</tr>";

@@ -12,7 +12,8 @@ std::string run_information_table(const RunData& run);
 std::string summary_table(const RunData& run);
 std::string sensor_table(const RunData& run);
 std::string object_table(const RunData& run);
-std::string distance_table(const RunData& run);
+// The distribution distances of all targets, or (background) those of the stationary background.
+std::string distance_table(const RunData& run, bool background = false);
 std::string merge_artefact_table(const RunData& run);
 std::string latency_table(const RunData& run);
 // The metric and import parameters (runs.parameters, JSON) with their cited sources.

@@ -69,7 +69,7 @@ View make_view(const BirdsEyeSpec& spec) {
   v.x_lo = cx - 0.5 * v.span, v.x_hi = cx + 0.5 * v.span, v.y_lo = cy - 0.5 * v.span, v.y_hi = cy + 0.5 * v.span;
   v.left = 58.0, v.top = 30.0 + 14.0 * static_cast<double>(spec.notes.size()), v.size = spec.size_px;
   v.right = v.left + v.size, v.bottom = v.top + v.size;
-  v.width_px = static_cast<int>(v.right + 16.0), v.height_px = static_cast<int>(v.bottom + 104.0);
+  v.width_px = static_cast<int>(v.right + 16.0), v.height_px = static_cast<int>(v.bottom + (spec.class_legend ? 122.0 : 104.0));
   v.sx = LinearScale{v.y_hi, v.y_lo, v.left, v.right};
   v.sy = LinearScale{v.x_lo, v.x_hi, v.bottom, v.top};
   return v;
@@ -175,6 +175,15 @@ void draw_ego_sensors_and_links(const BirdsEyeSpec& spec, const View& v, std::st
   out += "</g>";
 }
 
+constexpr const char* kBackgroundColour = "#868e96";  // grey
+constexpr const char* kOtherColour = "#0ca678";       // teal
+
+const char* target_colour(const BirdsEyeTarget& t) {
+  if (t.target_class == "background") return kBackgroundColour;
+  if (t.target_class == "other") return kOtherColour;
+  return t.simulated ? kSimulatedColour : kRecordedColour;
+}
+
 // Oldest first, so that the pictured cycle is drawn on top.
 void draw_targets(const BirdsEyeSpec& spec, const View& v, std::string& out) {
   const auto& [sx, sy] = std::tie(v.sx, v.sy);
@@ -191,10 +200,10 @@ void draw_targets(const BirdsEyeSpec& spec, const View& v, std::string& out) {
       const double d = r + 1.5;
       out += fmt::format(R"(<polygon class="t sim {}" points="{},{} {},{} {},{} {},{}" fill="none" stroke="{}" stroke-width="1.8" opacity="{:.2f}"/>)",
                          kind, coord(x), coord(y - d), coord(x + d), coord(y), coord(x), coord(y + d), coord(x - d),
-                         coord(y), kSimulatedColour, opacity);
+                         coord(y), target_colour(*t), opacity);
     } else {
       out += fmt::format(R"(<circle class="t rec {}" cx="{}" cy="{}" r="{}" fill="{}" opacity="{:.2f}"/>)", kind,
-                         coord(x), coord(y), coord(r), kRecordedColour, opacity);
+                         coord(x), coord(y), coord(r), target_colour(*t), opacity);
     }
     if (t->merge_artefact && t->age == 0) {
       out += fmt::format(R"(<circle class="merge" cx="{}" cy="{}" r="9" fill="none" stroke="#862e9c" stroke-width="1.5"/>)",
@@ -223,6 +232,14 @@ void draw_legend(const BirdsEyeSpec& spec, const View& v, std::string& out) {
                      coord(l1 + 10), coord(ly2));
   out += fmt::format(R"(<rect x="{}" y="{}" width="12" height="8" fill="#868e96" fill-opacity="0.18" stroke="#495057"/><text x="{}" y="{}" class="legend">annotated box; purple outline: shares a range-speed cell with another</text>)",
                      coord(l0 - 6), coord(ly3 - 8), coord(l0 + 10), coord(ly3));
+  if (spec.class_legend) {
+    const double ly4 = v.bottom + 108.0;
+    out += fmt::format(R"(<text x="{}" y="{}" class="legend">targets on no box:</text>)", coord(l0 - 6), coord(ly4));
+    out += fmt::format(R"(<circle cx="{}" cy="{}" r="4.5" fill="{}"/><text x="{}" y="{}" class="legend">stationary background</text>)",
+                       coord(l0 + 118), coord(ly4 - 4), kBackgroundColour, coord(l0 + 128), coord(ly4));
+    out += fmt::format(R"(<circle cx="{}" cy="{}" r="4.5" fill="{}"/><text x="{}" y="{}" class="legend">other (moving, unannotated)</text>)",
+                       coord(l2), coord(ly4 - 4), kOtherColour, coord(l2 + 10), coord(ly4));
+  }
   out += "</g>";
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // The bird's-eye picture of one cycle (like paper Figs. 14-17): annotated boxes, the sensors
 // with their field-of-view wedges, recorded and simulated targets, their assignment, merge
-// artefacts, and the targets of the last few cycles as fading traces. Everything is given in
+// artefacts, and the targets of the last few cycles as fading traces. The shape tells the origin
+// (recorded: dot, simulated: diamond), the colour the class: targets of annotated objects blue
+// (recorded) and orange (simulated), the stationary background grey, other targets teal. Everything is given in
 // the ego vehicle frame V of the pictured cycle; the picture shows x (forward) up and y (left)
 // to the left, at equal scale.
 #include <string>
@@ -29,6 +31,8 @@ struct BirdsEyeTarget {
   bool simulated = false;
   int age = 0;  // cycles before the pictured one (0: the pictured cycle)
   bool merge_artefact = false;
+  // object | background | other (metrics/target_class.hpp); empty: unknown, drawn as an object.
+  std::string target_class;
 };
 
 struct BirdsEyeLink {  // an assigned recorded-simulated pair of the pictured cycle
@@ -45,6 +49,7 @@ struct BirdsEyeSpec {
   std::vector<BirdsEyeTarget> targets;
   std::vector<BirdsEyeLink> links;
   std::string recorded_label = "recorded target", simulated_label = "simulated target";  // legend
+  bool class_legend = false;  // a legend row for the target classes (their colours)
   bool standalone = false;  // a file of its own: carries its own text styles (the report's page has them)
 };
 

@@ -9,6 +9,7 @@
 #include "metrics/sensor_view.hpp"
 #include "sim/amplitude.hpp"
 #include "replay/run/latency_episodes.hpp"
+#include "replay/run/object_figures.hpp"
 #include "replay/run/run_accumulators.hpp"
 #include "replay/run/simulated_source.hpp"
 
@@ -37,29 +38,35 @@ struct RunContext {
 
 // Per-cycle buffers, reused from cycle to cycle.
 struct CycleBuffers {
-  std::vector<metrics::BoxInSensor> boxes, in_view;
+  std::vector<metrics::BoxInSensor> boxes, in_view, in_field;
   std::vector<char> detected;  // per object
 };
 
 // The annotated boxes present now, as sensor `s` sees them: all of them (for association), the
-// ones in its field of view and detectable range (for merge artefacts), and, for the report's
-// pictures, those near the sensor (an hour-long drive passes many).
+// ones in its field of view and range (per-object figures), those of them within the model's
+// detectable range (merge artefacts), and, for the report's pictures, those near the sensor (an
+// hour-long drive passes many).
 void project_boxes(const RunContext& run, std::size_t s, double t_scene_s, const BodyState& ego,
-                   const std::vector<BodyState>& object_states, CycleComparison& cycle,
-                   std::vector<metrics::BoxInSensor>& boxes, std::vector<metrics::BoxInSensor>& in_view) {
+                   const std::vector<BodyState>& object_states, CycleComparison& cycle, CycleBuffers& buffers) {
   constexpr double kPictureMargin_m = 20.0;
   const SensorConfig& config = run.scene.sensors[s].config;
+  std::vector<metrics::BoxInSensor>& boxes = buffers.boxes;
+  std::vector<metrics::BoxInSensor>& in_view = buffers.in_view;
+  std::vector<metrics::BoxInSensor>& in_field = buffers.in_field;
   boxes.clear();
   in_view.clear();
+  in_field.clear();
   cycle.objects.clear();
   for (std::size_t o = 0; o < run.scene.objects.size(); ++o) {
     if (!run.scene.objects[o].present_at(t_scene_s)) continue;
     const metrics::BoxInSensor box = metrics::box_in_sensor(static_cast<int>(o), cycle.X_WS, ego, object_states[o],
                                                             run.imported.objects[o].length_m,
                                                             run.imported.objects[o].width_m);
-    const bool visible = std::abs(box.azimuth_rad) <= config.fov.azimuth_half_rad &&
-                         box.range_m >= config.fov.min_range_m && box.range_m <= run.detectable_m[s][o];
+    const bool in_fov = std::abs(box.azimuth_rad) <= config.fov.azimuth_half_rad &&
+                        box.range_m >= config.fov.min_range_m && box.range_m <= config.fov.max_range_m;
+    const bool visible = in_fov && box.range_m <= run.detectable_m[s][o];
     boxes.push_back(box);
+    if (in_fov) in_field.push_back(box);
     if (visible) in_view.push_back(box);
     if (box.range_m <= config.fov.max_range_m + kPictureMargin_m) {
       const Pose2& X_WO = object_states[o].X_WB;
@@ -69,24 +76,36 @@ void project_boxes(const RunContext& run, std::size_t s, double t_scene_s, const
 }
 
 // Each target's Cartesian position, the object it belongs to (nearest box within the gate) and
-// the merge pair it is an artefact of, if any.
+// its offset in that object's frame, its class (object, stationary background, other) and the
+// merge pair it is an artefact of, if any. v_WS_S: the sensor's own velocity, sensor frame.
 void classify_targets(std::vector<ComparedTarget>& targets, const std::vector<metrics::BoxInSensor>& boxes,
                       const std::vector<metrics::BoxInSensor>& in_view, const std::vector<metrics::MergePair>& pairs,
-                      const ReplayOptions& options, const metrics::MergeParameters& merge) {
+                      const Vec2& v_WS_S, const ReplayOptions& options, const metrics::MergeParameters& merge) {
   for (ComparedTarget& t : targets) {
     t.p_ST_S = cartesian_S(t.range_m, t.azimuth_rad);
     const int box = metrics::nearest_box(boxes, t.p_ST_S, options.association_gate_m);
     t.object = box >= 0 ? boxes[box].object : -1;
+    t.p_OT_O = box >= 0 ? inverse_transform_point(boxes[box].X_SO, t.p_ST_S) : Vec2::Zero();
+    t.target_class =
+        metrics::classify_target(t.object, t.range_rate_mps, t.azimuth_rad, v_WS_S, options.stationary_gate_mps);
     t.merge_pair = metrics::merge_artefact_of(in_view, pairs, t.range_m, t.azimuth_rad, t.p_ST_S, merge);
   }
 }
 
-// GOSPA between the two lists (sensor Cartesian) and each target's assigned partner.
+// GOSPA between the two lists (sensor Cartesian) and each target's assigned partner; GOSPA
+// between their object targets alone.
 void match_targets(CycleComparison& cycle, const metrics::GospaParameters& parameters) {
-  std::vector<Vec2> p_rec_S, p_sim_S;
-  for (const auto& t : cycle.recorded) p_rec_S.push_back(t.p_ST_S);
-  for (const auto& t : cycle.simulated) p_sim_S.push_back(t.p_ST_S);
+  std::vector<Vec2> p_rec_S, p_sim_S, p_rec_object_S, p_sim_object_S;
+  for (const auto& t : cycle.recorded) {
+    p_rec_S.push_back(t.p_ST_S);
+    if (t.target_class == metrics::TargetClass::object) p_rec_object_S.push_back(t.p_ST_S);
+  }
+  for (const auto& t : cycle.simulated) {
+    p_sim_S.push_back(t.p_ST_S);
+    if (t.target_class == metrics::TargetClass::object) p_sim_object_S.push_back(t.p_ST_S);
+  }
   cycle.gospa = metrics::gospa(p_rec_S, p_sim_S, parameters);
+  cycle.gospa_object = metrics::gospa(p_rec_object_S, p_sim_object_S, parameters);
   for (std::size_t i = 0; i < cycle.recorded.size(); ++i) {
     const int j = cycle.gospa.simulated_of_recorded[i];
     cycle.recorded[i].match = j;
@@ -118,7 +137,7 @@ MergeCounts match_merge_artefacts(CycleComparison& cycle, std::size_t pair_count
 void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, double t_scene_s, const BodyState& ego,
                           const std::vector<BodyState>& object_states, std::span<const RecordedTarget> recorded,
                           SimulatedSource& source, CycleBuffers& buffers, CycleComparison& cycle,
-                          LatencyEpisodes& latency, RunAccumulators& acc, ReplaySink& sink) {
+                          LatencyEpisodes& latency, RunAccumulators& acc, ObjectFigures& objects, ReplaySink& sink) {
   const SensorConfig& config = run.scene.sensors[s].config;
   const metrics::MergeParameters merge{config.resolution.range_cell_m, config.resolution.range_rate_cell_mps,
                                        run.options.merge_contour_margin_m};
@@ -127,7 +146,7 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
   cycle.X_WS = compose(X_WV, run.scene.sensors[s].X_VS);
   const auto& boxes = buffers.boxes;
   const auto& in_view = buffers.in_view;
-  project_boxes(run, s, t_scene_s, ego, object_states, cycle, buffers.boxes, buffers.in_view);
+  project_boxes(run, s, t_scene_s, ego, object_states, cycle, buffers);
   // Detectability: the source detects the object before its tracker (paper III-C/D).
   buffers.detected.assign(run.scene.objects.size(), 0);
   source.mark_detected_objects(s, boxes, run.options.association_gate_m, buffers.detected);
@@ -142,12 +161,14 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
   const std::vector<metrics::MergePair> pairs = metrics::merge_pairs(in_view, merge);
   cycle.merge_pairs.clear();
   for (const auto& p : pairs) cycle.merge_pairs.emplace_back(in_view[p.box_a].object, in_view[p.box_b].object);
-  classify_targets(cycle.recorded, boxes, in_view, pairs, run.options, merge);
-  classify_targets(cycle.simulated, boxes, in_view, pairs, run.options, merge);
+  const Vec2 v_WS_S = rotate(-cycle.X_WS.yaw_rad, ego.point_velocity_W(cycle.X_WS.translation()));
+  classify_targets(cycle.recorded, boxes, in_view, pairs, v_WS_S, run.options, merge);
+  classify_targets(cycle.simulated, boxes, in_view, pairs, v_WS_S, run.options, merge);
   match_targets(cycle, run.options.gospa);
   const MergeCounts merges = match_merge_artefacts(cycle, pairs.size());
   latency.note_first_targets(s, cycle, t_rec_s);
   acc.add_cycle(cycle, merges.recorded, merges.simulated);
+  objects.add_cycle(cycle, buffers.in_field);
   sink.add_cycle(cycle);
 }
 
@@ -172,6 +193,7 @@ ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& 
   }
   LatencyEpisodes latency(n_sensors, n_objects);
   RunAccumulators acc;
+  ObjectFigures objects(n_sensors, n_objects, options.object_range_bin_m);
   double simulate_cpu_s = 0.0;
   std::size_t cursor = 0;  // into rec.targets, which are in cycle order
   CycleComparison cycle;
@@ -196,7 +218,7 @@ ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& 
     cycle.t_s = t_rec_s;
     for (std::size_t s = 0; s < n_sensors; ++s) {
       compare_sensor_cycle(run, s, t_rec_s, t_scene_s, ego, object_states, recorded, source, buffers, cycle, latency,
-                           acc, sink);
+                           acc, objects, sink);
     }
     cursor = cycle_end;
   }
@@ -205,6 +227,7 @@ ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& 
   summary.cycles = rec.cycle_count();
   acc.finish(summary);
   latency.finish(summary);
+  objects.finish(summary);
   summary.simulate_cpu_s = simulate_cpu_s;
   summary.total_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   sink.end_run(summary);

@@ -4,6 +4,7 @@
 // Results stream into a ReplaySink (the SQLite report store) so that an hour-long recording
 // never has to be held in memory twice.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "metrics/gospa.hpp"
 #include "metrics/merge_artefacts.hpp"
 #include "metrics/sensor_view.hpp"
+#include "metrics/target_class.hpp"
 #include "replay/import/importer.hpp"
 #include "sim/fidelity.hpp"
 
@@ -24,6 +26,9 @@ struct ReplayOptions {
   metrics::GospaParameters gospa{2.0, 2.0};
   double association_gate_m = 1.0;  // a target belongs to the nearest box within this distance
   double merge_contour_margin_m = 0.5;
+  // Stationary background: ego-motion-compensated radial speed within this (docs/metrics.md).
+  double stationary_gate_mps = 0.5;
+  double object_range_bin_m = 10.0;  // bins of the detection probability against range
 };
 
 // One target of one cycle and sensor, recorded or simulated.
@@ -34,6 +39,11 @@ struct ComparedTarget {
   int object = -1;          // recording object index it belongs to, or -1
   int match = -1;           // index of the GOSPA-assigned partner in the other list, or -1
   int merge_pair = -1;      // index into CycleComparison::merge_pairs if a merge artefact
+  metrics::TargetClass target_class = metrics::TargetClass::other;
+  Vec2 p_OT_O = Vec2::Zero();  // offset from the box centre in the object's frame (object >= 0)
+  // What real radars report besides (recording format v2's optional columns); NaN where absent.
+  double rcs_dbsm = kNoValue, snr_db = kNoValue, elevation_rad = kNoValue;
+  static constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct ObjectInCycle {
@@ -49,6 +59,7 @@ struct CycleComparison {
   Pose2 X_WS;        // sensor pose in the world
   std::vector<ComparedTarget> recorded, simulated;
   metrics::GospaResult gospa;
+  metrics::GospaResult gospa_object;             // on the targets of annotated objects only
   std::vector<std::pair<int, int>> merge_pairs;  // object indices sharing a resolution cell
   int merge_matched = 0;                         // artefacts found in both lists, per pair
   std::vector<ObjectInCycle> objects;            // present objects near the sensor (stored for sensor 0)
@@ -66,6 +77,25 @@ struct LatencyRow {
   double first_recorded_s = -1.0, first_simulated_s = -1.0;  // -1: never reported
 };
 
+// Per annotated object and sensor, over the cycles it was in the sensor's field of view.
+struct ObjectFigureRow {
+  int sensor = 0, object = 0;
+  int cycles_in_view = 0, cycles_detected_recorded = 0, cycles_detected_simulated = 0;
+  long long targets_recorded = 0, targets_simulated = 0;
+};
+
+// The same in one bin of the range of the box's nearest point: detection probability vs range.
+struct ObjectRangeRow {
+  int sensor = 0, object = 0;
+  double range_from_m = 0.0, range_to_m = 0.0;
+  int cycles_in_view = 0, cycles_detected_recorded = 0, cycles_detected_simulated = 0;
+};
+
+// Targets of each class (metrics/target_class.hpp), [0] recorded, [1] simulated.
+struct ClassCounts {
+  long long object[2] = {0, 0}, background[2] = {0, 0}, other[2] = {0, 0};
+};
+
 struct QuantityDistance {
   std::string quantity, unit;
   metrics::DistributionDistance distance;
@@ -76,6 +106,8 @@ struct ReplaySummary {
   long long targets_recorded = 0, targets_simulated = 0, targets_matched = 0;
   double gospa_mean_m = 0.0, ospa_mean_m = 0.0;
   double gospa_localisation_mean_mp = 0.0, gospa_missed_mean_mp = 0.0, gospa_false_mean_mp = 0.0;
+  double gospa_object_mean_m = 0.0, ospa_object_mean_m = 0.0;  // on the object targets only
+  ClassCounts classes;
   long long merge_artefacts_recorded = 0, merge_artefacts_simulated = 0, merge_artefacts_matched = 0;
   // Mean over episodes where both recorded and simulated latencies exist; -1 if none.
   double latency_recorded_s = -1.0, latency_simulated_s = -1.0;
@@ -84,7 +116,9 @@ struct ReplaySummary {
          residual_amplitude_mean_db = 0.0;
   double simulate_cpu_s = 0.0, total_wall_s = 0.0;
   std::vector<LatencyRow> latencies;
-  std::vector<QuantityDistance> distances;
+  std::vector<QuantityDistance> distances;  // all targets, then the background's (background_*)
+  std::vector<ObjectFigureRow> objects;
+  std::vector<ObjectRangeRow> object_ranges;
 };
 
 // What a replay hands to storage, in order: begin, every cycle, end.

@@ -27,16 +27,30 @@ void RunAccumulators::add_cycle(const CycleComparison& cycle, long long merge_re
   localisation_sum_ += cycle.gospa.localisation_mp;
   missed_sum_ += cycle.gospa.missed_mp;
   false_sum_ += cycle.gospa.false_mp;
+  gospa_object_sum_ += cycle.gospa_object.gospa_m;
+  ospa_object_sum_ += cycle.gospa_object.ospa_m;
   ++sensor_cycles_;
   for (int origin = 0; origin < 2; ++origin) {
     const auto& list = origin == 0 ? cycle.recorded : cycle.simulated;
+    int background = 0;
     for (const auto& t : list) {
       range_m_[origin].push_back(static_cast<float>(t.range_m));
       azimuth_rad_[origin].push_back(static_cast<float>(t.azimuth_rad));
       rate_mps_[origin].push_back(static_cast<float>(t.range_rate_mps));
       amplitude_db_[origin].push_back(static_cast<float>(t.amplitude_db));
+      switch (t.target_class) {
+        case metrics::TargetClass::object: ++classes_.object[origin]; break;
+        case metrics::TargetClass::other: ++classes_.other[origin]; break;
+        case metrics::TargetClass::stationary_background:
+          ++classes_.background[origin];
+          ++background;
+          background_range_m_[origin].push_back(static_cast<float>(t.range_m));
+          background_azimuth_rad_[origin].push_back(static_cast<float>(t.azimuth_rad));
+          break;
+      }
     }
     count_[origin].push_back(static_cast<float>(list.size()));
+    background_count_[origin].push_back(static_cast<float>(background));
   }
 }
 
@@ -53,6 +67,9 @@ void RunAccumulators::finish(ReplaySummary& summary) {
   summary.gospa_localisation_mean_mp = localisation_sum_ / n;
   summary.gospa_missed_mean_mp = missed_sum_ / n;
   summary.gospa_false_mean_mp = false_sum_ / n;
+  summary.gospa_object_mean_m = gospa_object_sum_ / n;
+  summary.ospa_object_mean_m = ospa_object_sum_ / n;
+  summary.classes = classes_;
   const double m = std::max<double>(1.0, static_cast<double>(targets_matched_));
   summary.residual_range_rms_m = std::sqrt(range_sq_m2_ / m);
   summary.residual_azimuth_rms_rad = std::sqrt(azimuth_sq_rad2_ / m);
@@ -67,6 +84,12 @@ void RunAccumulators::finish(ReplaySummary& summary) {
   summary.distances.push_back({"range_rate", "m/s", distance(rate_mps_[0], rate_mps_[1])});
   summary.distances.push_back({"amplitude", "dB", distance(amplitude_db_[0], amplitude_db_[1])});
   summary.distances.push_back({"targets_per_cycle", "1", distance(count_[0], count_[1])});
+  summary.distances.push_back(
+      {"background_range", "m", distance(background_range_m_[0], background_range_m_[1])});
+  summary.distances.push_back(
+      {"background_azimuth", "rad", distance(background_azimuth_rad_[0], background_azimuth_rad_[1])});
+  summary.distances.push_back(
+      {"background_targets_per_cycle", "1", distance(background_count_[0], background_count_[1])});
 }
 
 }  // namespace rcsim::replay

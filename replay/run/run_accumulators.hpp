@@ -1,7 +1,8 @@
 #pragma once
 // The run's figures, accumulated cycle by cycle and sensor by sensor (ReplaySummary): target
 // counts, GOSPA and its parts, residuals of the assigned pairs, merge artefacts, and the samples
-// of the per-target quantities for the distribution distances.
+// of the per-target quantities for the distribution distances; the targets of each class, GOSPA
+// on the object targets, and the background's samples (range, azimuth, targets per cycle).
 #include <vector>
 
 #include "replay/run/replay_run.hpp"
@@ -20,10 +21,13 @@ class RunAccumulators {
   long long targets_recorded_ = 0, targets_simulated_ = 0, targets_matched_ = 0;
   long long merge_recorded_ = 0, merge_simulated_ = 0, merge_matched_ = 0;
   double gospa_sum_ = 0.0, ospa_sum_ = 0.0, localisation_sum_ = 0.0, missed_sum_ = 0.0, false_sum_ = 0.0;
+  double gospa_object_sum_ = 0.0, ospa_object_sum_ = 0.0;
+  ClassCounts classes_;
   long long sensor_cycles_ = 0;
   double range_sq_m2_ = 0.0, azimuth_sq_rad2_ = 0.0, rate_sq_m2ps2_ = 0.0, amplitude_sum_db_ = 0.0;
   // Samples per origin: [0] recorded, [1] simulated (float: half the memory of an hour-long run).
   std::vector<float> range_m_[2], azimuth_rad_[2], rate_mps_[2], amplitude_db_[2], count_[2];
+  std::vector<float> background_range_m_[2], background_azimuth_rad_[2], background_count_[2];
 };
 
 }  // namespace rcsim::replay

@@ -10,7 +10,8 @@
 
 namespace rcsim::replay {
 
-// The fields every target kind shares (RecordedTarget, ReportedTarget of the model and of the reference).
+// The fields every target kind shares (RecordedTarget, ReportedTarget of the model and of the
+// reference), and a recorded target's optional columns.
 template <typename Target>
 ComparedTarget compared_target(const Target& target) {
   ComparedTarget t;
@@ -19,6 +20,11 @@ ComparedTarget compared_target(const Target& target) {
   t.azimuth_rad = target.azimuth_rad;
   t.range_rate_mps = target.range_rate_mps;
   t.amplitude_db = target.amplitude_db;
+  if constexpr (requires { target.rcs_dbsm; }) {  // a recorded target: the optional columns
+    t.rcs_dbsm = target.rcs_dbsm;
+    t.snr_db = target.snr_db;
+    t.elevation_rad = target.elevation_rad;
+  }
   return t;
 }
 

@@ -1,6 +1,9 @@
 #include "replay/store/figure_reader.hpp"
 
+#include <algorithm>
+#include <fmt/format.h>
 #include <string>
+#include <string_view>
 
 namespace rcsim::replay::report {
 
@@ -74,7 +77,7 @@ CycleWindow read_cycle_window(SQLite::Database& db, std::int64_t run_id, int fir
                          Pose2{objects.getColumn(1).getDouble(), objects.getColumn(2).getDouble(), objects.getColumn(3).getDouble()}});
   }
   SQLite::Statement targets(db,
-                            "SELECT cycle, sensor, origin, idx, x_s_m, y_s_m, match_idx, merge_artefact FROM targets "
+                            "SELECT cycle, sensor, origin, idx, x_s_m, y_s_m, match_idx, merge_artefact, target_class FROM targets "
                             "WHERE run_id = ? AND cycle BETWEEN ? AND ?");
   targets.bind(1, run_id);
   targets.bind(2, first_cycle);
@@ -88,6 +91,7 @@ CycleWindow read_cycle_window(SQLite::Database& db, std::int64_t run_id, int fir
     t.p_ST_S = {targets.getColumn(4).getDouble(), targets.getColumn(5).getDouble()};
     if (!targets.getColumn(6).isNull()) t.match_idx = targets.getColumn(6).getInt();
     t.merge_artefact = targets.getColumn(7).getInt() != 0;
+    if (!targets.getColumn(8).isNull()) t.target_class = targets.getColumn(8).getString();
     w.targets.push_back(t);
   }
   return w;
@@ -154,6 +158,57 @@ std::int64_t for_each_residual(SQLite::Database& db, std::int64_t run_id, const 
     visit({q.getColumn(0).getDouble(), q.getColumn(1).getDouble(), q.getColumn(2).getDouble(), q.getColumn(3).getDouble()});
   }
   return n;
+}
+
+std::vector<ObjectFrameTarget> read_object_frame_targets(SQLite::Database& db, std::int64_t run_id, int object,
+                                                         int max_per_origin) {
+  std::vector<ObjectFrameTarget> rows;
+  for (const char* origin : {"recorded", "simulated"}) {
+    // Evenly thinned by a stride over the object's targets of that origin.
+    SQLite::Statement n(db, "SELECT count(*) FROM targets WHERE run_id = ? AND object = ? AND origin = ? "
+                            "AND target_class = 'object'");
+    n.bind(1, run_id);
+    n.bind(2, object);
+    n.bind(3, origin);
+    n.executeStep();
+    const std::int64_t count = n.getColumn(0).getInt64();
+    const std::int64_t stride = std::max<std::int64_t>(1, (count + max_per_origin - 1) / std::max(1, max_per_origin));
+    SQLite::Statement q(db, "SELECT sensor, x_o_m, y_o_m FROM (SELECT sensor, x_o_m, y_o_m, "
+                            "row_number() OVER (ORDER BY cycle, sensor, idx) AS k FROM targets "
+                            "WHERE run_id = ? AND object = ? AND origin = ? AND target_class = 'object') "
+                            "WHERE (k - 1) % ? = 0");
+    q.bind(1, run_id);
+    q.bind(2, object);
+    q.bind(3, origin);
+    q.bind(4, stride);
+    while (q.executeStep()) {
+      rows.push_back({q.getColumn(0).getInt(), std::string_view(origin) == "simulated",
+                      Vec2{q.getColumn(1).getDouble(), q.getColumn(2).getDouble()}});
+    }
+  }
+  return rows;
+}
+
+BackgroundHistogram read_background_histogram(SQLite::Database& db, std::int64_t run_id, BackgroundQuantity quantity,
+                                              double lo, double bin_width, int bins) {
+  BackgroundHistogram h;
+  h.lo = lo;
+  h.bin_width = bin_width;
+  for (auto& counts : h.counts) counts.assign(static_cast<std::size_t>(std::max(0, bins)), 0);
+  // The column is one of two fixed names, never text from outside.
+  const char* column = quantity == BackgroundQuantity::range ? "range_m" : "azimuth_rad";
+  SQLite::Statement q(db, fmt::format("SELECT origin, CAST(({} - ?) / ? AS INTEGER) AS b, count(*) FROM targets "
+                                      "WHERE run_id = ? AND target_class = 'background' GROUP BY origin, b",
+                                      column));
+  q.bind(1, lo);
+  q.bind(2, bin_width);
+  q.bind(3, run_id);
+  while (q.executeStep()) {
+    const int origin = q.getColumn(0).getString() == "simulated" ? 1 : 0;
+    const auto b = std::clamp<std::int64_t>(q.getColumn(1).getInt64(), 0, std::max(0, bins - 1));
+    if (bins > 0) h.counts[origin][static_cast<std::size_t>(b)] += q.getColumn(2).getInt64();
+  }
+  return h;
 }
 
 }  // namespace rcsim::replay::report

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -50,6 +51,7 @@ struct TargetRow {
   Vec2 p_ST_S = Vec2::Zero();
   std::optional<int> match_idx;
   bool merge_artefact = false;
+  std::string target_class;  // object | background | other; empty in runs stored before schema v3
 };
 
 // Cycles first_cycle..cycle: their cycle rows and targets; the merge pairs and object states of
@@ -93,5 +95,25 @@ struct ResidualSampleStats {
 ResidualSampleStats read_residual_sample_stats(SQLite::Database& db, std::int64_t run_id, int stride);
 // Every pair of the run, streamed; returns how many.
 std::int64_t for_each_residual(SQLite::Database& db, std::int64_t run_id, const std::function<void(const Residuals&)>& visit);
+
+// The object targets of one object over the run, in its own frame (x forward, y left, from the
+// box centre): at most max_per_origin of each origin, evenly thinned.
+struct ObjectFrameTarget {
+  int sensor = 0;
+  bool simulated = false;
+  Vec2 p_OT_O = Vec2::Zero();
+};
+std::vector<ObjectFrameTarget> read_object_frame_targets(SQLite::Database& db, std::int64_t run_id, int object,
+                                                         int max_per_origin);
+
+// Counts of the background targets in bins of range or azimuth, per origin, counted in SQL; the
+// end bins hold what lies beyond them.
+enum class BackgroundQuantity { range, azimuth };
+struct BackgroundHistogram {
+  double lo = 0.0, bin_width = 1.0;
+  std::array<std::vector<std::int64_t>, 2> counts;  // [0] recorded, [1] simulated
+};
+BackgroundHistogram read_background_histogram(SQLite::Database& db, std::int64_t run_id, BackgroundQuantity quantity,
+                                              double lo, double bin_width, int bins);
 
 }  // namespace rcsim::replay::report

@@ -81,7 +81,10 @@ void read_summary(SQLite::Database& db, std::int64_t run_id, RunData& run) {
                       "gospa_localisation_mean, gospa_missed_mean, gospa_false_mean, merge_artefacts_recorded, "
                       "merge_artefacts_simulated, merge_artefacts_matched, latency_recorded_s, latency_simulated_s, "
                       "latency_pairs, residual_range_rms_m, residual_azimuth_rms_rad, residual_range_rate_rms_mps, "
-                      "residual_amplitude_mean_db, simulate_cpu_s, total_wall_s FROM summaries WHERE run_id = ?");
+                      "residual_amplitude_mean_db, simulate_cpu_s, total_wall_s, gospa_object_mean, ospa_object_mean, "
+                      "targets_object_recorded, targets_object_simulated, targets_background_recorded, "
+                      "targets_background_simulated, targets_other_recorded, targets_other_simulated "
+                      "FROM summaries WHERE run_id = ?");
   q.bind(1, run_id);
   if (q.executeStep()) {
     RunSummary s;
@@ -107,6 +110,16 @@ void read_summary(SQLite::Database& db, std::int64_t run_id, RunData& run) {
     s.residual_amplitude_mean_db = q.getColumn(c++).getDouble();
     s.simulate_cpu_s = q.getColumn(c++).getDouble();
     s.total_wall_s = q.getColumn(c++).getDouble();
+    if (!q.getColumn(c).isNull()) {
+      RunSummary::Classes k;
+      k.gospa_object_mean_m = q.getColumn(c++).getDouble();
+      k.ospa_object_mean_m = q.getColumn(c++).getDouble();
+      for (std::int64_t* counts : {k.object, k.background, k.other}) {
+        counts[0] = q.getColumn(c++).getInt64();
+        counts[1] = q.getColumn(c++).getInt64();
+      }
+      s.classes = k;
+    }
     run.summary = s;
   }
 }
@@ -203,6 +216,27 @@ void read_sensor_totals(SQLite::Database& db, std::int64_t run_id, RunData& run)
   }
 }
 
+void read_object_figures(SQLite::Database& db, std::int64_t run_id, RunData& run) {
+  SQLite::Statement q(db,
+                      "SELECT sensor, object, cycles_in_view, cycles_detected_recorded, cycles_detected_simulated, "
+                      "targets_recorded, targets_simulated FROM object_figures WHERE run_id = ? ORDER BY object, sensor");
+  q.bind(1, run_id);
+  while (q.executeStep()) {
+    run.object_figures.push_back({q.getColumn(0).getInt(), q.getColumn(1).getInt(), q.getColumn(2).getInt(),
+                                  q.getColumn(3).getInt(), q.getColumn(4).getInt(), q.getColumn(5).getInt64(),
+                                  q.getColumn(6).getInt64()});
+  }
+  SQLite::Statement r(db,
+                      "SELECT sensor, object, range_from_m, range_to_m, cycles_in_view, cycles_detected_recorded, "
+                      "cycles_detected_simulated FROM object_ranges WHERE run_id = ? ORDER BY object, sensor, range_from_m");
+  r.bind(1, run_id);
+  while (r.executeStep()) {
+    run.object_ranges.push_back({r.getColumn(0).getInt(), r.getColumn(1).getInt(), r.getColumn(2).getDouble(),
+                                 r.getColumn(3).getDouble(), r.getColumn(4).getInt(), r.getColumn(5).getInt(),
+                                 r.getColumn(6).getInt()});
+  }
+}
+
 }  // namespace
 
 RunData load_run(SQLite::Database& db, std::int64_t run_id) {
@@ -215,6 +249,7 @@ RunData load_run(SQLite::Database& db, std::int64_t run_id) {
   read_latencies(db, run_id, run);
   read_merge_pairs(db, run_id, run);
   read_sensor_totals(db, run_id, run);
+  read_object_figures(db, run_id, run);
   return run;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// What the HTML report reads from a report database (`rcsim-report` v2,
+// What the HTML report reads from a report database (`rcsim-report` v3,
 // schemas/report-database.md): the per-run tables, each read with one query and SQL aggregates,
 // never the per-target rows of a whole run. Text fields are returned as stored (unescaped).
 #include <SQLiteCpp/SQLiteCpp.h>
@@ -33,6 +33,12 @@ struct RunSummary {
   double residual_range_rms_m = 0.0, residual_azimuth_rms_rad = 0.0, residual_range_rate_rms_mps = 0.0,
          residual_amplitude_mean_db = 0.0;
   double simulate_cpu_s = 0.0, total_wall_s = 0.0;
+  // Real-drive figures (schema v3); absent in runs stored before.
+  struct Classes {
+    double gospa_object_mean_m = 0.0, ospa_object_mean_m = 0.0;
+    std::int64_t object[2] = {0, 0}, background[2] = {0, 0}, other[2] = {0, 0};  // [0] recorded, [1] simulated
+  };
+  std::optional<Classes> classes;
 };
 
 struct SensorInfo {
@@ -78,6 +84,18 @@ struct SensorTotals {
   std::int64_t merge_recorded = 0, merge_simulated = 0, merge_matched = 0;
 };
 
+// One annotated object and sensor over the run (object_figures), with its bins of range.
+struct ObjectFigures {
+  int sensor = 0, object = 0;
+  int cycles_in_view = 0, detected_recorded = 0, detected_simulated = 0;
+  std::int64_t targets_recorded = 0, targets_simulated = 0;
+};
+struct ObjectRangeBin {
+  int sensor = 0, object = 0;
+  double range_from_m = 0.0, range_to_m = 0.0;
+  int cycles_in_view = 0, detected_recorded = 0, detected_simulated = 0;
+};
+
 struct RunData {
   RunInfo info;
   std::optional<RunSummary> summary;  // absent only in a damaged database
@@ -87,6 +105,8 @@ struct RunData {
   std::vector<LatencyRow> latencies;
   std::vector<MergePairRow> merge_pairs;
   std::vector<SensorTotals> sensor_totals;
+  std::vector<ObjectFigures> object_figures;  // by object, sensor
+  std::vector<ObjectRangeBin> object_ranges;  // by object, sensor, range
 
   std::string sensor_label(int sensor) const;  // its id, or "#N"
   std::string object_label(int object) const;

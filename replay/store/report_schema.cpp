@@ -1,5 +1,7 @@
-// The report database schema (`rcsim-report` v2, schemas/report-database.md), applied by
-// report_store.cpp when it creates a database; a v1 database gains the bench tables on opening.
+// The report database schema (`rcsim-report` v3, schemas/report-database.md), applied by
+// report_store.cpp when it creates a database: the v2 tables, the bench tables, then the v3
+// additions. Opening a v1 database adds the bench tables and the v3 additions, a v2 database
+// the v3 additions, so that a migrated database has exactly the columns of a new one.
 #include "replay/store/report_store.hpp"
 
 namespace rcsim::replay {
@@ -155,6 +157,56 @@ CREATE TABLE IF NOT EXISTS bench_rows (
   latency_difference_s REAL,             -- mean simulated - recorded confirmation latency; NULL: no paired episode
   latency_pairs INTEGER NOT NULL,
   PRIMARY KEY (bench_id, recording, level)
+) STRICT;
+)SQL";
+
+// Added in version 3: real drives (docs/metrics.md). Each target's class and its offset in its
+// object's frame, the recording's optional columns; per cycle and run the figures on the object
+// targets and the class counts; per object and sensor the detection figures, overall and by range.
+// Columns added to earlier tables are NULL in the runs stored before version 3.
+extern const char* const kRealDriveSchemaSql;
+const char* const kRealDriveSchemaSql = R"SQL(
+ALTER TABLE targets ADD COLUMN target_class TEXT CHECK (target_class IN ('object', 'background', 'other'));
+ALTER TABLE targets ADD COLUMN x_o_m REAL;          -- offset from the box centre, object frame (object not NULL)
+ALTER TABLE targets ADD COLUMN y_o_m REAL;
+ALTER TABLE targets ADD COLUMN rcs_dbsm REAL;       -- the recording's optional columns; NULL where absent
+ALTER TABLE targets ADD COLUMN snr_db REAL;
+ALTER TABLE targets ADD COLUMN elevation_rad REAL;
+
+ALTER TABLE cycles ADD COLUMN n_object_recorded INTEGER;
+ALTER TABLE cycles ADD COLUMN n_object_simulated INTEGER;
+ALTER TABLE cycles ADD COLUMN n_background_recorded INTEGER;
+ALTER TABLE cycles ADD COLUMN n_background_simulated INTEGER;
+ALTER TABLE cycles ADD COLUMN gospa_object_m REAL;  -- GOSPA and OSPA on the object targets only
+ALTER TABLE cycles ADD COLUMN ospa_object_m REAL;
+
+ALTER TABLE summaries ADD COLUMN gospa_object_mean REAL;
+ALTER TABLE summaries ADD COLUMN ospa_object_mean REAL;
+ALTER TABLE summaries ADD COLUMN targets_object_recorded INTEGER;
+ALTER TABLE summaries ADD COLUMN targets_object_simulated INTEGER;
+ALTER TABLE summaries ADD COLUMN targets_background_recorded INTEGER;
+ALTER TABLE summaries ADD COLUMN targets_background_simulated INTEGER;
+ALTER TABLE summaries ADD COLUMN targets_other_recorded INTEGER;
+ALTER TABLE summaries ADD COLUMN targets_other_simulated INTEGER;
+
+CREATE TABLE IF NOT EXISTS object_figures (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  sensor INTEGER NOT NULL,
+  object INTEGER NOT NULL,
+  cycles_in_view INTEGER NOT NULL,       -- nearest box point in the sensor's field of view and range
+  cycles_detected_recorded INTEGER NOT NULL, cycles_detected_simulated INTEGER NOT NULL,  -- >= 1 object target
+  targets_recorded INTEGER NOT NULL, targets_simulated INTEGER NOT NULL,
+  PRIMARY KEY (run_id, sensor, object)
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS object_ranges (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  sensor INTEGER NOT NULL,
+  object INTEGER NOT NULL,
+  range_from_m REAL NOT NULL, range_to_m REAL NOT NULL,  -- bin of the nearest box point's range
+  cycles_in_view INTEGER NOT NULL,
+  cycles_detected_recorded INTEGER NOT NULL, cycles_detected_simulated INTEGER NOT NULL,
+  PRIMARY KEY (run_id, sensor, object, range_from_m)
 ) STRICT;
 )SQL";
 

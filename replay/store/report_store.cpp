@@ -1,6 +1,8 @@
 #include "replay/store/report_store.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -14,6 +16,7 @@ namespace rcsim::replay {
 
 extern const char* const kReportSchemaSql;
 extern const char* const kBenchSchemaSql;
+extern const char* const kRealDriveSchemaSql;
 
 namespace {
 
@@ -41,6 +44,18 @@ nlohmann::ordered_json parameters_json(const ReplayOptions& options, const Effec
        {{"cost", "min(d, c)^p"},
         {"source", "shortest augmenting path: R. Jonker, A. Volgenant, Computing 38, 1987"}}},
       {"association", {{"gate_m", options.association_gate_m}, {"rule", "nearest annotated box within the gate"}}},
+      {"target_classes",
+       {{"object", "within the association gate of an annotated box"},
+        {"background", "on no box; |range rate - that of a stationary point at its azimuth| <= stationary_gate_mps, "
+                       "with the sensor's velocity from the ego motion"},
+        {"other", "the rest"},
+        {"stationary_gate_mps", options.stationary_gate_mps},
+        {"source", "D. Kellner et al., Instantaneous ego-motion estimation using Doppler radar, ITSC 2013, eq. (2)"}}},
+      {"object_figures",
+       {{"in_view", "the box's nearest point within the sensor's azimuth half-angle and [min, max] range; "
+                    "occlusion not considered"},
+        {"detected", "at least one target of the object class belonging to the object"},
+        {"range_bin_m", options.object_range_bin_m}}},
       {"merge_artefacts",
        {{"contour_margin_m", options.merge_contour_margin_m},
         {"rule", "pair of boxes in view whose nearest points share a range-speed cell; target between their "
@@ -74,6 +89,19 @@ void bind_optional(SQLite::Statement& s, int index, double value) {
   }
 }
 
+void bind_if(SQLite::Statement& s, int index, double value, bool present) {
+  if (present) {
+    s.bind(index, value);
+  } else {
+    s.bind(index);
+  }
+}
+
+// The targets of one class in a list.
+int count_class(const std::vector<ComparedTarget>& list, metrics::TargetClass c) {
+  return static_cast<int>(std::count_if(list.begin(), list.end(), [c](const auto& t) { return t.target_class == c; }));
+}
+
 void bind_index(SQLite::Statement& s, int index, int value) {
   if (value < 0) {
     s.bind(index);
@@ -100,16 +128,18 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
       SQLite::Transaction transaction(*db);
       db->exec(kReportSchemaSql);
       db->exec(kBenchSchemaSql);
+      db->exec(kRealDriveSchemaSql);
       db->exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
       db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
       transaction.commit();
     } else if (application_id != kReportApplicationId) {
       throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
                                              static_cast<std::uint32_t>(application_id), kReportApplicationId));
-    } else if (user_version == 1) {
-      // v1 -> v2: the bench tables are new; nothing else changed.
+    } else if (user_version == 1 || user_version == 2) {
+      // v1 -> v2: the bench tables; v2 -> v3: the real-drive columns and tables.
       SQLite::Transaction transaction(*db);
-      db->exec(kBenchSchemaSql);
+      if (user_version == 1) db->exec(kBenchSchemaSql);
+      db->exec(kRealDriveSchemaSql);
       db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
       transaction.commit();
     } else if (user_version != kReportSchemaVersion) {
@@ -181,9 +211,9 @@ void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported
     object.reset();
   }
   insert_cycle_ = std::make_unique<SQLite::Statement>(
-      db_, "INSERT INTO cycles VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      db_, "INSERT INTO cycles VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   insert_target_ = std::make_unique<SQLite::Statement>(
-      db_, "INSERT INTO targets VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      db_, "INSERT INTO targets VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   insert_object_state_ = std::make_unique<SQLite::Statement>(db_, "INSERT INTO object_states VALUES (?, ?, ?, ?, ?, ?)");
   insert_merge_pair_ = std::make_unique<SQLite::Statement>(db_, "INSERT INTO merge_pairs VALUES (?, ?, ?, ?, ?)");
 }
@@ -207,6 +237,12 @@ void ReportWriter::insert_targets(const CycleComparison& c, const char* origin, 
     bind_index(s, 13, t.object);
     bind_index(s, 14, t.match);
     s.bind(15, t.merge_pair >= 0 ? 1 : 0);
+    s.bind(16, std::string(metrics::target_class_name(t.target_class)));
+    bind_if(s, 17, t.p_OT_O.x(), t.object >= 0);
+    bind_if(s, 18, t.p_OT_O.y(), t.object >= 0);
+    bind_if(s, 19, t.rcs_dbsm, !std::isnan(t.rcs_dbsm));
+    bind_if(s, 20, t.snr_db, !std::isnan(t.snr_db));
+    bind_if(s, 21, t.elevation_rad, !std::isnan(t.elevation_rad));
     s.exec();
     s.reset();
   }
@@ -235,6 +271,12 @@ void ReportWriter::add_cycle(const CycleComparison& c) {
   s.bind(16, merge_recorded);
   s.bind(17, merge_simulated);
   s.bind(18, c.merge_matched);
+  s.bind(19, count_class(c.recorded, metrics::TargetClass::object));
+  s.bind(20, count_class(c.simulated, metrics::TargetClass::object));
+  s.bind(21, count_class(c.recorded, metrics::TargetClass::stationary_background));
+  s.bind(22, count_class(c.simulated, metrics::TargetClass::stationary_background));
+  s.bind(23, c.gospa_object.gospa_m);
+  s.bind(24, c.gospa_object.ospa_m);
   s.exec();
   s.reset();
   insert_targets(c, "recorded", c.recorded);
@@ -261,6 +303,35 @@ void ReportWriter::add_cycle(const CycleComparison& c) {
       o.exec();
       o.reset();
     }
+  }
+}
+
+void ReportWriter::insert_object_figures(const ReplaySummary& r) {
+  SQLite::Statement object(db_, "INSERT INTO object_figures VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const ObjectFigureRow& row : r.objects) {
+    object.bind(1, run_id_);
+    object.bind(2, row.sensor);
+    object.bind(3, row.object);
+    object.bind(4, row.cycles_in_view);
+    object.bind(5, row.cycles_detected_recorded);
+    object.bind(6, row.cycles_detected_simulated);
+    object.bind(7, static_cast<std::int64_t>(row.targets_recorded));
+    object.bind(8, static_cast<std::int64_t>(row.targets_simulated));
+    object.exec();
+    object.reset();
+  }
+  SQLite::Statement range(db_, "INSERT INTO object_ranges VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const ObjectRangeRow& row : r.object_ranges) {
+    range.bind(1, run_id_);
+    range.bind(2, row.sensor);
+    range.bind(3, row.object);
+    range.bind(4, row.range_from_m);
+    range.bind(5, row.range_to_m);
+    range.bind(6, row.cycles_in_view);
+    range.bind(7, row.cycles_detected_recorded);
+    range.bind(8, row.cycles_detected_simulated);
+    range.exec();
+    range.reset();
   }
 }
 
@@ -296,8 +367,9 @@ void ReportWriter::end_run(const ReplaySummary& r) {
     distance.exec();
     distance.reset();
   }
+  insert_object_figures(r);
   SQLite::Statement summary(db_, "INSERT INTO summaries VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-                                 "?, ?, ?, ?)");
+                                 "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   int i = 1;
   summary.bind(i++, run_id_);
   summary.bind(i++, r.cycles);
@@ -321,6 +393,12 @@ void ReportWriter::end_run(const ReplaySummary& r) {
   summary.bind(i++, r.residual_amplitude_mean_db);
   summary.bind(i++, r.simulate_cpu_s);
   summary.bind(i++, r.total_wall_s);
+  summary.bind(i++, r.gospa_object_mean_m);
+  summary.bind(i++, r.ospa_object_mean_m);
+  for (const long long* counts : {r.classes.object, r.classes.background, r.classes.other}) {
+    summary.bind(i++, static_cast<std::int64_t>(counts[0]));
+    summary.bind(i++, static_cast<std::int64_t>(counts[1]));
+  }
   summary.exec();
   insert_cycle_.reset();
   insert_target_.reset();

@@ -1,5 +1,5 @@
 #pragma once
-// The SQLite report database (`rcsim-report` v2, schemas/report-database.md): many replay runs
+// The SQLite report database (`rcsim-report` v3, schemas/report-database.md): many replay runs
 // in one file. A run is written in one transaction, so a replay that fails or is killed midway
 // leaves the database and its earlier runs as they were. Every value is bound to a prepared
 // statement; no text is ever pasted into SQL.
@@ -15,11 +15,12 @@
 namespace rcsim::replay {
 
 inline constexpr std::int32_t kReportApplicationId = 0x52435352;  // "RCSR"
-inline constexpr int kReportSchemaVersion = 2;  // 2 added the bench tables; 1 is migrated on opening
+// 2 added the bench tables, 3 the real-drive figures; 1 and 2 are migrated on opening.
+inline constexpr int kReportSchemaVersion = 3;
 
 // Opens (creating if needed) a report database; refuses a file that is not one, or one of
-// another schema version, naming the file. A version 1 database is migrated to version 2 (the
-// bench tables are added, in one transaction; its runs are untouched).
+// another schema version, naming the file. A version 1 or 2 database is migrated to version 3 in
+// one transaction (tables and columns are added; its runs are untouched, their new columns NULL).
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
 
 // Stores one replay run as it streams in.
@@ -37,6 +38,7 @@ class ReportWriter final : public ReplaySink {
 
  private:
   void insert_targets(const CycleComparison& cycle, const char* origin, const std::vector<ComparedTarget>& list);
+  void insert_object_figures(const ReplaySummary& summary);
 
   SQLite::Database& db_;
   std::optional<SQLite::Transaction> transaction_;

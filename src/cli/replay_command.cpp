@@ -25,9 +25,48 @@ struct ReplayArgs {
   double cutoff_m = 2.0;
   double order_p = 2.0;
   double gate_m = 1.0;
+  double stationary_gate_mps = 0.5;
   ImportArgs import;
   std::string calibration;
 };
+
+const replay::QuantityDistance* find_distance(const replay::ReplaySummary& s, const std::string& quantity) {
+  for (const auto& d : s.distances) {
+    if (d.quantity == quantity) return &d;
+  }
+  return nullptr;
+}
+
+std::string percent_of(long long part, long long whole) {
+  return whole > 0 ? fmt::format("{:.1f} %", 100.0 * static_cast<double>(part) / static_cast<double>(whole)) : "-";
+}
+
+// The figures that tell the annotated objects from the unmodelled world (docs/metrics.md).
+void print_class_figures(const replay::ReplaySummary& s, std::size_t sensors) {
+  long long in_view = 0, detected_recorded = 0, detected_simulated = 0;
+  for (const auto& o : s.objects) {
+    in_view += o.cycles_in_view;
+    detected_recorded += o.cycles_detected_recorded;
+    detected_simulated += o.cycles_detected_simulated;
+  }
+  std::cout << fmt::format("  objects: {} / {} targets, GOSPA mean {:.3f} m, OSPA mean {:.3f} m; detection rate {} / {} "
+                           "of {} object-sensor cycles in view\n",
+                           s.classes.object[0], s.classes.object[1], s.gospa_object_mean_m, s.ospa_object_mean_m,
+                           percent_of(detected_recorded, in_view), percent_of(detected_simulated, in_view), in_view);
+  const double sensor_cycles = std::max(1.0, static_cast<double>(s.cycles) * static_cast<double>(sensors));
+  std::string distances;
+  for (const char* q : {"background_range", "background_azimuth"}) {
+    const replay::QuantityDistance* d = find_distance(s, q);
+    if (d == nullptr || std::isnan(d->distance.wasserstein1)) continue;
+    distances += fmt::format(", {} W1 {:.3g} {} KS {:.3f}", std::string_view(q).substr(11), d->distance.wasserstein1,
+                             d->unit, d->distance.kolmogorov_smirnov);
+  }
+  std::cout << fmt::format("  stationary background: {} / {} targets ({:.2f} / {:.2f} per sensor cycle){}; other: {} / {}\n",
+                           s.classes.background[0], s.classes.background[1],
+                           static_cast<double>(s.classes.background[0]) / sensor_cycles,
+                           static_cast<double>(s.classes.background[1]) / sensor_cycles, distances, s.classes.other[0],
+                           s.classes.other[1]);
+}
 
 nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, const replay::ReplaySummary& s) {
   const auto optional = [](double value) { return value < 0.0 ? nlohmann::ordered_json() : nlohmann::ordered_json(value); };
@@ -37,6 +76,16 @@ nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, c
                              {"kolmogorov_smirnov", std::isnan(d.distance.kolmogorov_smirnov) ? nlohmann::ordered_json() : nlohmann::ordered_json(d.distance.kolmogorov_smirnov)},
                              {"unit", d.unit}};
   }
+  long long in_view = 0, detected[2] = {0, 0};
+  for (const auto& o : s.objects) {
+    in_view += o.cycles_in_view;
+    detected[0] += o.cycles_detected_recorded;
+    detected[1] += o.cycles_detected_simulated;
+  }
+  const nlohmann::ordered_json classes = {
+      {"object", {{"recorded", s.classes.object[0]}, {"simulated", s.classes.object[1]}}},
+      {"background", {{"recorded", s.classes.background[0]}, {"simulated", s.classes.background[1]}}},
+      {"other", {{"recorded", s.classes.other[0]}, {"simulated", s.classes.other[1]}}}};
   return {{"run_id", run_id},
           {"recording", rec.name},
           {"cycles", s.cycles},
@@ -46,6 +95,12 @@ nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, c
           {"targets_matched", s.targets_matched},
           {"gospa_mean", s.gospa_mean_m},
           {"ospa_mean", s.ospa_mean_m},
+          {"gospa_object_mean", s.gospa_object_mean_m},
+          {"ospa_object_mean", s.ospa_object_mean_m},
+          {"target_classes", classes},
+          {"object_sensor_cycles_in_view", in_view},
+          {"object_cycles_detected_recorded", detected[0]},
+          {"object_cycles_detected_simulated", detected[1]},
           {"merge_artefacts_recorded", s.merge_artefacts_recorded},
           {"merge_artefacts_simulated", s.merge_artefacts_simulated},
           {"merge_artefacts_matched", s.merge_artefacts_matched},
@@ -108,6 +163,7 @@ void run_replay(const ReplayArgs& args) {
   options.import.calibration_dir = args.calibration;
   options.gospa = {args.cutoff_m, args.order_p};
   options.association_gate_m = args.gate_m;
+  options.stationary_gate_mps = args.stationary_gate_mps;
   const auto db = replay::open_report_database(args.db_path, true);
   replay::ReportWriter writer(*db);
   const char* kill_after = std::getenv("RCSIM_TEST_KILL_AFTER_CYCLES");
@@ -126,6 +182,7 @@ void run_replay(const ReplayArgs& args) {
         summary.latency_recorded_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_recorded_s),
         summary.latency_simulated_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_simulated_s),
         args.db_path);
+    print_class_figures(summary, recording.sensors.size());
   }
 }
 
@@ -147,6 +204,10 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--gospa-cutoff-m", args->cutoff_m, "GOSPA/OSPA cut-off c")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--gospa-order", args->order_p, "GOSPA/OSPA order p")->check(CLI::Range(1.0, 100.0))->capture_default_str();
   cmd->add_option("--gate-m", args->gate_m, "target-to-object association gate")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--stationary-gate-mps", args->stationary_gate_mps,
+                  "stationary background: |range rate - that of a stationary point| at most this (m/s)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   add_import_options(*cmd, args->import);
   add_calibration_option(*cmd, args->calibration);
   cmd->callback([args] { run_replay(*args); });

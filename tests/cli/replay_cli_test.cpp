@@ -108,7 +108,7 @@ TEST_F(ReplayCli, RunsAccumulateAndTheSameSeedRepeatsExactly) {
   EXPECT_EQ(targets_of(1), targets_of(2));
   EXPECT_NE(targets_of(1), targets_of(3));
   EXPECT_EQ(d.execAndGet("PRAGMA application_id").getInt(), 0x52435352);
-  EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), 2);
+  EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), 3);
 }
 
 TEST_F(ReplayCli, AnotherSensorConfigurationIsStoredWithItsRun) {

@@ -91,7 +91,9 @@ TEST_F(HtmlReportChromium, RendersPicturesTablesAndNoInjectedScript) {
   // Every picture was parsed as SVG, with its drawn content.
   EXPECT_EQ(count(dom, "<svg class="), svgs_in_file);
   EXPECT_GE(count(dom, "<svg class=\"birdseye\""), 3u);
-  EXPECT_EQ(count(dom, "<svg class=\"plot\""), 8u);  // two sensors, four series each
+  // Two sensors with four series each; the detection rate against range; the background range and azimuth.
+  EXPECT_EQ(count(dom, "<svg class=\"plot\""), 11u);
+  EXPECT_GE(count(dom, "<svg class=\"object-frame\""), 1u);
   EXPECT_EQ(count(dom, "<svg class=\"histogram\""), 4u);
   EXPECT_GT(count(dom, "<circle class=\"t rec current\""), 5u);
   EXPECT_GT(count(dom, "<polygon class=\"t sim current\""), 5u);

@@ -49,9 +49,9 @@ TEST(HtmlReportFigures, BirdsEyeIsInThePicturedCyclesVehicleFrame) {
               {5, 1, 0.5, Pose2{101.0, 53.0, yaw}, 0, 0, 0.0}};
   w.objects = {{0, Pose2{100.0, 70.0, yaw}}};  // 20 m ahead of the vehicle
   w.merge_pairs = {{0, 3}};
-  TargetRow recorded{5, 0, 0, false, Vec2{10.0, 0.0}, 0, false};  // 10 m along the left boresight
-  TargetRow simulated{5, 0, 0, true, Vec2{10.0, 0.5}, 0, true};
-  TargetRow trace{4, 0, 1, false, Vec2{11.0, 0.0}, std::nullopt, false};
+  TargetRow recorded{5, 0, 0, false, Vec2{10.0, 0.0}, 0, false, "object"};  // 10 m along the left boresight
+  TargetRow simulated{5, 0, 0, true, Vec2{10.0, 0.5}, 0, true, "other"};
+  TargetRow trace{4, 0, 1, false, Vec2{11.0, 0.0}, std::nullopt, false, "background"};
   w.targets = {recorded, simulated, trace};
   const svg::BirdsEyeSpec spec = birdseye_of_cycle(run, ChosenCycle{5, "because"}, w);
   EXPECT_EQ(spec.title, "Cycle 5 at t = 0.50 s");

@@ -113,8 +113,9 @@ TEST_F(HtmlReport, HasPicturesPerRunAndTheSideBySideOfSeveralRuns) {
   const std::size_t birdseye = count(html, "<svg class=\"birdseye\"");
   EXPECT_GE(birdseye, 6u);  // at least three cycles per run
   EXPECT_LE(birdseye, 10u);
-  // Per sensor four time series: run 1 has two sensors, run 2 one.
-  EXPECT_EQ(count(html, "<svg class=\"plot\""), 12u);
+  // Per sensor four time series (run 1 has two sensors, run 2 one), and per run the detection
+  // rate against range and the background's range and azimuth.
+  EXPECT_EQ(count(html, "<svg class=\"plot\""), 18u);
   EXPECT_EQ(count(html, "<svg class=\"histogram\""), 8u);
   EXPECT_GT(count(html, "<circle class=\"t rec current\""), 10u);
   EXPECT_GT(count(html, "<polygon class=\"t sim current\""), 10u);
@@ -187,8 +188,8 @@ TEST(HtmlReportLarge, LongRunsAreThinnedAndTheFileStaysSmall) {
              "'0', '2024-01-01T00:00:00Z')");
     db->exec("INSERT INTO run_sensors VALUES (1, 0, 's', 'srr24', 3.7, 0, 0, 1.0, 50, '{}')");
     db->exec("INSERT INTO run_objects VALUES (1, 0, 'car', 'passenger_car', 4.5, 1.8, 10)");
-    SQLite::Statement cycle(*db, "INSERT INTO cycles VALUES (1, ?, 0, ?, 3.7, 0, 0, 2, 2, 2, ?, 0.1, 0, 0, ?, 0, 0, 0)");
-    SQLite::Statement target(*db, "INSERT INTO targets VALUES (1, ?, 0, ?, ?, NULL, ?, 0.1, -1, 20, ?, ?, 0, ?, 0)");
+    SQLite::Statement cycle(*db, "INSERT INTO cycles VALUES (1, ?, 0, ?, 3.7, 0, 0, 2, 2, 2, ?, 0.1, 0, 0, ?, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
+    SQLite::Statement target(*db, "INSERT INTO targets VALUES (1, ?, 0, ?, ?, NULL, ?, 0.1, -1, 20, ?, ?, 0, ?, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
     SQLite::Statement state(*db, "INSERT INTO object_states VALUES (1, ?, 0, ?, 0, 3.14)");
     for (int k = 0; k < kCycles; ++k) {
       const double range_m = 10.0 + 5.0 * std::sin(k * 1e-3);
@@ -218,7 +219,7 @@ TEST(HtmlReportLarge, LongRunsAreThinnedAndTheFileStaysSmall) {
       state.reset();
     }
     db->exec("INSERT INTO summaries VALUES (1, 30000, 60000, 60000, 60000, 0.1, 0.1, 0.01, 0, 0, 0, 0, 0, NULL, NULL, 0, "
-             "0.05, 0, 0, 0, 1, 2)");
+             "0.05, 0, 0, 0, 1, 2, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL)");
     transaction.commit();
   }
   HtmlReportOptions options;

@@ -151,12 +151,12 @@ void insert_minimal_run(SQLite::Database& db, int run_id) {
   SQLite::Statement sensor(db, "INSERT INTO run_sensors VALUES (?, 0, 's', 'srr24', 3.7, 0, 0, 1.0, 50, '{}')");
   sensor.bind(1, run_id);
   sensor.exec();
-  SQLite::Statement cycle(db, "INSERT INTO cycles VALUES (?, 0, 0, 0, 3.7, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0)");
+  SQLite::Statement cycle(db, "INSERT INTO cycles VALUES (?, 0, 0, 0, 3.7, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
   cycle.bind(1, run_id);
   cycle.exec();
   SQLite::Statement summary(db,
                             "INSERT INTO summaries VALUES (?, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, 0, "
-                            "0, 0, 0, 0, 1, 2)");
+                            "0, 0, 0, 0, 1, 2, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL)");
   summary.bind(1, run_id);
   summary.exec();
 }

@@ -20,9 +20,9 @@ TEST(SvgBirdseye, BirdsEyeDrawsBoxesSensorsTargetsAndLinks) {
   spec.trace_cycles = 2;
   spec.sensors.push_back({"s", {3.7, 0.0, 0.0}, 1.0, 40.0});
   spec.boxes.push_back({"car", {15.0, 0.0, 3.14}, 4.5, 1.8, false});
-  spec.targets.push_back({{13.0, 0.5}, false, 0, false});
-  spec.targets.push_back({{13.1, 0.4}, true, 0, true});
-  spec.targets.push_back({{13.5, 0.4}, true, 2, false});
+  spec.targets.push_back({{13.0, 0.5}, false, 0, false, ""});
+  spec.targets.push_back({{13.1, 0.4}, true, 0, true, ""});
+  spec.targets.push_back({{13.5, 0.4}, true, 2, false, ""});
   spec.links.push_back({{13.0, 0.5}, {13.1, 0.4}});
   const std::string out = svg::birdseye_svg(spec);
   EXPECT_EQ(count(out, "<polygon class=\"box\""), 1u);

@@ -43,6 +43,7 @@ TEST_F(ReplayRun, ModelAgainstItselfWithTheSameSeedAgreesToFileRounding) {
   EXPECT_GE(s.latency_recorded_s, 3 * scene.cycle_time_s - 1e-9);
   // Equal up to the file's decimals (ties split by rounding can move the KS statistic a little).
   for (const auto& d : s.distances) {
+    if (d.distance.n_recorded == 0 && d.distance.n_simulated == 0) continue;  // no background here
     EXPECT_LT(d.distance.wasserstein1, 1e-3) << d.quantity;
     EXPECT_LT(d.distance.kolmogorov_smirnov, 0.05) << d.quantity;
   }

@@ -34,7 +34,7 @@ TEST(RunAccumulators, MeansOverCyclesAndResidualsOverAssignedPairs) {
   EXPECT_EQ(s.merge_artefacts_recorded, 2);
   EXPECT_EQ(s.merge_artefacts_simulated, 1);
   EXPECT_EQ(s.merge_artefacts_matched, 1);
-  ASSERT_EQ(s.distances.size(), 5u);
+  ASSERT_EQ(s.distances.size(), 8u);  // five of all targets, three of the background
   EXPECT_EQ(s.distances[4].quantity, "targets_per_cycle");
   // Counts per cycle: recorded {2, 0}, simulated {1, 0}: W1 = 0.5 (half the mass moved by 1).
   EXPECT_NEAR(s.distances[4].distance.wasserstein1, 0.5, 1e-6);

@@ -21,16 +21,16 @@ class FigureReader : public rcsim::testing::ScratchDirTest {
     db_ = open_report_database((dir_ / "f.sqlite").string(), true);
     db_->exec("INSERT INTO runs VALUES (1, 'r', '/r', '0', '{}', 0.1, 4, 0, 'tracks', '{}', 'v', 't')");
     // cycle, sensor, t, pose, n_rec, n_sim, n_assigned, gospa, parts, ospa, merges
-    const char* cycles[] = {"(1, 0, 0, 0.0, 1, 0, 0, 1, 1, 1, 0.5, 0, 0, 0, 0.5, 0, 0, 0)",
-                            "(1, 1, 0, 0.1, 1, 0, 0, 0, 2, 0, 1.5, 0, 0, 0, 1.5, 0, 0, 0)",
-                            "(1, 2, 0, 0.2, 1, 0, 0, 3, 1, 1, 2.5, 0, 0, 0, 2.5, 2, 1, 1)",
-                            "(1, 3, 0, 0.3, 2, 0, 1.5707963267948966, 1, 1, 1, 0.0, 0, 0, 0, 0.0, 0, 0, 0)"};
+    const char* cycles[] = {"(1, 0, 0, 0.0, 1, 0, 0, 1, 1, 1, 0.5, 0, 0, 0, 0.5, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)",
+                            "(1, 1, 0, 0.1, 1, 0, 0, 0, 2, 0, 1.5, 0, 0, 0, 1.5, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)",
+                            "(1, 2, 0, 0.2, 1, 0, 0, 3, 1, 1, 2.5, 0, 0, 0, 2.5, 2, 1, 1, NULL, NULL, NULL, NULL, NULL, NULL)",
+                            "(1, 3, 0, 0.3, 2, 0, 1.5707963267948966, 1, 1, 1, 0.0, 0, 0, 0, 0.0, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)"};
     for (const char* row : cycles) db_->exec(std::string("INSERT INTO cycles VALUES ") + row);
     // Cycle 3: a recorded target at (1, 0) in the sensor frame matched to a simulated one 0.2 m farther
     // and 2*pi - 0.1 rad round in azimuth (a wrap), and a merge pair with its object states.
-    db_->exec("INSERT INTO targets VALUES (1, 3, 0, 'recorded', 0, NULL, 1.0, 0.05, -1.0, 3.0, 1.0, 0.0, 0, 0, 0)");
-    db_->exec("INSERT INTO targets VALUES (1, 3, 0, 'simulated', 0, 7, 1.2, 6.233185307179586, -1.5, 1.0, 1.1, 0.2, 0, 0, 1)");
-    db_->exec("INSERT INTO targets VALUES (1, 1, 0, 'recorded', 0, NULL, 4.0, 0.0, 0.0, 0.0, 4.0, 0.0, NULL, NULL, 0)");
+    db_->exec("INSERT INTO targets VALUES (1, 3, 0, 'recorded', 0, NULL, 1.0, 0.05, -1.0, 3.0, 1.0, 0.0, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
+    db_->exec("INSERT INTO targets VALUES (1, 3, 0, 'simulated', 0, 7, 1.2, 6.233185307179586, -1.5, 1.0, 1.1, 0.2, 0, 0, 1, NULL, NULL, NULL, NULL, NULL, NULL)");
+    db_->exec("INSERT INTO targets VALUES (1, 1, 0, 'recorded', 0, NULL, 4.0, 0.0, 0.0, 0.0, 4.0, 0.0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
     db_->exec("INSERT INTO merge_pairs VALUES (1, 3, 0, 0, 1)");
     db_->exec("INSERT INTO object_states VALUES (1, 3, 0, 5.0, 1.0, 0.5)");
   }

@@ -9,6 +9,9 @@
 #include "scratch_dir.hpp"
 
 namespace rcsim::replay {
+
+extern const char* const kReportSchemaSql;  // the tables of version 1
+
 namespace {
 
 
@@ -51,14 +54,18 @@ TEST_F(BenchStore, RowsWithNullsAndIncreasingIds) {
 TEST_F(BenchStore, VersionOneDatabaseIsMigratedAndKeepsItsRuns) {
   const std::string path = (dir_ / "v1.sqlite").string();
   {
-    const auto db = open_report_database(path, true);
+    SQLite::Database db_v1(path, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);  // as version 1 wrote it
+    SQLite::Database* db = &db_v1;
+    db->exec(kReportSchemaSql);
+    db->exec("PRAGMA application_id = " + std::to_string(kReportApplicationId));
     db->exec("INSERT INTO runs (recording_name, recording_dir, recording_checksum, recording_source, cycle_time_s, "
              "cycles, seed, level, parameters, rcsim_version, created_utc) "
              "VALUES ('old', '/x', '0000000000000000', '{}', 0.04, 1, 0, 'tracks', '{}', '0.0.1', '2026-01-01T00:00:00Z')");
-    db->exec("DROP TABLE bench_rows; DROP TABLE bench_runs; PRAGMA user_version = 1");  // as version 1 wrote it
+    db->exec("PRAGMA user_version = 1");
   }
+  // (report_store_test.cpp checks the layout a migration gives against a new database.)
   const auto db = open_report_database(path, false);
-  EXPECT_EQ(db->execAndGet("PRAGMA user_version").getInt(), 2);
+  EXPECT_EQ(db->execAndGet("PRAGMA user_version").getInt(), kReportSchemaVersion);
   EXPECT_EQ(db->execAndGet("SELECT count(*) FROM runs").getInt(), 1);
   EXPECT_EQ(store_bench(*db, BenchOptions{}, "m", hand_rows()), 1);
 }
