@@ -13,7 +13,7 @@ struct BoxInSensor {
   int object = -1;          // index of the object in the recording
   Pose2 X_SO;               // box centre and heading in the sensor frame
   double half_length_m = 0.0, half_width_m = 0.0;
-  Vec2 p_SN_S;              // nearest contour point (N) from the sensor, sensor frame
+  Vec2 p_SN_S = Vec2::Zero();  // nearest contour point (N) from the sensor, sensor frame
   double range_m = 0.0;     // |p_SN_S|
   double azimuth_rad = 0.0; // of N
   double range_rate_mps = 0.0;  // radial speed of N relative to the sensor, negative approaching

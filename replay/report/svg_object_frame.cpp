@@ -17,7 +17,7 @@ std::string object_frame_svg(const ObjectFrameSpec& spec) {
   const LinearScale sy{-half_m, half_m, top + size, top};    // x (forward) up
   const int width_px = static_cast<int>(left + size + 12.0), height_px = static_cast<int>(top + size + 58.0);
   std::string out = fmt::format(
-      R"(<svg xmlns="http://www.w3.org/2000/svg" class="object-frame" width="{0}" height="{1}" viewBox="0 0 {0} {1}" role="img" aria-label="{2}">)",
+      R"(<svg class="object-frame" xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}" role="img" aria-label="{2}">)",
       width_px, height_px, escape(spec.title));
   out += fmt::format(R"(<rect x="0" y="0" width="{}" height="{}" fill="#fff"/>)", width_px, height_px);
   out += fmt::format(R"(<text x="{}" y="18" class="title">{}</text>)", coord(left), escape(spec.title));

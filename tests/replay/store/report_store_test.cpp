@@ -2,6 +2,7 @@
 // fails midway leaves the earlier runs as they were; a database of another program is refused.
 #include "replay/store/report_store.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -24,8 +25,8 @@ void write_old_database(const std::string& path, int version) {
   SQLite::Database db(path, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
   db.exec(kReportSchemaSql);
   if (version >= 2) db.exec(kBenchSchemaSql);
-  db.exec("PRAGMA application_id = " + std::to_string(kReportApplicationId));
-  db.exec("PRAGMA user_version = " + std::to_string(version));
+  db.exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
+  db.exec(fmt::format("PRAGMA user_version = {}", version));
   db.exec("INSERT INTO runs VALUES (1, 'old', '/x', '0000000000000000', '{}', 0.04, 1, 0, 'tracks', '{}', '0.0.1', "
           "'2026-01-01T00:00:00Z')");
   db.exec("INSERT INTO cycles VALUES (1, 0, 0, 0.0, 3.7, 0, 0, 1, 0, 0, 1.414, 0, 2, 0, 2, 0, 0, 0)");
@@ -39,12 +40,12 @@ std::string table_layout(SQLite::Database& db) {
   while (tables.executeStep()) {
     const std::string table = tables.getColumn(0).getString();
     SQLite::Statement info(db, "PRAGMA table_info(" + table + ")");
-    text += table + ":";
+    text += fmt::format("{}:", table);
     while (info.executeStep()) {
-      text += " " + info.getColumn(1).getString() + " " + info.getColumn(2).getString() +
-              (info.getColumn(3).getInt() ? " NOT NULL" : "") + ",";
+      text += fmt::format(" {} {}{},", info.getColumn(1).getString(), info.getColumn(2).getString(),
+                          info.getColumn(3).getInt() ? " NOT NULL" : "");
     }
-    text += "\n";
+    text += '\n';
   }
   return text;
 }

@@ -2,6 +2,7 @@
 // ratio, increasing ids, the bench's seed.
 #include "replay/store/speed_error_store.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "replay/evaluate/hand_bench_rows.hpp"
@@ -57,7 +58,7 @@ TEST_F(BenchStore, VersionOneDatabaseIsMigratedAndKeepsItsRuns) {
     SQLite::Database db_v1(path, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);  // as version 1 wrote it
     SQLite::Database* db = &db_v1;
     db->exec(kReportSchemaSql);
-    db->exec("PRAGMA application_id = " + std::to_string(kReportApplicationId));
+    db->exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
     db->exec("INSERT INTO runs (recording_name, recording_dir, recording_checksum, recording_source, cycle_time_s, "
              "cycles, seed, level, parameters, rcsim_version, created_utc) "
              "VALUES ('old', '/x', '0000000000000000', '{}', 0.04, 1, 0, 'tracks', '{}', '0.0.1', '2026-01-01T00:00:00Z')");
