@@ -17,6 +17,7 @@
 #include "common/json_reader.hpp"
 #include "replay/import/annotation_smoothing.hpp"
 #include "replay/import/doppler_ego_motion.hpp"
+#include "replay/import/ego_log.hpp"
 
 namespace rcsim::replay {
 
@@ -333,7 +334,42 @@ std::string placeholder_sensor_config(const std::string& name, double cycle_time
 
 }  // namespace
 
-DatasetRecording import_aimotive(const fs::path& raw_dir) {
+namespace {
+
+// The ego log: the user's (--ego-log), interpolated to the keyframes, with the Doppler estimate
+// reported beside it; else the estimate. A dataset ego file whose layout is not published is
+// named in a warning, not guessed at.
+nlohmann::json choose_ego(const fs::path& sequence, const DatasetImportOptions& options, const std::vector<double>& t_s,
+                          DopplerEgoTrack& estimate, DatasetRecording& out) {
+  if (options.ego_log.empty()) {
+    for (const auto& entry : fs::directory_iterator(sequence / "sensor", fs::directory_options::skip_permission_denied)) {
+      if (entry.path().filename() == "gnssins") {
+        out.warnings.push_back(fmt::format("{} exists, but the layout of the aiMotive ego files is not published: the ego "
+                                           "motion is estimated from the Doppler instead; convert the log to ego.csv's "
+                                           "columns and give it with --ego-log",
+                                           entry.path().string()));
+      }
+    }
+    if (estimate.samples.empty()) {
+      throw InputError((sequence / "sensor/radar").string(), "",
+                       "no cycle has enough stationary targets to estimate the ego motion from their Doppler");
+    }
+    out.recording.ego = std::move(estimate.samples);
+    return estimate.report;
+  }
+  out.recording.ego = ego_at_times(read_ego_log(options.ego_log), t_s, options.ego_log);
+  nlohmann::json report = {{"method", "ego log given with --ego-log, interpolated linearly to the keyframes"},
+                           {"file", fs::absolute(options.ego_log).lexically_normal().string()}};
+  if (!estimate.samples.empty()) {
+    report["doppler_check"] = ego_difference_report(out.recording.ego, estimate.samples);
+    report["doppler_estimate"] = estimate.report;
+  }
+  return report;
+}
+
+}  // namespace
+
+DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOptions& options) {
   const fs::path sequence = aimotive::find_sequence(raw_dir);
   const std::vector<RadarMount> mounts = aimotive::read_radar_mounts(sequence);
   const std::vector<Keyframe> frames = aimotive::list_keyframes(sequence);
@@ -371,12 +407,8 @@ DatasetRecording import_aimotive(const fs::path& raw_dir) {
   const std::vector<double> yaw_rate_radps = yaw_rate_from_box_headings(boxes, t_s, 0.5);
   DopplerEgoTrack ego = ego_track_from_doppler(t_s, doppler, X_VS, labels,
                                                yaw_rate_radps.empty() ? nullptr : &yaw_rate_radps);
-  if (ego.samples.empty()) {
-    throw InputError((sequence / "sensor/radar").string(), "",
-                     "no cycle has enough stationary targets to estimate the ego motion from their Doppler");
-  }
-  rec.ego = std::move(ego.samples);
   out.warnings.insert(out.warnings.end(), ego.warnings.begin(), ego.warnings.end());
+  const nlohmann::json ego_report = choose_ego(sequence, options, t_s, ego, out);
 
   double azimuth_half_rad = 0.0, max_range_m = 0.0;
   for (std::size_t s = 0; s < mounts.size(); ++s) {
@@ -402,15 +434,17 @@ DatasetRecording import_aimotive(const fs::path& raw_dir) {
 
   rec.description = fmt::format(
       "aiMotive Multimodal Dataset sequence {}: {} keyframes at {:.1f} Hz, radars {}, {} annotated objects; "
-      "ego motion estimated from the radars' Doppler (no ego log)",
-      rec.name, frames.size(), 1.0 / rec.cycle_time_s, fmt::join(labels, " and "), rec.objects.size());
+      "{}",
+      rec.name, frames.size(), 1.0 / rec.cycle_time_s, fmt::join(labels, " and "), rec.objects.size(),
+      options.ego_log.empty() ? "ego motion estimated from the radars' Doppler (no ego log)"
+                              : "ego motion from the ego log given with --ego-log");
   rec.source = {{"dataset", "aiMotive Multimodal Dataset (Matuszka et al. 2022, arXiv:2211.09445)"},
                 {"licence", "CC BY-NC-SA 4.0"},
                 {"importer", "rcsim import --from aimotive"},
                 {"sequence", rec.name},
                 {"first_timestamp_ns", frames.front().timestamp_ns},
                 {"amplitude_db", "power - noise (SNR) of each detection"},
-                {"ego_motion", ego.report}};
+                {"ego_motion", ego_report}};
   return out;
 }
 

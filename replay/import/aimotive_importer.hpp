@@ -54,6 +54,9 @@ RecordedTarget planar_target(const RadarDetection& detection, const RadarMount& 
 
 }  // namespace aimotive
 
-DatasetRecording import_aimotive(const std::filesystem::path& raw_dir);
+// The sequence under raw_dir. The public sample has no ego log (sensor/gnssins/egomotion*.json,
+// whose layout is not published): the ego motion is estimated from the radars' Doppler unless
+// options.ego_log gives one, which is then used and the estimate only reported beside it.
+DatasetRecording import_aimotive(const std::filesystem::path& raw_dir, const DatasetImportOptions& options = {});
 
 }  // namespace rcsim::replay

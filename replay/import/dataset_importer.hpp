@@ -18,10 +18,17 @@ struct DatasetRecording {
   std::vector<std::string> warnings;               // what a person should know (skipped objects, ...)
 };
 
+// What the user adds to a dataset's own files.
+struct DatasetImportOptions {
+  // An ego log in ego.csv's columns on the importer's clock (docs/importers.md); empty: the
+  // importer uses the dataset's own ego log or, where it has none, estimates the ego motion.
+  std::filesystem::path ego_log;
+};
+
 struct DatasetImporter {
   std::string_view name;         // the value of --from
   std::string_view description;  // one line for --help and docs
-  DatasetRecording (*import)(const std::filesystem::path& raw_dir);
+  DatasetRecording (*import)(const std::filesystem::path& raw_dir, const DatasetImportOptions& options);
 };
 
 // Every importer, by name.

@@ -13,9 +13,10 @@ namespace rcsim::cli {
 
 namespace {
 
-void import_dataset(const std::string& dataset, const std::string& raw_dir, const std::string& output) {
+void import_dataset(const std::string& dataset, const std::string& raw_dir, const std::string& output,
+                    const replay::DatasetImportOptions& options) {
   const replay::DatasetImporter& importer = replay::find_dataset_importer(dataset);
-  const replay::DatasetRecording imported = importer.import(raw_dir);
+  const replay::DatasetRecording imported = importer.import(raw_dir, options);
   for (const auto& warning : imported.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
   write_recording(output, imported.recording, imported.extra_files);
   const Recording& rec = imported.recording;
@@ -30,6 +31,7 @@ void add_import_command(CLI::App& app) {
     std::string input_dir;
     std::string output;
     std::string dataset;
+    std::string ego_log;
     ImportArgs import;
   };
   auto args = std::make_shared<Args>();
@@ -48,10 +50,14 @@ void add_import_command(CLI::App& app) {
                   "scene file to write (rcsim-scene); with --from, the recording directory to write")
       ->required();
   cmd->add_option("--from", args->dataset, "import a real dataset (docs/importers.md):" + datasets);
+  cmd->add_option("--ego-log", args->ego_log,
+                  "with --from: the ego log to use, in ego.csv's columns (t_s from the first keyframe, x_m, y_m, "
+                  "yaw_rad, speed_mps, yaw_rate_radps); without it the ego motion is estimated from the Doppler")
+      ->check(CLI::ExistingFile);
   add_import_options(*cmd, args->import);
   cmd->callback([args] {
     if (!args->dataset.empty()) {
-      import_dataset(args->dataset, args->input_dir, args->output);
+      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log});
       return;
     }
     const Recording recording = read_recording(args->input_dir);

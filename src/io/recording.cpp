@@ -70,25 +70,31 @@ void read_header(Recording& rec, const fs::path& path) {
   }
 }
 
-void read_ego(Recording& rec, const fs::path& path) {
+// Rows of an ego log in ego.csv's columns, times increasing; with cycle_time_s > 0, one row per
+// sensor cycle (no gap beyond 1.5 cycles).
+std::vector<EgoSample> read_ego_rows(const fs::path& path, double cycle_time_s) {
+  std::vector<EgoSample> ego;
   CsvReader csv(path.string(), {"t_s", "x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps"});
   const int t = csv.column("t_s"), x = csv.column("x_m"), y = csv.column("y_m"), yaw = csv.column("yaw_rad"),
             v = csv.column("speed_mps"), w = csv.column("yaw_rate_radps");
   while (csv.next()) {
     EgoSample s{csv.number(t), csv.number(x), csv.number(y), csv.number(yaw), csv.number(v), csv.number(w)};
-    if (!rec.ego.empty() && s.t_s <= rec.ego.back().t_s) {
+    if (!ego.empty() && s.t_s <= ego.back().t_s) {
       csv.fail(t, fmt::format("time {} s does not follow the previous row's {} s (times must increase)", s.t_s,
-                              rec.ego.back().t_s));
+                              ego.back().t_s));
     }
-    if (!rec.ego.empty() && s.t_s - rec.ego.back().t_s > 1.5 * rec.cycle_time_s) {
+    if (cycle_time_s > 0.0 && !ego.empty() && s.t_s - ego.back().t_s > 1.5 * cycle_time_s) {
       csv.fail(t, fmt::format("gap of {:.6f} s after the previous row (cycle time {} s): the ego log must have "
                               "one row per sensor cycle",
-                              s.t_s - rec.ego.back().t_s, rec.cycle_time_s));
+                              s.t_s - ego.back().t_s, cycle_time_s));
     }
-    rec.ego.push_back(s);
+    ego.push_back(s);
   }
-  if (rec.ego.empty()) csv.fail_line("the ego log has no rows");
+  if (ego.empty()) csv.fail_line("the ego log has no rows");
+  return ego;
 }
+
+void read_ego(Recording& rec, const fs::path& path) { rec.ego = read_ego_rows(path, rec.cycle_time_s); }
 
 void read_boxes(Recording& rec, const fs::path& path) {
   rec.boxes.assign(rec.objects.size(), {});
@@ -202,6 +208,8 @@ std::string header_text(const Recording& rec) {
 }
 
 }  // namespace
+
+std::vector<EgoSample> read_ego_log(const fs::path& path) { return read_ego_rows(path, 0.0); }
 
 bool Recording::all_sensors_report(ReportedLevel level) const {
   return std::all_of(sensors.begin(), sensors.end(), [&](const RecordingSensor& s) { return s.reports == level; });

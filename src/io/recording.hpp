@@ -79,6 +79,10 @@ Recording read_recording(const std::filesystem::path& dir);
 // place (replacing an earlier recording of that name only once the new one is complete).
 // `extra_files` (name -> content) go into the same directory, e.g. a sensor configuration file
 // that a sensor's `type` names.
+// An ego log on its own (an importer's --ego-log): ego.csv's columns, times increasing, any
+// spacing; InputError naming the file, line and column otherwise.
+std::vector<EgoSample> read_ego_log(const std::filesystem::path& path);
+
 void write_recording(const std::filesystem::path& dir, const Recording& recording,
                      const std::map<std::string, std::string>& extra_files = {});
 

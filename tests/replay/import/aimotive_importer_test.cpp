@@ -4,6 +4,7 @@
 // azimuth's sign flipped), the ego estimate (both radars agree), and refusals of damaged files.
 #include "replay/import/aimotive_importer.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -113,6 +114,51 @@ TEST_F(AimotiveImporter, BothRadarsAgreeOnTheEgoSpeed) {
   EXPECT_LT(ego.at("speed_difference_mps").at("std").get<double>(), 0.05);
   EXPECT_LT(ego.at("residual_rms_mps").get<double>(), 0.1);
   for (const EgoSample& e : rec().ego) EXPECT_NEAR(e.speed_mps, 30.0, 0.5);
+}
+
+// --ego-log: the given log is used (here the Doppler estimate written out with 1 m/s added), the
+// estimate is reported beside it as a check; a log that does not cover the keyframes is refused.
+class AimotiveEgoLog : public rcsim::testing::ScratchDirTest {
+ protected:
+  AimotiveEgoLog() : ScratchDirTest("aimotive_ego") {}
+  void SetUp() override {
+    if (!fs::is_directory(kRaw)) GTEST_SKIP() << "real data absent (" << kRaw.string() << "): aiMotive ego-log tests skipped";
+    ScratchDirTest::SetUp();
+  }
+  fs::path write_log(const std::vector<EgoSample>& ego, double add_mps, std::size_t rows) {
+    const fs::path path = dir_ / "ego_log.csv";
+    std::ofstream out(path);
+    out << "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
+    for (std::size_t k = 0; k < std::min(rows, ego.size()); ++k) {
+      const EgoSample& e = ego[k];
+      out << fmt::format("{:.9f},{},{},{},{},{}\n", e.t_s, e.x_m, e.y_m, e.yaw_rad, e.speed_mps + add_mps, e.yaw_rate_radps);
+    }
+    return path;
+  }
+};
+
+TEST_F(AimotiveEgoLog, AGivenLogIsUsedAndTheDopplerEstimateReportedBesideIt) {
+  const DatasetRecording estimated = import_aimotive(kRaw);
+  const fs::path log = write_log(estimated.recording.ego, 1.0, estimated.recording.ego.size());
+  const DatasetRecording logged = import_aimotive(kRaw, {log});
+  ASSERT_EQ(logged.recording.ego.size(), estimated.recording.ego.size());
+  for (std::size_t k = 0; k < logged.recording.ego.size(); ++k) {
+    EXPECT_NEAR(logged.recording.ego[k].speed_mps, estimated.recording.ego[k].speed_mps + 1.0, 1e-6);
+  }
+  const auto& report = logged.recording.source.at("ego_motion");
+  EXPECT_NE(report.at("method").get<std::string>().find("--ego-log"), std::string::npos);
+  EXPECT_NEAR(report.at("doppler_check").at("speed_difference_mean_mps").get<double>(), -1.0, 1e-6);
+  EXPECT_EQ(report.at("doppler_estimate").at("cycles_fitted").get<int>(), 50);
+  // Through the command line, and a log that ends before the last keyframe is refused.
+  const auto ok = rcsim::testing::run_rcsim("import --from aimotive " + kRaw.string() + " --ego-log " + log.string() +
+                                           " -o " + (dir_ / "rec").string());
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  const fs::path short_log = write_log(estimated.recording.ego, 0.0, 40);
+  const auto r = rcsim::testing::run_rcsim("import --from aimotive " + kRaw.string() + " --ego-log " +
+                                           short_log.string() + " -o " + (dir_ / "rec2").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("ego_log.csv"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "rec2"));
 }
 
 class AimotiveRefusals : public rcsim::testing::ScratchDirTest {
