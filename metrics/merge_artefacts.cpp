@@ -1,42 +1,43 @@
 #include "metrics/merge_artefacts.hpp"
 
-#include <algorithm>
 #include <cmath>
 
-#include "common/angles.hpp"
+#include "metrics/gospa.hpp"
 
 namespace rcsim::metrics {
 
-std::vector<MergePair> merge_pairs(const std::vector<BoxInSensor>& boxes, const MergeParameters& parameters) {
-  std::vector<MergePair> pairs;
-  for (std::size_t a = 0; a < boxes.size(); ++a) {
-    for (std::size_t b = a + 1; b < boxes.size(); ++b) {
-      if (std::abs(boxes[a].range_m - boxes[b].range_m) < parameters.range_cell_m &&
-          std::abs(boxes[a].range_rate_mps - boxes[b].range_rate_mps) < parameters.range_rate_cell_mps) {
-        pairs.push_back({static_cast<int>(a), static_cast<int>(b)});
-      }
-    }
+namespace {
+
+// Whether the point lies farther than margin_m from the box of `object` (true when it is absent).
+bool off_box(const std::vector<BoxInSensor>& boxes, int object, const Vec2& p_ST_S, double margin_m) {
+  for (const BoxInSensor& b : boxes) {
+    if (b.object == object) return distance_to_box_m(b, p_ST_S) > margin_m;
   }
-  return pairs;
+  return true;
 }
 
-int merge_artefact_of(const std::vector<BoxInSensor>& boxes, const std::vector<MergePair>& pairs, double range_m,
-                      double azimuth_rad, const Vec2& p_ST_S, const MergeParameters& parameters) {
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const BoxInSensor& a = boxes[pairs[i].box_a];
-    const BoxInSensor& b = boxes[pairs[i].box_b];
-    // Between in angle: on opposite sides of the two nearest points' azimuths.
-    const double from_a = angle_difference_rad(azimuth_rad, a.azimuth_rad);
-    const double from_b = angle_difference_rad(azimuth_rad, b.azimuth_rad);
-    const bool between = from_a * from_b < 0.0;
-    const double near_m = std::min(a.range_m, b.range_m) - parameters.range_cell_m;
-    const double far_m = std::max(a.range_m, b.range_m) + parameters.range_cell_m;
-    if (between && range_m >= near_m && range_m <= far_m && distance_to_box_m(a, p_ST_S) > parameters.contour_margin_m &&
-        distance_to_box_m(b, p_ST_S) > parameters.contour_margin_m) {
+}  // namespace
+
+int merge_artefact_of(const std::vector<MergeCell>& cells, const std::vector<BoxInSensor>& boxes, double range_m,
+                      double range_rate_mps, double azimuth_rad, const Vec2& p_ST_S, const MergeParameters& parameters) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const MergeCell& c = cells[i];
+    // Sensor-frame azimuths lie within the view field, far from the +-pi seam: a plain interval.
+    if (std::abs(range_m - c.range_m) <= parameters.range_cell_m &&
+        std::abs(range_rate_mps - c.range_rate_mps) <= parameters.range_rate_cell_mps &&
+        azimuth_rad >= c.azimuth_lo_rad && azimuth_rad <= c.azimuth_hi_rad &&
+        off_box(boxes, c.object_a, p_ST_S, parameters.margin_m) && off_box(boxes, c.object_b, p_ST_S, parameters.margin_m)) {
       return static_cast<int>(i);
     }
   }
   return -1;
+}
+
+int matched_artefacts(const std::vector<Vec2>& recorded_S, const std::vector<Vec2>& simulated_S,
+                      double match_distance_m) {
+  if (recorded_S.empty() || simulated_S.empty()) return 0;
+  // GOSPA's assignment pairs exactly the targets closer than its cut-off, at least total cost.
+  return gospa(recorded_S, simulated_S, {match_distance_m, 1.0}).assigned;
 }
 
 }  // namespace rcsim::metrics

@@ -47,7 +47,7 @@ BenchRow row_of(const Recording& rec, int index, std::string_view level, const R
   row.merge_spurious = s.merge_artefacts_simulated - s.merge_artefacts_matched;
   row.latency_pairs = s.latency_pairs;
   row.has_latency = s.latency_pairs > 0;
-  if (row.has_latency) row.latency_difference_s = s.latency_simulated_s - s.latency_recorded_s;
+  if (row.has_latency) row.latency_difference_s = s.latency_difference_mean_s;
   return row;
 }
 

@@ -64,9 +64,21 @@ std::string summary_table(const RunData& run) {
   out += kv("merge_recorded", "merge artefacts recorded", std::to_string(s.merge_recorded), "targets");
   out += kv("merge_simulated", "merge artefacts simulated", std::to_string(s.merge_simulated), "targets");
   out += kv("merge_matched", "merge artefacts matched", std::to_string(s.merge_matched), "in both, per pair and cycle");
-  out += kv("latency_recorded", "confirmation latency recorded, mean", opt(s.latency_recorded_s, 3, "-"),
-            fmt::format("s, over {} object-sensor pairs reported in both", s.latency_pairs));
-  out += kv("latency_simulated", "confirmation latency simulated, mean", opt(s.latency_simulated_s, 3, "-"), "s");
+  if (s.classes) {  // schema v3: each side over the episodes it confirmed; the paired difference
+    const RunSummary::Classes& k = *s.classes;
+    out += kv("latency_recorded", "confirmation latency recorded, mean", opt(s.latency_recorded_s, 3, "-"),
+              fmt::format("s, over {} of {} episodes confirmed", k.latency_episodes - k.latency_unconfirmed[0],
+                          k.latency_episodes));
+    out += kv("latency_simulated", "confirmation latency simulated, mean", opt(s.latency_simulated_s, 3, "-"),
+              fmt::format("s, over {} of {} episodes confirmed", k.latency_episodes - k.latency_unconfirmed[1],
+                          k.latency_episodes));
+    out += kv("latency_difference", "latency simulated - recorded, mean", opt(k.latency_difference_mean_s, 3, "-"),
+              fmt::format("s, over {} episodes confirmed by both", s.latency_pairs));
+  } else {
+    out += kv("latency_recorded", "confirmation latency recorded, mean", opt(s.latency_recorded_s, 3, "-"),
+              fmt::format("s, over {} object-sensor pairs reported in both", s.latency_pairs));
+    out += kv("latency_simulated", "confirmation latency simulated, mean", opt(s.latency_simulated_s, 3, "-"), "s");
+  }
   out += kv("simulate_cpu", "simulation CPU time", num(s.simulate_cpu_s, 2), "s");
   out += kv("total_wall", "replay wall time (import, simulation, metrics, storage)", num(s.total_wall_s, 2), "s");
   return out + "</table>";
@@ -138,8 +150,9 @@ std::string merge_artefact_table(const RunData& run) {
 std::string latency_table(const RunData& run) {
   if (run.latencies.empty()) return "<p>No object became detectable for any sensor.</p>";
   std::string out = R"(<table class="latency">)";
-  out += header_row({"object", "class", "sensor", "detectable from / s", "first recorded / s", "first simulated / s",
-                     "latency recorded / s", "latency simulated / s", "simulated - recorded / s"});
+  out += header_row({"object", "class", "sensor", "detectable from / s", "confirmed recorded / s",
+                     "confirmed simulated / s", "latency recorded / s", "latency simulated / s",
+                     "simulated - recorded / s"});
   for (const LatencyRow& l : run.latencies) {
     std::string object_class;
     for (const auto& o : run.objects) {
@@ -149,8 +162,8 @@ std::string latency_table(const RunData& run) {
                                            ? std::optional<double>(*l.latency_simulated_s - *l.latency_recorded_s)
                                            : std::nullopt;
     out += "<tr>" + cell(run.object_label(l.object)) + cell(object_class) + cell(run.sensor_label(l.sensor)) +
-           cell_num(num(l.detectable_from_s, 3)) + cell_num(opt(l.first_recorded_s, 3)) +
-           cell_num(opt(l.first_simulated_s, 3)) + cell_num(opt(l.latency_recorded_s, 3, "-")) +
+           cell_num(num(l.detectable_from_s, 3)) + cell_num(opt(l.first_recorded_s, 3, "never (censored)")) +
+           cell_num(opt(l.first_simulated_s, 3, "never (censored)")) + cell_num(opt(l.latency_recorded_s, 3, "-")) +
            cell_num(opt(l.latency_simulated_s, 3, "-")) + cell_num(opt(diff, 3, "-")) + "</tr>";
   }
   return out + "</table>";

@@ -1,9 +1,16 @@
 #pragma once
-// Confirmation latency per (sensor, object) and detectability episode (schemas/report-database.md,
-// table latencies). An episode starts when the re-simulation's sensor model first detects the
-// object (a detection before tracking, SimulatedSource::mark_detected_objects) and ends after
-// kEpisodeGapCycles cycles without one; the latency of each side is the time from that start to
-// its first reported target belonging to the object.
+// Confirmation latency per (sensor, object) and detectable episode (docs/metrics.md; table
+// latencies). The same rule for the recorded and the simulated target lists, and nothing in it
+// depends on either list's start:
+//   - an episode starts in the first cycle the scene geometry says the object is detectable by
+//     that sensor (SceneGeometry: in view, not occluded, a reflector's noise-free echo above the
+//     threshold) and ends after kEpisodeGapCycles cycles in which it is not;
+//   - a side confirms the object in the first cycle of the episode in which targets of that
+//     object (class object, so never a merge artefact) were reported in at least
+//     kConfirmHits of the last kConfirmWindow cycles of the episode: one stray target cannot
+//     confirm it, one missed cycle cannot reset it;
+//   - latency = confirmation time - episode start. An episode a side never confirms is kept,
+//     censored (no latency on that side), and counted.
 #include <cstddef>
 #include <vector>
 
@@ -13,32 +20,34 @@ namespace rcsim::replay {
 
 class LatencyEpisodes {
  public:
-  // An episode ends after this many cycles without a detection (longer than any track survives
-  // without hits).
-  static constexpr int kEpisodeGapCycles = 10;
+  static constexpr int kEpisodeGapCycles = 10;  // longer than any track survives without hits
+  static constexpr int kConfirmHits = 3, kConfirmWindow = 4;
 
   LatencyEpisodes(std::size_t sensors, std::size_t objects);
 
-  // Opens an episode for every object detected now (detected[object] != 0) and closes the ones
-  // not detected for kEpisodeGapCycles cycles.
-  void update_detected(std::size_t sensor, const std::vector<char>& detected, double t_s);
+  // Opens an episode for every object detectable now (detectable[object] != 0) and closes the
+  // ones not detectable for kEpisodeGapCycles cycles.
+  void update_detectable(std::size_t sensor, const std::vector<char>& detectable, double t_s);
 
-  // Records, for every object with an open episode, the first recorded and the first simulated
-  // target that belongs to it.
-  void note_first_targets(std::size_t sensor, const CycleComparison& cycle, double t_s);
+  // Notes, for every object with an open episode, whether each side reported targets of it in
+  // this cycle, and confirms it where the rule is met.
+  void note_targets(std::size_t sensor, const CycleComparison& cycle, double t_s);
 
-  // Closes every open episode and fills summary.latencies, latency_pairs and the mean latencies
-  // over the episodes where both sides reported the object.
+  // Closes every open episode: summary.latencies and the per-run latency figures.
   void finish(ReplaySummary& summary);
 
  private:
-  LatencyRow& row(std::size_t sensor, std::size_t object) { return open_[sensor * objects_ + object]; }
-  void close(std::size_t key);
+  struct Open {
+    LatencyRow row;      // row.detectable_from_s < 0: no open episode
+    unsigned hits[2] = {0, 0};  // last kConfirmWindow cycles as bits, [0] recorded, [1] simulated
+    int undetectable_cycles = kEpisodeGapCycles;
+    int episodes = 0;
+  };
+  void close(Open& open);
 
   std::size_t objects_;
-  std::vector<LatencyRow> open_;  // detectable_from_s < 0: no open episode
-  std::vector<int> undetected_cycles_;
-  std::vector<int> episodes_;
+  std::vector<Open> open_;   // [sensor * objects + object]
+  std::vector<char> seen_[2];  // per object, this cycle: targets of it on each side
   std::vector<LatencyRow> closed_;
 };
 

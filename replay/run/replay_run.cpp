@@ -1,5 +1,6 @@
 #include "replay/run/replay_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <span>
@@ -7,10 +8,10 @@
 #include "common/angles.hpp"
 #include "common/cpu_time.hpp"
 #include "metrics/sensor_view.hpp"
-#include "sim/amplitude.hpp"
 #include "replay/run/latency_episodes.hpp"
 #include "replay/run/object_figures.hpp"
 #include "replay/run/run_accumulators.hpp"
+#include "replay/run/scene_geometry.hpp"
 #include "replay/run/simulated_source.hpp"
 
 namespace rcsim::replay {
@@ -21,40 +22,32 @@ Vec2 cartesian_S(double range_m, double azimuth_rad) {
   return {range_m * std::cos(azimuth_rad), range_m * std::sin(azimuth_rad)};
 }
 
-// The largest range at which an object's strongest reflector still passes the detection
-// threshold on boresight (paper eq. (1)), within the view range.
-double detectable_range_m(const SensorConfig& config, const ObjectModel& model) {
-  return std::min(config.fov.max_range_m, std::max(0.0, detection_range_bound_m(config.amplitude, model.max_ercs())));
-}
-
-// What stays fixed over a run: the scene, its sensors' detectable ranges per object.
+// What stays fixed over a run: the scene and what its geometry says each cycle.
 struct RunContext {
   const Recording& rec;
   const ImportedScene& imported;
   const Scene& scene;
   const ReplayOptions& options;
-  std::vector<std::vector<double>> detectable_m;  // [sensor][object]
+  SceneGeometry& geometry;
 };
 
 // Per-cycle buffers, reused from cycle to cycle.
 struct CycleBuffers {
-  std::vector<metrics::BoxInSensor> boxes, in_view, in_field;
-  std::vector<char> detected;  // per object
+  std::vector<metrics::BoxInSensor> boxes, in_field;
+  std::vector<char> detectable;  // per object, by the scene geometry
+  std::vector<int> pair_of_cell;  // per merge cell, its pair in cycle.merge_pairs
 };
 
 // The annotated boxes present now, as sensor `s` sees them: all of them (for association), the
-// ones in its field of view and range (per-object figures), those of them within the model's
-// detectable range (merge artefacts), and, for the report's pictures, those near the sensor (an
-// hour-long drive passes many).
+// ones in its field of view and range (per-object figures), and, for the report's pictures, those
+// near the sensor (an hour-long drive passes many), marked when detectable by the geometry.
 void project_boxes(const RunContext& run, std::size_t s, double t_scene_s, const BodyState& ego,
                    const std::vector<BodyState>& object_states, CycleComparison& cycle, CycleBuffers& buffers) {
   constexpr double kPictureMargin_m = 20.0;
   const SensorConfig& config = run.scene.sensors[s].config;
   std::vector<metrics::BoxInSensor>& boxes = buffers.boxes;
-  std::vector<metrics::BoxInSensor>& in_view = buffers.in_view;
   std::vector<metrics::BoxInSensor>& in_field = buffers.in_field;
   boxes.clear();
-  in_view.clear();
   in_field.clear();
   cycle.objects.clear();
   for (std::size_t o = 0; o < run.scene.objects.size(); ++o) {
@@ -64,31 +57,33 @@ void project_boxes(const RunContext& run, std::size_t s, double t_scene_s, const
                                                             run.imported.objects[o].width_m);
     const bool in_fov = std::abs(box.azimuth_rad) <= config.fov.azimuth_half_rad &&
                         box.range_m >= config.fov.min_range_m && box.range_m <= config.fov.max_range_m;
-    const bool visible = in_fov && box.range_m <= run.detectable_m[s][o];
     boxes.push_back(box);
     if (in_fov) in_field.push_back(box);
-    if (visible) in_view.push_back(box);
     if (box.range_m <= config.fov.max_range_m + kPictureMargin_m) {
       const Pose2& X_WO = object_states[o].X_WB;
-      cycle.objects.push_back({static_cast<int>(o), X_WO.x_m, X_WO.y_m, X_WO.yaw_rad, visible});
+      cycle.objects.push_back({static_cast<int>(o), X_WO.x_m, X_WO.y_m, X_WO.yaw_rad, buffers.detectable[o] != 0});
     }
   }
 }
 
 // Each target's Cartesian position, the object it belongs to (nearest box within the gate) and
 // its offset in that object's frame, its class (object, stationary background, other) and the
-// merge pair it is an artefact of, if any. v_WS_S: the sensor's own velocity, sensor frame.
+// merge pair it is an artefact of, if any (pair_of_cell: the cycle's pair of each merge cell).
+// v_WS_S: the sensor's own velocity, sensor frame.
 void classify_targets(std::vector<ComparedTarget>& targets, const std::vector<metrics::BoxInSensor>& boxes,
-                      const std::vector<metrics::BoxInSensor>& in_view, const std::vector<metrics::MergePair>& pairs,
+                      const std::vector<metrics::MergeCell>& cells, const std::vector<int>& pair_of_cell,
                       const Vec2& v_WS_S, const ReplayOptions& options, const metrics::MergeParameters& merge) {
   for (ComparedTarget& t : targets) {
     t.p_ST_S = cartesian_S(t.range_m, t.azimuth_rad);
-    const int box = metrics::nearest_box(boxes, t.p_ST_S, options.association_gate_m);
+    // A merge artefact first: it belongs to no object, whatever box it lies near.
+    const int cell = metrics::merge_artefact_of(cells, boxes, t.range_m, t.range_rate_mps, t.azimuth_rad, t.p_ST_S, merge);
+    t.merge_pair = cell >= 0 ? pair_of_cell[static_cast<std::size_t>(cell)] : -1;
+    const int box = cell >= 0 ? -1 : metrics::nearest_box(boxes, t.p_ST_S, options.association_gate_m);
     t.object = box >= 0 ? boxes[box].object : -1;
     t.p_OT_O = box >= 0 ? inverse_transform_point(boxes[box].X_SO, t.p_ST_S) : Vec2::Zero();
-    t.target_class =
-        metrics::classify_target(t.object, t.range_rate_mps, t.azimuth_rad, v_WS_S, options.stationary_gate_mps);
-    t.merge_pair = metrics::merge_artefact_of(in_view, pairs, t.range_m, t.azimuth_rad, t.p_ST_S, merge);
+    t.target_class = cell >= 0 ? metrics::TargetClass::other
+                               : metrics::classify_target(t.object, t.range_rate_mps, t.azimuth_rad, v_WS_S,
+                                                          options.stationary_gate_mps);
   }
 }
 
@@ -117,19 +112,38 @@ struct MergeCounts {
   long long recorded = 0, simulated = 0;
 };
 
-// Merge artefacts: per pair, matched as many as both lists have (cycle.merge_matched).
-MergeCounts match_merge_artefacts(CycleComparison& cycle, std::size_t pair_count) {
+// Merge artefacts: per pair, the recorded ones matched by simulated ones of that pair within the
+// match distance (cycle.merge_matched).
+MergeCounts match_merge_artefacts(CycleComparison& cycle, double match_distance_m) {
   MergeCounts counts;
   cycle.merge_matched = 0;
-  for (std::size_t p = 0; p < pair_count; ++p) {
-    int in_rec = 0, in_sim = 0;
-    for (const auto& t : cycle.recorded) in_rec += t.merge_pair == static_cast<int>(p);
-    for (const auto& t : cycle.simulated) in_sim += t.merge_pair == static_cast<int>(p);
-    counts.recorded += in_rec;
-    counts.simulated += in_sim;
-    cycle.merge_matched += std::min(in_rec, in_sim);
+  std::vector<Vec2> p_rec_S, p_sim_S;
+  for (std::size_t p = 0; p < cycle.merge_pairs.size(); ++p) {
+    p_rec_S.clear();
+    p_sim_S.clear();
+    for (const auto& t : cycle.recorded) {
+      if (t.merge_pair == static_cast<int>(p)) p_rec_S.push_back(t.p_ST_S);
+    }
+    for (const auto& t : cycle.simulated) {
+      if (t.merge_pair == static_cast<int>(p)) p_sim_S.push_back(t.p_ST_S);
+    }
+    counts.recorded += static_cast<long long>(p_rec_S.size());
+    counts.simulated += static_cast<long long>(p_sim_S.size());
+    cycle.merge_matched += metrics::matched_artefacts(p_rec_S, p_sim_S, match_distance_m);
   }
   return counts;
+}
+
+// The cycle's pairs of objects sharing a cell (each once), and the pair of each merge cell.
+void merge_pairs_of(const std::vector<metrics::MergeCell>& cells, CycleComparison& cycle, std::vector<int>& pair_of_cell) {
+  cycle.merge_pairs.clear();
+  pair_of_cell.clear();
+  for (const metrics::MergeCell& c : cells) {
+    const std::pair<int, int> pair{c.object_a, c.object_b};
+    auto it = std::find(cycle.merge_pairs.begin(), cycle.merge_pairs.end(), pair);
+    if (it == cycle.merge_pairs.end()) it = cycle.merge_pairs.insert(it, pair);
+    pair_of_cell.push_back(static_cast<int>(it - cycle.merge_pairs.begin()));
+  }
 }
 
 // One sensor's comparison in one cycle: its boxes, the detectability episodes, both target
@@ -140,17 +154,16 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
                           LatencyEpisodes& latency, RunAccumulators& acc, ObjectFigures& objects, ReplaySink& sink) {
   const SensorConfig& config = run.scene.sensors[s].config;
   const metrics::MergeParameters merge{config.resolution.range_cell_m, config.resolution.range_rate_cell_mps,
-                                       run.options.merge_contour_margin_m};
+                                       run.options.merge_match_distance_m, run.options.merge_margin_m};
   const Pose2& X_WV = ego.X_WB;  // the ego's body frame is the vehicle frame V
   cycle.sensor = static_cast<int>(s);
   cycle.X_WS = compose(X_WV, run.scene.sensors[s].X_VS);
   const auto& boxes = buffers.boxes;
-  const auto& in_view = buffers.in_view;
+  // Detectability by the scene's geometry: the start of latency episodes.
+  buffers.detectable.assign(run.scene.objects.size(), 0);
+  run.geometry.mark_detectable(s, buffers.detectable);
+  latency.update_detectable(s, buffers.detectable, t_rec_s);
   project_boxes(run, s, t_scene_s, ego, object_states, cycle, buffers);
-  // Detectability: the source detects the object before its tracker (paper III-C/D).
-  buffers.detected.assign(run.scene.objects.size(), 0);
-  source.mark_detected_objects(s, boxes, run.options.association_gate_m, buffers.detected);
-  latency.update_detected(s, buffers.detected, t_rec_s);
 
   cycle.recorded.clear();
   cycle.simulated.clear();
@@ -158,15 +171,14 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
     if (t.sensor == static_cast<int>(s)) cycle.recorded.push_back(compared_target(t));
   }
   source.append_targets(s, cycle.simulated);
-  const std::vector<metrics::MergePair> pairs = metrics::merge_pairs(in_view, merge);
-  cycle.merge_pairs.clear();
-  for (const auto& p : pairs) cycle.merge_pairs.emplace_back(in_view[p.box_a].object, in_view[p.box_b].object);
+  const std::vector<metrics::MergeCell>& cells = run.geometry.merge_cells(s);
+  merge_pairs_of(cells, cycle, buffers.pair_of_cell);
   const Vec2 v_WS_S = rotate(-cycle.X_WS.yaw_rad, ego.point_velocity_W(cycle.X_WS.translation()));
-  classify_targets(cycle.recorded, boxes, in_view, pairs, v_WS_S, run.options, merge);
-  classify_targets(cycle.simulated, boxes, in_view, pairs, v_WS_S, run.options, merge);
+  classify_targets(cycle.recorded, boxes, cells, buffers.pair_of_cell, v_WS_S, run.options, merge);
+  classify_targets(cycle.simulated, boxes, cells, buffers.pair_of_cell, v_WS_S, run.options, merge);
   match_targets(cycle, run.options.gospa);
-  const MergeCounts merges = match_merge_artefacts(cycle, pairs.size());
-  latency.note_first_targets(s, cycle, t_rec_s);
+  const MergeCounts merges = match_merge_artefacts(cycle, run.options.merge_match_distance_m);
+  latency.note_targets(s, cycle, t_rec_s);
   acc.add_cycle(cycle, merges.recorded, merges.simulated);
   objects.add_cycle(cycle, buffers.in_field);
   sink.add_cycle(cycle);
@@ -187,10 +199,8 @@ ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& 
   const auto wall_start = std::chrono::steady_clock::now();
   sink.begin_run(rec, imported, scene, options);
   const std::size_t n_sensors = scene.sensors.size(), n_objects = scene.objects.size();
-  RunContext run{rec, imported, scene, options, std::vector<std::vector<double>>(n_sensors, std::vector<double>(n_objects))};
-  for (std::size_t s = 0; s < n_sensors; ++s) {
-    for (std::size_t o = 0; o < n_objects; ++o) run.detectable_m[s][o] = detectable_range_m(scene.sensors[s].config, scene.objects[o].model);
-  }
+  SceneGeometry geometry(scene);
+  RunContext run{rec, imported, scene, options, geometry};
   LatencyEpisodes latency(n_sensors, n_objects);
   RunAccumulators acc;
   ObjectFigures objects(n_sensors, n_objects, options.object_range_bin_m);
@@ -206,6 +216,7 @@ ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& 
     const double cpu_start_s = thread_cpu_s();
     source.run_at(t_scene_s);
     simulate_cpu_s += thread_cpu_s() - cpu_start_s;
+    geometry.run_at(t_scene_s);
     // The annotated (smoothed) boxes and the ego at this time, as the scene gives them.
     const BodyState ego = scene.ego.state_at(t_scene_s);
     for (std::size_t o = 0; o < n_objects; ++o) {

@@ -25,7 +25,8 @@ struct ReplayOptions {
   ImportOptions import;
   metrics::GospaParameters gospa{2.0, 2.0};
   double association_gate_m = 1.0;  // a target belongs to the nearest box within this distance
-  double merge_contour_margin_m = 0.5;
+  double merge_match_distance_m = 1.0;  // a recorded and a simulated artefact of one pair match within this
+  double merge_margin_m = 0.5;          // an artefact lies farther than this from both boxes
   // Stationary background: ego-motion-compensated radial speed within this (docs/metrics.md).
   double stationary_gate_mps = 0.5;
   double object_range_bin_m = 10.0;  // bins of the detection probability against range
@@ -38,7 +39,7 @@ struct ComparedTarget {
   Vec2 p_ST_S = Vec2::Zero();  // Cartesian, sensor frame
   int object = -1;          // recording object index it belongs to, or -1
   int match = -1;           // index of the GOSPA-assigned partner in the other list, or -1
-  int merge_pair = -1;      // index into CycleComparison::merge_pairs if a merge artefact
+  int merge_pair = -1;      // index into CycleComparison::merge_pairs if a merge artefact (then object = -1)
   metrics::TargetClass target_class = metrics::TargetClass::other;
   Vec2 p_OT_O = Vec2::Zero();  // offset from the box centre in the object's frame (object >= 0)
   // What real radars report besides (recording format v2's optional columns); NaN where absent.
@@ -49,7 +50,7 @@ struct ComparedTarget {
 struct ObjectInCycle {
   int object = -1;
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  // annotated (smoothed) box in the world
-  bool in_view = false;                        // in the field of view and detectable range
+  bool in_view = false;                        // detectable by the scene geometry (SceneGeometry)
 };
 
 struct CycleComparison {
@@ -60,21 +61,18 @@ struct CycleComparison {
   std::vector<ComparedTarget> recorded, simulated;
   metrics::GospaResult gospa;
   metrics::GospaResult gospa_object;             // on the targets of annotated objects only
-  std::vector<std::pair<int, int>> merge_pairs;  // object indices sharing a resolution cell
-  int merge_matched = 0;                         // artefacts found in both lists, per pair
+  std::vector<std::pair<int, int>> merge_pairs;  // object indices sharing a resolution cell (scene geometry)
+  int merge_matched = 0;  // recorded artefacts with a simulated one of the same pair within the match distance
   std::vector<ObjectInCycle> objects;            // present objects near the sensor (stored for sensor 0)
 };
 
-// One episode in which an object is detectable by a sensor: it starts when the re-simulation's
-// sensor model first detects it (a detection, before tracking, whose strongest member is one of
-// its reflectors) and ends after kEpisodeGapCycles cycles without such a detection; an object that
-// leaves and comes back (a parked car passed lap after lap) has several episodes. The latency is
-// the time from the start to the first reported target that belongs to the object: for the
-// simulation the tracker's confirmation delay, for the recording that of the real sensor.
+// One episode in which an object is detectable by a sensor by the scene's geometry, and when each
+// side confirmed it (replay/run/latency_episodes.hpp); an object that leaves and comes back (a
+// parked car passed lap after lap) has several episodes.
 struct LatencyRow {
   int sensor = 0, object = 0, episode = 0;
   double detectable_from_s = 0.0;
-  double first_recorded_s = -1.0, first_simulated_s = -1.0;  // -1: never reported
+  double first_recorded_s = -1.0, first_simulated_s = -1.0;  // confirmation times; -1: never confirmed
 };
 
 // Per annotated object and sensor, over the cycles it was in the sensor's field of view.
@@ -109,9 +107,11 @@ struct ReplaySummary {
   double gospa_object_mean_m = 0.0, ospa_object_mean_m = 0.0;  // on the object targets only
   ClassCounts classes;
   long long merge_artefacts_recorded = 0, merge_artefacts_simulated = 0, merge_artefacts_matched = 0;
-  // Mean over episodes where both recorded and simulated latencies exist; -1 if none.
-  double latency_recorded_s = -1.0, latency_simulated_s = -1.0;
-  int latency_pairs = 0;
+  // Confirmation latency (latency_episodes.hpp): each side's mean over the episodes it confirmed
+  // (-1: none); the mean difference simulated - recorded over the episodes both confirmed (the
+  // pairs); the episodes, and those each side never confirmed (censored, kept in `latencies`).
+  double latency_recorded_s = -1.0, latency_simulated_s = -1.0, latency_difference_mean_s = 0.0;
+  int latency_pairs = 0, latency_episodes = 0, latency_unconfirmed_recorded = 0, latency_unconfirmed_simulated = 0;
   double residual_range_rms_m = 0.0, residual_azimuth_rms_rad = 0.0, residual_range_rate_rms_mps = 0.0,
          residual_amplitude_mean_db = 0.0;
   double simulate_cpu_s = 0.0, total_wall_s = 0.0;
@@ -148,10 +148,6 @@ class SimulatedSource {
   virtual void run_at(double t_scene_s) = 0;
   // The target list one sensor reported in the last run_at, appended to `out`.
   virtual void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const = 0;
-  // Sets detected[object] = 1 for every object with a detection (before tracking) in the last
-  // run_at: the start of a latency episode. `boxes`: the present objects as that sensor sees them.
-  virtual void mark_detected_objects(std::size_t sensor, const std::vector<metrics::BoxInSensor>& boxes, double gate_m,
-                                     std::vector<char>& detected) const = 0;
 };
 
 // rcsim replay: the reflection-center model (options.fidelity) against the recording.

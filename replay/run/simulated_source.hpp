@@ -36,9 +36,6 @@ class ModelSource final : public SimulatedSource {
   ModelSource(const Scene& scene, const SimulationOptions& options) : simulation_(scene, options) {}
   void run_at(double t_scene_s) override { simulation_.run_at(t_scene_s); }
   void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const override;
-  // A detection whose strongest member is a reflector of the object (paper III-C/D).
-  void mark_detected_objects(std::size_t sensor, const std::vector<metrics::BoxInSensor>& boxes, double gate_m,
-                             std::vector<char>& detected) const override;
 
  private:
   Simulation simulation_;
@@ -51,10 +48,6 @@ class ReferenceSource final : public SimulatedSource {
   ReferenceSource(const Scene& scene, std::uint64_t seed) : reference_(scene, synth::SynthConfig{}, seed) {}
   void run_at(double t_scene_s) override { reference_.run_at(t_scene_s); }
   void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const override;
-  // The reference's detections carry no object: each belongs to the nearest box within the gate,
-  // as the recorded targets do.
-  void mark_detected_objects(std::size_t sensor, const std::vector<metrics::BoxInSensor>& boxes, double gate_m,
-                             std::vector<char>& detected) const override;
 
  private:
   synth::ReferenceSimulator reference_;

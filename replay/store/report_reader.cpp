@@ -83,7 +83,8 @@ void read_summary(SQLite::Database& db, std::int64_t run_id, RunData& run) {
                       "latency_pairs, residual_range_rms_m, residual_azimuth_rms_rad, residual_range_rate_rms_mps, "
                       "residual_amplitude_mean_db, simulate_cpu_s, total_wall_s, gospa_object_mean, ospa_object_mean, "
                       "targets_object_recorded, targets_object_simulated, targets_background_recorded, "
-                      "targets_background_simulated, targets_other_recorded, targets_other_simulated "
+                      "targets_background_simulated, targets_other_recorded, targets_other_simulated, latency_difference_mean_s, "
+                      "latency_episodes, latency_unconfirmed_recorded, latency_unconfirmed_simulated "
                       "FROM summaries WHERE run_id = ?");
   q.bind(1, run_id);
   if (q.executeStep()) {
@@ -118,6 +119,10 @@ void read_summary(SQLite::Database& db, std::int64_t run_id, RunData& run) {
         counts[0] = q.getColumn(c++).getInt64();
         counts[1] = q.getColumn(c++).getInt64();
       }
+      k.latency_difference_mean_s = optional_double(q.getColumn(c++));
+      k.latency_episodes = q.getColumn(c++).getInt();
+      k.latency_unconfirmed[0] = q.getColumn(c++).getInt();
+      k.latency_unconfirmed[1] = q.getColumn(c++).getInt();
       s.classes = k;
     }
     run.summary = s;

@@ -37,6 +37,8 @@ struct RunSummary {
   struct Classes {
     double gospa_object_mean_m = 0.0, ospa_object_mean_m = 0.0;
     std::int64_t object[2] = {0, 0}, background[2] = {0, 0}, other[2] = {0, 0};  // [0] recorded, [1] simulated
+    std::optional<double> latency_difference_mean_s;  // over the pairs
+    int latency_episodes = 0, latency_unconfirmed[2] = {0, 0};
   };
   std::optional<Classes> classes;
 };

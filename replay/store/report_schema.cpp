@@ -162,7 +162,9 @@ CREATE TABLE IF NOT EXISTS bench_rows (
 
 // Added in version 3: real drives (docs/metrics.md). Each target's class and its offset in its
 // object's frame, the recording's optional columns; per cycle and run the figures on the object
-// targets and the class counts; per object and sensor the detection figures, overall and by range.
+// targets and the class counts; per object and sensor the detection figures, overall and by range;
+// the latency's paired difference and censored episodes (the latency and merge-artefact rules of
+// version 3 are those of docs/metrics.md).
 // Columns added to earlier tables are NULL in the runs stored before version 3.
 extern const char* const kRealDriveSchemaSql;
 const char* const kRealDriveSchemaSql = R"SQL(
@@ -188,6 +190,10 @@ ALTER TABLE summaries ADD COLUMN targets_background_recorded INTEGER;
 ALTER TABLE summaries ADD COLUMN targets_background_simulated INTEGER;
 ALTER TABLE summaries ADD COLUMN targets_other_recorded INTEGER;
 ALTER TABLE summaries ADD COLUMN targets_other_simulated INTEGER;
+ALTER TABLE summaries ADD COLUMN latency_difference_mean_s REAL;  -- over the pairs; NULL: none
+ALTER TABLE summaries ADD COLUMN latency_episodes INTEGER;
+ALTER TABLE summaries ADD COLUMN latency_unconfirmed_recorded INTEGER;   -- censored episodes
+ALTER TABLE summaries ADD COLUMN latency_unconfirmed_simulated INTEGER;
 
 CREATE TABLE IF NOT EXISTS object_figures (
   run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,

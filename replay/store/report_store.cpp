@@ -57,14 +57,21 @@ nlohmann::ordered_json parameters_json(const ReplayOptions& options, const Effec
         {"detected", "at least one target of the object class belonging to the object"},
         {"range_bin_m", options.object_range_bin_m}}},
       {"merge_artefacts",
-       {{"contour_margin_m", options.merge_contour_margin_m},
-        {"rule", "pair of boxes in view whose nearest points share a range-speed cell; target between their "
-                 "azimuths, within a range cell, farther than the margin from both"},
+       {{"cells", "the sensor's merging rule over the scene's noise-free echoes: echoes within half a cell of the "
+                  "strongest share its cell (eqs. (4)-(5)); a cell with echoes of two objects makes them a pair"},
+        {"artefact", "a target within one cell of the cell's range and range rate, within the azimuth span of "
+                     "the pair's echoes in it, farther than margin_m from both boxes; it then belongs to no object"},
+        {"margin_m", options.merge_margin_m},
+        {"match_distance_m", options.merge_match_distance_m},
+        {"matched", "recorded and simulated artefacts of the same pair and cycle, optimal assignment, closer than "
+                    "match_distance_m"},
         {"source", "paper III-C, Fig. 10"}}},
       {"latency",
-       {{"detectable", "the re-simulation's sensor model detects the object (before tracking); an episode ends "
-                       "after 10 cycles without a detection"},
-        {"latency", "first reported target belonging to the object minus the episode's start"}}},
+       {{"episode", "starts when the scene geometry makes the object detectable (in view, not occluded, a "
+                    "reflector's noise-free echo at or above the threshold, eqs. (1)-(3), (6)); ends after 10 "
+                    "cycles in which it is not"},
+        {"confirmed", "targets of the object (class object) in at least 3 of the last 4 cycles of the episode"},
+        {"latency", "confirmation time minus the episode's start, each side alike; never confirmed: censored"}}},
       {"distribution_distances",
        {{"area_metric", "S. Ferson, W. L. Oberkampf, L. Ginzburg, CMAME 197, 2008 (= Wasserstein-1)"},
         {"kolmogorov_smirnov", "two-sample statistic sup |F_rec - F_sim|"}}},
@@ -369,7 +376,7 @@ void ReportWriter::end_run(const ReplaySummary& r) {
   }
   insert_object_figures(r);
   SQLite::Statement summary(db_, "INSERT INTO summaries VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-                                 "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                                 "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   int i = 1;
   summary.bind(i++, run_id_);
   summary.bind(i++, r.cycles);
@@ -399,6 +406,14 @@ void ReportWriter::end_run(const ReplaySummary& r) {
     summary.bind(i++, static_cast<std::int64_t>(counts[0]));
     summary.bind(i++, static_cast<std::int64_t>(counts[1]));
   }
+  if (r.latency_pairs > 0) {
+    summary.bind(i++, r.latency_difference_mean_s);
+  } else {
+    summary.bind(i++);
+  }
+  summary.bind(i++, r.latency_episodes);
+  summary.bind(i++, r.latency_unconfirmed_recorded);
+  summary.bind(i++, r.latency_unconfirmed_simulated);
   summary.exec();
   insert_cycle_.reset();
   insert_target_.reset();

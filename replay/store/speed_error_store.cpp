@@ -34,7 +34,7 @@ nlohmann::ordered_json bench_parameters_json(const BenchOptions& options) {
           {"noise_floor", "the reference with the second seed against the reference with the first seed"},
           {"gospa", {{"cutoff_m", options.replay.gospa.cutoff_m}, {"order_p", options.replay.gospa.order_p}, {"alpha", 2}}},
           {"association_gate_m", options.replay.association_gate_m},
-          {"merge_contour_margin_m", options.replay.merge_contour_margin_m},
+          {"merge_match_distance_m", options.replay.merge_match_distance_m},
           {"calibration", options.replay.import.calibration_dir.empty() ? nlohmann::ordered_json()
                                                                           : nlohmann::ordered_json(options.replay.import.calibration_dir)}};
 }

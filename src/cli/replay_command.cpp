@@ -107,6 +107,11 @@ nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, c
           {"latency_recorded_s", optional(s.latency_recorded_s)},
           {"latency_simulated_s", optional(s.latency_simulated_s)},
           {"latency_pairs", s.latency_pairs},
+          {"latency_difference_mean_s", s.latency_pairs > 0 ? nlohmann::ordered_json(s.latency_difference_mean_s)
+                                                             : nlohmann::ordered_json()},
+          {"latency_episodes", s.latency_episodes},
+          {"latency_unconfirmed_recorded", s.latency_unconfirmed_recorded},
+          {"latency_unconfirmed_simulated", s.latency_unconfirmed_simulated},
           {"residual_range_rms_m", s.residual_range_rms_m},
           {"residual_azimuth_rms_rad", s.residual_azimuth_rms_rad},
           {"residual_range_rate_rms_mps", s.residual_range_rate_rms_mps},

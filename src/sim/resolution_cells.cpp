@@ -13,8 +13,9 @@ void ResolutionCellBuffers::reserve(std::size_t echoes) {
 }
 
 void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitude, const Echoes& echoes,
-                           ResolutionCellBuffers& buffers, ResolutionCells& out) {
+                           ResolutionCellBuffers& buffers, ResolutionCells& out, std::vector<int>* cell_of_echo) {
   out.clear();
+  if (cell_of_echo != nullptr) cell_of_echo->assign(echoes.size(), -1);
   auto& by_amplitude = buffers.by_amplitude;
   auto& by_range = buffers.by_range;
   auto& members = buffers.members;
@@ -69,7 +70,7 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
     // Sums of A_n R_n and A_n v_n (amplitude times metres, times metres per second), eqs. (4)-(5).
     double amplitude_range_sum_m = 0.0, amplitude_rate_sum_mps = 0.0;
     for (const int r : members) {
-      auto& rank = by_amplitude[static_cast<std::size_t>(r)];
+      const auto& rank = by_amplitude[static_cast<std::size_t>(r)];
       const Echo& e = echoes[static_cast<std::size_t>(rank.echo)];
       c.amplitude_upper += e.amplitude;
       amplitude_range_sum_m += e.amplitude * e.range_m;
@@ -77,9 +78,14 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
       c.sum_pointer += e.sum_pointer;
       c.delta_pointer += e.delta_pointer;
       ++c.member_count;
+    }
+    const bool enters = c.amplitude_upper >= threshold_amplitude;  // paper III-C: else no entry for this cell
+    for (const int r : members) {
+      auto& rank = by_amplitude[static_cast<std::size_t>(r)];
+      if (cell_of_echo != nullptr && enters) (*cell_of_echo)[static_cast<std::size_t>(rank.echo)] = static_cast<int>(out.size());
       rank.echo = -1;
     }
-    if (c.amplitude_upper < threshold_amplitude) continue;  // paper III-C: no entry for this cell
+    if (!enters) continue;
     c.range_m = amplitude_range_sum_m / c.amplitude_upper;         // eqs. (4)-(5)
     c.range_rate_mps = amplitude_rate_sum_mps / c.amplitude_upper;
     out.push_back(c);

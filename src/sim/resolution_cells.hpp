@@ -32,8 +32,10 @@ struct ResolutionCellBuffers {
 // below `threshold_amplitude` yields no entry. Range and range rate are the amplitude-weighted
 // means, eqs. (4)-(5); the sum and delta pointers add up, strongest member first. Ties in
 // amplitude go to the lower ideal index. The echoes stay where they are: echoes[i] still belongs to
-// ideal target i afterwards.
+// ideal target i afterwards. With `cell_of_echo`, (*cell_of_echo)[i] is the index in `out` of the
+// cell echo i joined, or -1 when its cell yielded no entry (the harness's merge cells read it).
 void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitude, const Echoes& echoes,
-                           ResolutionCellBuffers& buffers, ResolutionCells& out);
+                           ResolutionCellBuffers& buffers, ResolutionCells& out,
+                           std::vector<int>* cell_of_echo = nullptr);
 
 }  // namespace rcsim

@@ -61,9 +61,9 @@ TEST(HtmlReportTables, EveryTextFromTheDatabaseIsEscaped) {
   EXPECT_NE(object_table(run).find("car&quot;1"), std::string::npos);
 }
 
-TEST(HtmlReportTables, LatencyRowsSayNeverWhereASideNeverReported) {
+TEST(HtmlReportTables, LatencyRowsSayCensoredWhereASideNeverConfirmed) {
   const std::string html = latency_table(hand_run());
-  EXPECT_NE(html.find(R"(<td class="num">1.160</td><td class="num">never</td>)"), std::string::npos) << html;
+  EXPECT_NE(html.find(R"(<td class="num">1.160</td><td class="num">never (censored)</td>)"), std::string::npos) << html;
   EXPECT_NE(html.find(R"(<td class="num">0.160</td><td class="num">-</td><td class="num">-</td>)"), std::string::npos);
   RunData none = hand_run();
   none.latencies.clear();

@@ -219,7 +219,7 @@ TEST(HtmlReportLarge, LongRunsAreThinnedAndTheFileStaysSmall) {
       state.reset();
     }
     db->exec("INSERT INTO summaries VALUES (1, 30000, 60000, 60000, 60000, 0.1, 0.1, 0.01, 0, 0, 0, 0, 0, NULL, NULL, 0, "
-             "0.05, 0, 0, 0, 1, 2, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL)");
+             "0.05, 0, 0, 0, 1, 2, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL)");
     transaction.commit();
   }
   HtmlReportOptions options;

@@ -156,7 +156,7 @@ void insert_minimal_run(SQLite::Database& db, int run_id) {
   cycle.exec();
   SQLite::Statement summary(db,
                             "INSERT INTO summaries VALUES (?, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, 0, "
-                            "0, 0, 0, 0, 1, 2, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL)");
+                            "0, 0, 0, 0, 1, 2, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL)");
   summary.bind(1, run_id);
   summary.exec();
 }

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 
@@ -152,6 +154,99 @@ TEST_F(ReplayRun, TargetsAreClassedAndObjectFiguresAgreeWithItself) {
   EXPECT_LE(offsets.getColumn(0).getDouble(), 0.5 * rec.objects[0].length_m + gate_m);
   EXPECT_LE(offsets.getColumn(1).getDouble(), 0.5 * rec.objects[0].width_m + gate_m);
   EXPECT_EQ(db->execAndGet("SELECT count(*) FROM targets WHERE origin = 'simulated' AND rcs_dbsm IS NOT NULL").getInt(), 0);
+}
+
+// Latency cases computed by hand on a model-made recording replayed with its own seed: both sides
+// confirm each car in the same cycle (difference 0). Then the recording is changed:
+//   - the recorded targets of the left car in the 5 cycles from its first report are removed: the
+//     recording confirms it exactly 5 cycles (0.2 s) later, the episode start does not move;
+//   - one stray recorded target on the right car's box a cycle before the episode's reports: no change;
+//   - every recorded target of one sensor removed: its episodes stay, censored, and counted.
+class LatencyByHand : public ReplayRun {
+ protected:
+  ReplaySummary replay_changed(const std::function<void(Recording&)>& change) {
+    Recording rec = base_;
+    change(rec);
+    DiscardingSink discard;
+    return replay_recording(rec, options_, discard);
+  }
+  void SetUp() override {
+    ReplayRun::SetUp();
+    base_ = write_and_read(testing::model_recording(testing::two_cars_scene(), 5), "latency");
+    options_.seed = 5;
+    options_.import.effects = {};
+  }
+  Recording base_;
+  ReplayOptions options_;
+};
+
+TEST_F(LatencyByHand, TheRecordingLateByFiveCyclesShowsExactlyThat) {
+  const ReplaySummary same = replay_changed([](Recording&) {});
+  // Each sensor confirms the car on its side, 0.2 s into the episode (4 hits, then 3 of 4); the
+  // other car is detectable by eq. (1) but never reported: censored on both sides.
+  ASSERT_EQ(same.latency_pairs, 2);
+  EXPECT_EQ(same.latency_episodes, 4);
+  EXPECT_NEAR(same.latency_difference_mean_s, 0.0, 1e-12);
+  EXPECT_NEAR(same.latency_recorded_s, 0.2, 1e-9);
+  // Sensor 0 (front_left) sees the left car (object 0) left of the right one: remove its five
+  // first reported cycles of the left car's targets: those with the larger azimuth in each cycle.
+  const ReplaySummary late = replay_changed([&](Recording& rec) {
+    int first = -1;
+    for (const RecordedTarget& t : rec.targets) {
+      if (t.sensor == 0) { first = t.cycle; break; }
+    }
+    std::erase_if(rec.targets, [&](const RecordedTarget& t) {
+      if (t.sensor != 0 || t.cycle >= first + 5) return false;
+      for (const RecordedTarget& u : rec.targets) {
+        if (u.sensor == 0 && u.cycle == t.cycle && u.azimuth_rad > t.azimuth_rad) return false;
+      }
+      return true;  // the leftmost target of the cycle: the left car's
+    });
+  });
+  ASSERT_EQ(late.latencies.size(), same.latencies.size());
+  for (std::size_t i = 0; i < late.latencies.size(); ++i) {
+    const LatencyRow &a = same.latencies[i], &b = late.latencies[i];
+    EXPECT_DOUBLE_EQ(b.detectable_from_s, a.detectable_from_s);  // the clock starts from the scene
+    EXPECT_DOUBLE_EQ(b.first_simulated_s, a.first_simulated_s);
+    const double shift_s = b.first_recorded_s - a.first_recorded_s;
+    if (a.sensor == 0 && a.object == 0) {
+      EXPECT_NEAR(shift_s, 5 * base_.cycle_time_s, 1e-9);
+    } else {
+      EXPECT_NEAR(shift_s, 0.0, 1e-9) << "sensor " << a.sensor << " object " << a.object;
+    }
+  }
+  EXPECT_NEAR(late.latency_difference_mean_s, -5 * base_.cycle_time_s / 2, 1e-9);
+}
+
+TEST_F(LatencyByHand, OneStrayTargetChangesNothingAndANeverReportedObjectIsCensored) {
+  const ReplaySummary same = replay_changed([](Recording&) {});
+  // A stray recorded target on sensor 0 in the cycle before anything is reported, 25 m ahead.
+  const ReplaySummary stray = replay_changed([](Recording& rec) {
+    RecordedTarget t;
+    t.sensor = 0;
+    t.cycle = 0;
+    t.t_s = rec.ego[0].t_s;
+    t.range_m = 20.0;
+    t.azimuth_rad = -0.55;  // the right car's box from the left sensor
+    rec.targets.insert(rec.targets.begin(), t);
+  });
+  ASSERT_EQ(stray.latencies.size(), same.latencies.size());
+  for (std::size_t i = 0; i < same.latencies.size(); ++i) {
+    EXPECT_DOUBLE_EQ(stray.latencies[i].first_recorded_s, same.latencies[i].first_recorded_s);
+  }
+  // Nothing recorded on sensor 1: its two episodes stay, censored on the recorded side; the pair of
+  // the right car is lost, the simulated figures do not move.
+  const ReplaySummary unseen = replay_changed([](Recording& rec) {
+    std::erase_if(rec.targets, [](const RecordedTarget& t) { return t.sensor == 1; });
+  });
+  EXPECT_EQ(unseen.latency_episodes, same.latency_episodes);
+  EXPECT_EQ(unseen.latency_unconfirmed_recorded, same.latency_unconfirmed_recorded + 1);
+  EXPECT_EQ(unseen.latency_unconfirmed_simulated, same.latency_unconfirmed_simulated);
+  EXPECT_DOUBLE_EQ(unseen.latency_simulated_s, same.latency_simulated_s);
+  EXPECT_EQ(unseen.latency_pairs, same.latency_pairs - 1);
+  int censored = 0;
+  for (const LatencyRow& r : unseen.latencies) censored += r.sensor == 1 && r.first_recorded_s < 0.0;
+  EXPECT_EQ(censored, 2);
 }
 
 }  // namespace

@@ -81,17 +81,31 @@ TEST(SyntheticRecordings, NoMergeArtefactsWhereNoTwoObjectsShareACell) {
 }
 
 TEST(SyntheticRecordings, ConfirmationLatencyIsFoundInBoth) {
-  // The model confirms on the 4th hit: 3 cycles of 40 ms after its first detection. The
-  // reference's tracker also needs 4 hits, but its first detection comes earlier or later than
-  // the model's (measured 0.0–0.54 s).
+  // Both sides are timed from when the geometry makes the object detectable. The model reports on
+  // its 4th hit (3 cycles of 40 ms) and the latency rule wants reports in 3 of 4 cycles (2 more):
+  // 0.20 s where the model detects from the episode's start. The reference's own tracker also
+  // needs 4 hits, but its detection starts earlier or later than eq. (1) says.
   for (const char* name : {"front_approach", "perpendicular_crossing", "close_front", "standstill_1m"}) {
     NullSink sink;
     const ReplaySummary s = replay(name, sink);
     ASSERT_GT(s.latency_pairs, 0) << name;
-    EXPECT_NEAR(s.latency_simulated_s, 0.12, 0.03) << name;
+    EXPECT_NEAR(s.latency_simulated_s, 0.20, 1e-9) << name;
     EXPECT_GE(s.latency_recorded_s, 0.0) << name;
     EXPECT_LT(s.latency_recorded_s, 1.0) << name;
   }
+}
+
+TEST(SyntheticRecordings, OnTheCornerApproachTheModelIsLate) {
+  // Paper Fig. 15: the parked car's front-left corner (ERCS 1) faces the sensors from 25 m, inside
+  // eq. (1)'s 27.3 m, so it is detectable from the first cycle. The reference reports it within
+  // 0.4 s; the model, whose antenna pattern at 30 deg off boresight keeps the corner's echo 3 dB
+  // under the threshold, only near 2 s: about 1.7 s late.
+  NullSink sink;
+  const ReplaySummary s = replay("corner_approach", sink);
+  ASSERT_EQ(s.latency_pairs, 2);
+  for (const LatencyRow& r : s.latencies) EXPECT_LE(r.detectable_from_s, 0.1);
+  EXPECT_LT(s.latency_recorded_s, 0.5);
+  EXPECT_NEAR(s.latency_difference_mean_s, 1.74, 0.2);
 }
 
 // The calibration campaign (recordings_synthetic/campaign/): other situations than the nine, and a
