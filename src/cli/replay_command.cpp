@@ -41,7 +41,8 @@ std::string percent_of(long long part, long long whole) {
   return whole > 0 ? fmt::format("{:.1f} %", 100.0 * static_cast<double>(part) / static_cast<double>(whole)) : "-";
 }
 
-// The figures that tell the annotated objects from the unmodelled world (docs/metrics.md).
+// The figures that tell the annotated objects from the unmodelled world, and the latency and
+// merge-artefact figures judged against the scene geometry (docs/metrics.md).
 void print_class_figures(const replay::ReplaySummary& s, std::size_t sensors) {
   long long in_view = 0, detected_recorded = 0, detected_simulated = 0;
   for (const auto& o : s.objects) {
@@ -61,6 +62,11 @@ void print_class_figures(const replay::ReplaySummary& s, std::size_t sensors) {
     distances += fmt::format(", {} W1 {:.3g} {} KS {:.3f}", std::string_view(q).substr(11), d->distance.wasserstein1,
                              d->unit, d->distance.kolmogorov_smirnov);
   }
+  std::cout << fmt::format("  latency: simulated - recorded {} over {} episodes both confirmed; never confirmed {} / {} of {} "
+                           "episodes; merge artefacts matched by position {} of {}\n",
+                           s.latency_pairs > 0 ? fmt::format("{:+.3f} s", s.latency_difference_mean_s) : std::string("-"),
+                           s.latency_pairs, s.latency_unconfirmed_recorded, s.latency_unconfirmed_simulated,
+                           s.latency_episodes, s.merge_artefacts_matched, s.merge_artefacts_recorded);
   std::cout << fmt::format("  stationary background: {} / {} targets ({:.2f} / {:.2f} per sensor cycle){}; other: {} / {}\n",
                            s.classes.background[0], s.classes.background[1],
                            static_cast<double>(s.classes.background[0]) / sensor_cycles,
