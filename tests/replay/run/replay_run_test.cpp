@@ -158,6 +158,7 @@ TEST_F(ReplayRun, TargetsAreClassedAndObjectFiguresAgreeWithItself) {
 
 // Latency cases computed by hand on a model-made recording replayed with its own seed: both sides
 // confirm each car in the same cycle (difference 0). Then the recording is changed:
+//   - the left car reported by the recording 3 cycles before the model: the model 3 cycles late;
 //   - the recorded targets of the left car in the 5 cycles from its first report are removed: the
 //     recording confirms it exactly 5 cycles (0.2 s) later, the episode start does not move;
 //   - one stray recorded target on the right car's box a cycle before the episode's reports: no change;
@@ -216,6 +217,33 @@ TEST_F(LatencyByHand, TheRecordingLateByFiveCyclesShowsExactlyThat) {
     }
   }
   EXPECT_NEAR(late.latency_difference_mean_s, -5 * base_.cycle_time_s / 2, 1e-9);
+}
+
+TEST_F(LatencyByHand, TheModelLateByThreeCyclesShowsExactlyThat) {
+  // The recording reports the left car on sensor 0 three cycles before the model does (copies of
+  // its first reported target, the car moving 0.16 m per cycle): the model is 3 cycles late.
+  const ReplaySummary same = replay_changed([](Recording&) {});
+  const ReplaySummary early = replay_changed([](Recording& rec) {
+    const auto first = std::find_if(rec.targets.begin(), rec.targets.end(), [](const RecordedTarget& t) { return t.sensor == 0; });
+    ASSERT_NE(first, rec.targets.end());
+    ASSERT_GE(first->cycle, 3);
+    std::vector<RecordedTarget> added;
+    for (int k = first->cycle - 3; k < first->cycle; ++k) {
+      RecordedTarget t = *first;
+      t.cycle = k;
+      t.t_s = rec.ego[static_cast<std::size_t>(k)].t_s;
+      added.push_back(t);
+    }
+    rec.targets.insert(rec.targets.begin(), added.begin(), added.end());
+    std::stable_sort(rec.targets.begin(), rec.targets.end(), [](const auto& a, const auto& b) { return a.cycle < b.cycle; });
+  });
+  for (std::size_t i = 0; i < same.latencies.size(); ++i) {
+    const LatencyRow &a = same.latencies[i], &b = early.latencies[i];
+    EXPECT_DOUBLE_EQ(b.detectable_from_s, a.detectable_from_s);
+    const double shift_s = b.first_recorded_s - a.first_recorded_s;
+    EXPECT_NEAR(shift_s, a.sensor == 0 && a.object == 0 ? -3 * base_.cycle_time_s : 0.0, 1e-9);
+  }
+  EXPECT_NEAR(early.latency_difference_mean_s, 3 * base_.cycle_time_s / 2, 1e-9);  // one of two pairs
 }
 
 TEST_F(LatencyByHand, OneStrayTargetChangesNothingAndANeverReportedObjectIsCensored) {
