@@ -63,7 +63,9 @@ std::string summary_table(const RunData& run) {
   out += kv("residual_amplitude_mean", "residual mean, amplitude", num(s.residual_amplitude_mean_db, 2), "dB");
   out += kv("merge_recorded", "merge artefacts recorded", std::to_string(s.merge_recorded), "targets");
   out += kv("merge_simulated", "merge artefacts simulated", std::to_string(s.merge_simulated), "targets");
-  out += kv("merge_matched", "merge artefacts matched", std::to_string(s.merge_matched), "in both, per pair and cycle");
+  out += kv("merge_matched", "merge artefacts matched", std::to_string(s.merge_matched),
+            s.classes ? "recorded ones with a simulated one of the same pair and cycle within the match distance"
+                      : "in both, per pair and cycle (counted, before schema v3)");
   if (s.classes) {  // schema v3: each side over the episodes it confirmed; the paired difference
     const RunSummary::Classes& k = *s.classes;
     out += kv("latency_recorded", "confirmation latency recorded, mean", opt(s.latency_recorded_s, 3, "-"),
