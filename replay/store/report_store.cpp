@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <SQLiteCpp/VariadicBind.h>
 #include <filesystem>
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -316,27 +317,16 @@ void ReportWriter::add_cycle(const CycleComparison& c) {
 void ReportWriter::insert_object_figures(const ReplaySummary& r) {
   SQLite::Statement object(db_, "INSERT INTO object_figures VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
   for (const ObjectFigureRow& row : r.objects) {
-    object.bind(1, run_id_);
-    object.bind(2, row.sensor);
-    object.bind(3, row.object);
-    object.bind(4, row.cycles_in_view);
-    object.bind(5, row.cycles_detected_recorded);
-    object.bind(6, row.cycles_detected_simulated);
-    object.bind(7, static_cast<std::int64_t>(row.targets_recorded));
-    object.bind(8, static_cast<std::int64_t>(row.targets_simulated));
+    SQLite::bind(object, run_id_, row.sensor, row.object, row.cycles_in_view, row.cycles_detected_recorded,
+                 row.cycles_detected_simulated, static_cast<std::int64_t>(row.targets_recorded),
+                 static_cast<std::int64_t>(row.targets_simulated));
     object.exec();
     object.reset();
   }
   SQLite::Statement range(db_, "INSERT INTO object_ranges VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
   for (const ObjectRangeRow& row : r.object_ranges) {
-    range.bind(1, run_id_);
-    range.bind(2, row.sensor);
-    range.bind(3, row.object);
-    range.bind(4, row.range_from_m);
-    range.bind(5, row.range_to_m);
-    range.bind(6, row.cycles_in_view);
-    range.bind(7, row.cycles_detected_recorded);
-    range.bind(8, row.cycles_detected_simulated);
+    SQLite::bind(range, run_id_, row.sensor, row.object, row.range_from_m, row.range_to_m, row.cycles_in_view,
+                 row.cycles_detected_recorded, row.cycles_detected_simulated);
     range.exec();
     range.reset();
   }
