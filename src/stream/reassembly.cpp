@@ -96,7 +96,10 @@ Reassembler::Result Reassembler::assemble(Partial& partial) {
       items = fragment.message.targets.size();
       if (f == 0) {
         list = std::move(fragment.message);
-        list.targets.reserve(fragment_total);
+        // The claimed total is not trusted beyond what the fragments can hold (a hostile header may
+        // claim 2^32 targets): at most a full datagram of targets per fragment.
+        const std::size_t most = partial.fragments.size() * (kMaxDatagramBytes / kTargetBytes);
+        list.targets.reserve(std::min<std::size_t>(fragment_total, most));
       } else {
         const TargetListMessage& m = fragment.message;
         agrees = m.cycle == list.cycle && m.sensor_index == list.sensor_index && m.level == list.level &&

@@ -172,6 +172,22 @@ TEST(WireReassembly, FragmentsThatDisagreeMakeTheMessageMalformed) {
   EXPECT_EQ(reassembler.add(other, c[1].payload).status, Reassembler::Status::malformed);
 }
 
+// Issue 21: a target-list header claiming 0xFFFFFFFF targets made the reassembly reserve room for
+// them (std::bad_alloc ended the capture). The claim is not trusted: the message is malformed.
+TEST(WireReassembly, AHugeClaimedTotalIsMalformedNotAnAllocation) {
+  for (const std::size_t n : {std::size_t{1}, std::size_t{200}}) {  // one fragment, and several
+    auto d = datagrams_of(many_targets(n, 1), 0, 9);
+    for (auto& datagram : d) {
+      for (int b = 8; b < 12; ++b) datagram.payload[static_cast<std::size_t>(b)] = 0xFF;  // total_count
+    }
+    Reassembler reassembler;
+    Reassembler::Result last;
+    for (const auto& datagram : d) last = reassembler.add(datagram.header, datagram.payload);
+    EXPECT_EQ(last.status, Reassembler::Status::malformed) << n;
+    EXPECT_FALSE(last.message);
+  }
+}
+
 TEST(WireReassembly, GroundTruthFragmentsReassemble) {
   GroundTruthMessage m;
   m.cycle = 3;
