@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <numbers>
 #include <unistd.h>
 
 #include "common/input_error.hpp"
@@ -70,10 +71,27 @@ void read_header(Recording& rec, const fs::path& path) {
   }
 }
 
+// Counts, over the row pairs where the vehicle turns (|yaw rate| >= 0.05 rad/s), those whose yaw
+// changed 20 to 100 times faster than the yaw rate says (180/π = 57.3: a yaw in degrees beside a
+// yaw rate in rad/s). Mostly so, once 5 such pairs are in: the yaw is in degrees.
+struct DegreeYawCheck {
+  int turning = 0, degree_like = 0;
+  bool add(const EgoSample& previous, const EgoSample& row) {
+    const double dt_s = row.t_s - previous.t_s;
+    const double rate_radps = 0.5 * (row.yaw_rate_radps + previous.yaw_rate_radps);
+    if (dt_s > 1.0 || std::abs(rate_radps) < 0.05) return false;
+    ++turning;
+    const double ratio = (row.yaw_rad - previous.yaw_rad) / dt_s / rate_radps;
+    degree_like += ratio > 20.0 && ratio < 100.0;
+    return turning >= 5 && 2 * degree_like > turning;
+  }
+};
+
 // Rows of an ego log in ego.csv's columns, times increasing; with cycle_time_s > 0, one row per
 // sensor cycle (no gap beyond 1.5 cycles).
 std::vector<EgoSample> read_ego_rows(const fs::path& path, double cycle_time_s) {
   std::vector<EgoSample> ego;
+  DegreeYawCheck degree_check;
   CsvReader csv(path.string(), {"t_s", "x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps"});
   const int t = csv.column("t_s"), x = csv.column("x_m"), y = csv.column("y_m"), yaw = csv.column("yaw_rad"),
             v = csv.column("speed_mps"), w = csv.column("yaw_rate_radps");
@@ -87,6 +105,12 @@ std::vector<EgoSample> read_ego_rows(const fs::path& path, double cycle_time_s) 
       csv.fail(t, fmt::format("gap of {:.6f} s after the previous row (cycle time {} s): the ego log must have "
                               "one row per sensor cycle",
                               s.t_s - ego.back().t_s, cycle_time_s));
+    }
+    if (ego.empty() && std::abs(s.yaw_rad) > 2.0 * std::numbers::pi) {
+      csv.fail(yaw, "yaw beyond ±2π in the first row: is it in degrees?");
+    }
+    if (!ego.empty() && degree_check.add(ego.back(), s)) {
+      csv.fail(yaw, "the yaw changes about 57 times faster than yaw_rate_radps says: is it in degrees?");
     }
     ego.push_back(s);
   }

@@ -1,5 +1,8 @@
 #include "io/recording.hpp"
 
+#include "common/angles.hpp"
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -134,6 +137,27 @@ TEST_F(RecordingFiles, RefusesBadEgoLogs) {
   expect_refused("ego.csv", "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,0,0,0,0\n0.04,0,0,0\n", "line 3");
   expect_refused("ego.csv", "t_s,x_m,yaw_rad,speed_mps,yaw_rate_radps\n", "'y_m'");
   expect_refused("ego.csv", "", "empty file");
+  // Issue 21: a yaw in degrees. Heading 90 (east) in the first row; or a turn at 0.25 rad/s whose
+  // yaw grows 0.573 per 40 ms cycle (degrees), 57 times what the yaw rate says.
+  expect_refused("ego.csv", "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,0,90,10,0\n", "degrees");
+  std::string turning = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
+  for (int k = 0; k < 8; ++k) turning += fmt::format("{:.2f},0,0,{:.4f},10,0.25\n", 0.04 * k, 0.573 * k);
+  expect_refused("ego.csv", turning, "column 'yaw_rad'");
+  expect_refused("ego.csv", turning, "degrees");
+}
+
+TEST_F(RecordingFiles, AYawInRadiansThatWrapsOrTurnsIsAccepted) {
+  // The same turn in radians (0.01 rad per cycle), and a yaw that wraps from +pi to -pi.
+  std::string text = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
+  for (int k = 0; k < 8; ++k) text += fmt::format("{:.2f},{},0,{:.6f},10,0.25\n", 0.04 * k, 0.4 * k, 3.10 + 0.01 * k);
+  const fs::path dir = dir_ / "ok";
+  rec_.ego.clear();
+  for (int k = 0; k < 8; ++k) rec_.ego.push_back({0.04 * k, 0.4 * k, 0.0, wrap_angle_rad(3.10 + 0.01 * k), 10.0, 0.25});
+  rec_.targets.clear();
+  write_recording(dir, rec_);
+  EXPECT_EQ(read_recording(dir).ego.size(), 8u);
+  std::ofstream(dir / "ego.csv", std::ios::trunc) << text;
+  EXPECT_EQ(read_recording(dir).ego.size(), 8u);
 }
 
 TEST_F(RecordingFiles, RefusesBadTargetsAndObjects) {
