@@ -147,6 +147,16 @@ void read_boxes(Recording& rec, const fs::path& path) {
   }
 }
 
+// Limits on a target's numbers (schemas/recording.md): beyond them a value is a unit or format
+// error, not a measurement (a range of 1e308 would be averaged into GOSPA).
+constexpr double kMaxRange_m = 10'000.0, kMaxRangeRate_mps = 1'000.0, kMaxLevel_db = 1'000.0;
+
+double number_within(CsvReader& csv, int column, double limit, const char* unit) {
+  const double value = csv.number(column);
+  if (std::abs(value) > limit) csv.fail(column, fmt::format("|{}| exceeds the limit of {} {}", value, limit, unit));
+  return value;
+}
+
 void read_targets(Recording& rec, const fs::path& path) {
   CsvReader csv(path.string(),
                 {"t_s", "cycle", "sensor", "range_m", "azimuth_rad", "range_rate_mps", "amplitude_db"});
@@ -177,14 +187,14 @@ void read_targets(Recording& rec, const fs::path& path) {
       if (track_id < 0 || track_id > 1'000'000'000) csv.fail(id, "track id out of range");
       target.id = static_cast<int>(track_id);
     }
-    target.range_m = csv.number(r);
+    target.range_m = number_within(csv, r, kMaxRange_m, "m");
     if (target.range_m < 0.0) csv.fail(r, "range must not be negative");
     target.azimuth_rad = csv.number(az);
     if (std::abs(target.azimuth_rad) > 3.15) csv.fail(az, "azimuth beyond ±π: is it in degrees?");
-    target.range_rate_mps = csv.number(rr);
-    target.amplitude_db = csv.number(amp);
-    if (rcs >= 0) target.rcs_dbsm = csv.number(rcs);
-    if (snr >= 0) target.snr_db = csv.number(snr);
+    target.range_rate_mps = number_within(csv, rr, kMaxRangeRate_mps, "m/s");
+    target.amplitude_db = number_within(csv, amp, kMaxLevel_db, "dB");
+    if (rcs >= 0) target.rcs_dbsm = number_within(csv, rcs, kMaxLevel_db, "dBsm");
+    if (snr >= 0) target.snr_db = number_within(csv, snr, kMaxLevel_db, "dB");
     if (el >= 0) {
       target.elevation_rad = csv.number(el);
       if (std::abs(target.elevation_rad) > 1.58) csv.fail(el, "elevation beyond ±π/2: is it in degrees?");

@@ -167,6 +167,10 @@ TEST_F(RecordingFiles, RefusesBadTargetsAndObjects) {
   expect_refused("targets.csv", header + "0.000000,7,front_left,10,0,0,10\n", "outside");
   expect_refused("targets.csv", header + "0.000000,0,front_left,10,20.0,0,10\n", "degrees");
   expect_refused("targets.csv", header + "0.000000,0,front_left,10m,0,0,10\n", "not a number");
+  // Issue 21: numbers beyond the stated limits are refused, naming the column.
+  expect_refused("targets.csv", header + "0.000000,0,front_left,1e308,0,0,10\n", "column 'range_m'");
+  expect_refused("targets.csv", header + "0.000000,0,front_left,10,0,-5000,10\n", "column 'range_rate_mps'");
+  expect_refused("targets.csv", header + "0.000000,0,front_left,10,0,0,1e9\n", "limit of 1000 dB");
   expect_refused("objects.csv", "t_s,object,x_m,y_m,yaw_rad,speed_mps\n0,truck9,1,1,0,0\n", "'truck9'");
   expect_refused("objects.csv", "t_s,object,x_m,y_m,yaw_rad,speed_mps\n", "has no rows");
   expect_refused("recording.json", R"({"format": "rcsim-recording", "version": 9})", "version");
