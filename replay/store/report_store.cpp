@@ -332,7 +332,7 @@ void ReportWriter::insert_object_figures(const ReplaySummary& r) {
   }
 }
 
-void ReportWriter::end_run(const ReplaySummary& r) {
+void ReportWriter::insert_latencies(const ReplaySummary& r) {
   SQLite::Statement latency(db_, "INSERT INTO latencies VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
   for (const LatencyRow& row : r.latencies) {
     latency.bind(1, run_id_);
@@ -347,6 +347,9 @@ void ReportWriter::end_run(const ReplaySummary& r) {
     latency.exec();
     latency.reset();
   }
+}
+
+void ReportWriter::insert_distances(const ReplaySummary& r) {
   SQLite::Statement distance(db_, "INSERT INTO distribution_distances VALUES (?, ?, ?, ?, ?, ?, ?)");
   for (const QuantityDistance& d : r.distances) {
     distance.bind(1, run_id_);
@@ -364,7 +367,9 @@ void ReportWriter::end_run(const ReplaySummary& r) {
     distance.exec();
     distance.reset();
   }
-  insert_object_figures(r);
+}
+
+void ReportWriter::insert_summary(const ReplaySummary& r) {
   SQLite::Statement summary(db_, "INSERT INTO summaries VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
                                  "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   int i = 1;
@@ -405,6 +410,14 @@ void ReportWriter::end_run(const ReplaySummary& r) {
   summary.bind(i++, r.latency_unconfirmed_recorded);
   summary.bind(i++, r.latency_unconfirmed_simulated);
   summary.exec();
+}
+
+// The run's closing tables, then COMMIT: the whole run or nothing.
+void ReportWriter::end_run(const ReplaySummary& r) {
+  insert_latencies(r);
+  insert_distances(r);
+  insert_object_figures(r);
+  insert_summary(r);
   insert_cycle_.reset();
   insert_target_.reset();
   insert_object_state_.reset();

@@ -38,7 +38,10 @@ class ReportWriter final : public ReplaySink {
 
  private:
   void insert_targets(const CycleComparison& cycle, const char* origin, const std::vector<ComparedTarget>& list);
+  void insert_latencies(const ReplaySummary& summary);
+  void insert_distances(const ReplaySummary& summary);
   void insert_object_figures(const ReplaySummary& summary);
+  void insert_summary(const ReplaySummary& summary);
 
   SQLite::Database& db_;
   std::optional<SQLite::Transaction> transaction_;
