@@ -49,7 +49,8 @@ void SceneGeometry::find_merge_cells(std::size_t sensor) {
   form_resolution_cells(model.mount.config.resolution, model.threshold_amplitude, state.echoes, buffers_, cells_,
                         &cell_of_echo_);
   // (cell, object, azimuth) of every echo in a cell, grouped by cell then object.
-  std::vector<std::tuple<int, int, double>> members;
+  std::vector<std::tuple<int, int, double>>& members = members_;  // reused: no allocation per cycle
+  members.clear();
   for (std::size_t i = 0; i < state.echoes.size(); ++i) {
     const IdealTarget& t = state.ideal[static_cast<std::size_t>(state.echoes[i].ideal_index)];
     if (cell_of_echo_[i] >= 0 && t.object_index >= 0) members.emplace_back(cell_of_echo_[i], t.object_index, t.azimuth_rad);
@@ -59,7 +60,8 @@ void SceneGeometry::find_merge_cells(std::size_t sensor) {
     std::size_t end = begin;
     while (end < members.size() && std::get<0>(members[end]) == std::get<0>(members[begin])) ++end;
     const ResolutionCellSum& cell = cells_[static_cast<std::size_t>(std::get<0>(members[begin]))];
-    std::vector<int> objects;  // distinct, ascending (members are sorted by object within a cell)
+    std::vector<int>& objects = cell_objects_;  // distinct, ascending (members are sorted by object within a cell)
+    objects.clear();
     for (std::size_t k = begin; k < end; ++k) {
       if (objects.empty() || objects.back() != std::get<1>(members[k])) objects.push_back(std::get<1>(members[k]));
     }

@@ -7,6 +7,7 @@
 // cell (the sensor's merging rule over the noise-free echoes, eqs. (1)-(6)). Latency
 // episodes start from the first, merge artefacts are judged against the second, for the recorded
 // and the simulated target lists alike (docs/metrics.md).
+#include <tuple>
 #include <vector>
 
 #include "metrics/merge_artefacts.hpp"
@@ -34,6 +35,8 @@ class SceneGeometry {
   ResolutionCellBuffers buffers_;
   ResolutionCells cells_;
   std::vector<int> cell_of_echo_;
+  std::vector<std::tuple<int, int, double>> members_;  // (cell, object, azimuth) of this sensor's echoes in cells
+  std::vector<int> cell_objects_;                      // the distinct objects of one cell
   std::vector<std::vector<metrics::MergeCell>> merge_cells_;  // per sensor, this cycle
 };
 
