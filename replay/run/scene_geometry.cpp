@@ -46,7 +46,7 @@ void SceneGeometry::find_merge_cells(std::size_t sensor) {
   const SensorModel& model = simulation_.sensor_model(sensor);
   std::vector<metrics::MergeCell>& out = merge_cells_[sensor];
   out.clear();
-  form_resolution_cells(model.mount.config.resolution, model.threshold_amplitude, state.echoes, buffers_, cells_,
+  form_resolution_cells(model.mount.config.resolution, model.cell_gate_amplitude, state.echoes, buffers_, cells_,
                         &cell_of_echo_);
   // (cell, object, azimuth) of every echo in a cell, grouped by cell then object.
   std::vector<std::tuple<int, int, double>>& members = members_;  // reused: no allocation per cycle

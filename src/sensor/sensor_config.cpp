@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "common/angles.hpp"
@@ -30,11 +31,56 @@ int positive_int(const JsonField& f, std::string_view key) {
   return static_cast<int>(x);
 }
 
+// Amplitudes and levels in dB beyond this are no sensor's (schemas/sensor-config.md).
+constexpr double kMaxLevelMagnitudeDb = 1000.0;
+
+double level_db(const JsonField& f, std::string_view key) {
+  const double x = f.number(key);
+  if (std::abs(x) > kMaxLevelMagnitudeDb) f.fail(key, fmt::format("must be within +-{} dB, got {}", kMaxLevelMagnitudeDb, x));
+  return x;
+}
+
+AmplitudeLaw parse_amplitude_law(const JsonField& amp) {
+  AmplitudeLaw law;
+  const std::string kind = amp.has("law") ? amp.string("law") : "paper_eq1";
+  if (kind == "paper_eq1") {
+    amp.expect_only({"law", "reference_level_db", "reference_slope_db_per_m", "detection_threshold_db"});
+    law.kind = AmplitudeLawKind::paper_eq1;
+    law.reference_level_db = level_db(amp, "reference_level_db");
+    law.reference_slope_db_per_m = non_negative(amp, "reference_slope_db_per_m");
+  } else if (kind == "radar_equation") {
+    amp.expect_only({"law", "snr_at_1m_for_1m2_db", "reference_rcs_dbsm", "detection_threshold_db"});
+    law.kind = AmplitudeLawKind::radar_equation;
+    law.snr_at_1m_for_1m2_db = level_db(amp, "snr_at_1m_for_1m2_db");
+    law.reference_rcs_dbsm = level_db(amp, "reference_rcs_dbsm");
+  } else {
+    amp.fail("law", fmt::format("unknown amplitude law \"{}\" (known: paper_eq1, radar_equation)", kind));
+  }
+  law.detection_threshold_db = level_db(amp, "detection_threshold_db");
+  return law;
+}
+
+DetectionModel parse_detection_model(const JsonField& detection) {
+  detection.expect_only({"fluctuation"});
+  DetectionModel model;
+  const std::string name = detection.string("fluctuation");
+  if (name == "none" || name == "swerling0") {
+    model.fluctuation = Fluctuation::none;
+  } else if (name == "swerling1") {
+    model.fluctuation = Fluctuation::swerling1;
+  } else if (name == "swerling3") {
+    model.fluctuation = Fluctuation::swerling3;
+  } else {
+    detection.fail("fluctuation", fmt::format("unknown fluctuation \"{}\" (known: none, swerling0, swerling1, swerling3)", name));
+  }
+  return model;
+}
+
 }  // namespace
 
 SensorConfig parse_sensor_config(const JsonField& root) {
   root.expect_only({"format", "version", "name", "description", "carrier_frequency_hz", "cycle_time_s",
-                    "field_of_view", "amplitude", "antenna", "resolution", "monopulse", "measurement_noise",
+                    "field_of_view", "amplitude", "detection", "antenna", "resolution", "monopulse", "measurement_noise",
                     "tracking", "clutter", "multibounce"});
   root.expect_format("rcsim-sensor", 1);
   SensorConfig c;
@@ -52,11 +98,8 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   c.fov.max_range_m = positive(fov, "max_range_m");
   if (c.fov.max_range_m <= c.fov.min_range_m) fov.fail("max_range_m", "must exceed min_range_m");
 
-  const auto amp = root.member("amplitude");
-  amp.expect_only({"reference_level_db", "reference_slope_db_per_m", "detection_threshold_db"});
-  c.amplitude.reference_level_db = amp.number("reference_level_db");
-  c.amplitude.reference_slope_db_per_m = non_negative(amp, "reference_slope_db_per_m");
-  c.amplitude.detection_threshold_db = amp.number("detection_threshold_db");
+  c.amplitude = parse_amplitude_law(root.member("amplitude"));
+  if (const auto detection = root.optional_member("detection")) c.detection = parse_detection_model(*detection);
 
   const auto antenna = root.member("antenna");
   antenna.expect_only({"dipole_length_wavelengths", "element_spacing_wavelengths", "amplitude_pattern_exponent"});

@@ -13,10 +13,33 @@ struct FieldOfView {
   double max_range_m = 0.0;
 };
 
+// How the range-dependent amplitude of the reference reflector falls with range.
+enum class AmplitudeLawKind {
+  paper_eq1,       // paper eq. (1): a level in dB falling linearly with range
+  radar_equation,  // received power ~ sigma G(phi)^2 / R^4: the SNR of the reference reflector's RCS
+};
+
 struct AmplitudeLaw {
+  AmplitudeLawKind kind = AmplitudeLawKind::paper_eq1;
   double reference_level_db = 26.5;        // paper eq. (1): level at R = 0
   double reference_slope_db_per_m = 0.75;  // paper eq. (1): fall per metre
-  double detection_threshold_db = 6.0;     // paper III-B
+  // Radar equation: SNR = snr_at_1m_for_1m2_db + sigma_dbsm - 40 log10(R / 1 m) on boresight, where
+  // a reflector of ERCS e stands for sigma_dbsm = reference_rcs_dbsm + 20 log10(e) (docs/amplitude.md).
+  double snr_at_1m_for_1m2_db = 0.0;
+  double reference_rcs_dbsm = 0.0;
+  double detection_threshold_db = 6.0;  // paper III-B
+};
+
+// Target fluctuation (Swerling) of a resolution cell's amplitude from cycle to cycle; with the
+// pointer noise of eq. (8) it makes the threshold of III-B a detection-probability curve.
+enum class Fluctuation {
+  none,       // Swerling 0: a steady amplitude (with pointer noise: Rice; without: a hard threshold)
+  swerling1,  // power exponentially distributed (chi-square, 2 degrees of freedom), new each cycle
+  swerling3,  // power chi-square with 4 degrees of freedom (one dominant scatterer), new each cycle
+};
+
+struct DetectionModel {
+  Fluctuation fluctuation = Fluctuation::none;
 };
 
 struct AntennaGeometry {
@@ -73,6 +96,7 @@ struct SensorConfig {
   double cycle_time_s = 0.04;
   FieldOfView fov;
   AmplitudeLaw amplitude;
+  DetectionModel detection;
   AntennaGeometry antenna;
   ResolutionCell resolution;
   double pointer_noise_sigma = 0.1;  // std. dev. of the complex pointer noise, eq. (8)

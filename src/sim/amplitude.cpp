@@ -1,17 +1,46 @@
 #include "sim/amplitude.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 namespace rcsim {
 
+namespace {
+// The radar equation's 1/R^4 is taken no closer than this (a reflector at the antenna).
+constexpr double kRadarEquationMinRangeM = 1e-3;
+}  // namespace
+
+double reference_range_level_db(const AmplitudeLaw& law, double range_m) {
+  switch (law.kind) {
+    case AmplitudeLawKind::paper_eq1:
+      return law.reference_level_db - law.reference_slope_db_per_m * range_m;  // eq. (1)
+    case AmplitudeLawKind::radar_equation:  // P_r ~ sigma G^2 / R^4, as SNR in dB
+      return law.snr_at_1m_for_1m2_db + law.reference_rcs_dbsm -
+             4.0 * power_to_db(std::max(range_m, kRadarEquationMinRangeM));  // 40 log10 R
+  }
+  return 0.0;
+}
+
 double reference_range_amplitude(const AmplitudeLaw& law, double range_m) {
-  return db_to_amplitude(law.reference_level_db - law.reference_slope_db_per_m * range_m);  // eq. (1)
+  return db_to_amplitude(reference_range_level_db(law, range_m));
+}
+
+bool has_detection_range_bound(const AmplitudeLaw& law) {
+  return law.kind == AmplitudeLawKind::radar_equation || law.reference_slope_db_per_m > 0.0;
 }
 
 double detection_range_bound_m(const AmplitudeLaw& law, double ercs, double headroom_db) {
-  return (law.reference_level_db - law.detection_threshold_db + headroom_db + amplitude_to_db(ercs)) /
-         law.reference_slope_db_per_m;  // eq. (1)
+  switch (law.kind) {
+    case AmplitudeLawKind::paper_eq1:
+      return (law.reference_level_db - law.detection_threshold_db + headroom_db + amplitude_to_db(ercs)) /
+             law.reference_slope_db_per_m;  // eq. (1)
+    case AmplitudeLawKind::radar_equation:
+      // R^4 = 10^((level at 1 m + 20 log10 ERCS - threshold + headroom) / 10)
+      return std::sqrt(std::sqrt(db_to_power(reference_range_level_db(law, 1.0) - law.detection_threshold_db +
+                                             headroom_db + amplitude_to_db(ercs))));
+  }
+  return 0.0;
 }
 
 void apply_detection_threshold(double threshold_db, Detections& detections) {

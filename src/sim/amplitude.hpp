@@ -8,13 +8,20 @@
 namespace rcsim {
 
 
-// Paper eq. (1): the range-dependent amplitude of the reference reflector, linear (A0 = 1):
-// L{A_ref^R(R)} = (26.5 - 0.75 R/m) dB with the srr24 values.
+// The range-dependent level of the reference reflector (ERCS 1) on boresight, in dB:
+// paper eq. (1), L{A_ref^R(R)} = (26.5 - 0.75 R/m) dB with the srr24 values; or the radar
+// equation, P ~ sigma / R^4, as an SNR: K + sigma_ref - 40 log10(R / 1 m) (docs/amplitude.md).
+double reference_range_level_db(const AmplitudeLaw& law, double range_m);
+// The same as a linear amplitude (A0 = 1), A_ref^R(R) of eqs. (2), (8).
 double reference_range_amplitude(const AmplitudeLaw& law, double range_m);
 
-// Paper eq. (1) solved for the range: beyond it an echo of this ERCS on boresight stays below the
-// detection threshold, L0 - s R + 20 log10(ERCS) = threshold - headroom_db. Not clamped: negative
-// when never detectable; needs s > 0. `headroom_db` > 0 moves the bound out (a safety margin).
+// Whether the law falls without bound with range (eq. (1) with a slope > 0, or the radar
+// equation), so that an echo of finite ERCS has a range beyond which it stays below threshold.
+bool has_detection_range_bound(const AmplitudeLaw& law);
+// The law solved for the range: beyond it an echo of this ERCS on boresight stays below the
+// detection threshold, level(R) + 20 log10(ERCS) = threshold - headroom_db. For eq. (1) not
+// clamped: negative when never detectable; needs has_detection_range_bound. `headroom_db` > 0
+// moves the bound out (a safety margin).
 double detection_range_bound_m(const AmplitudeLaw& law, double ercs, double headroom_db = 0.0);
 
 // The III-B detection decision on a cell's resulting amplitude: keeps detections at or above the

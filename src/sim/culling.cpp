@@ -6,6 +6,7 @@
 
 #include "common/angles.hpp"
 #include "sim/amplitude.hpp"
+#include "sim/detection.hpp"
 #include "sim/effects.hpp"
 
 namespace rcsim {
@@ -40,7 +41,7 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
   b.cos_half = std::cos(config.fov.azimuth_half_rad);
   b.sin_half = std::sin(config.fov.azimuth_half_rad);
   const AmplitudeLaw& law = config.amplitude;
-  if (!range_culling || !(law.reference_slope_db_per_m > 0.0)) return b;
+  if (!range_culling || !has_detection_range_bound(law)) return b;
   // Multibounce copies (effects.cpp): orders 2..max_order, each with its ERCS factor.
   double copies_ercs_factor = 1.0, max_copy_factor = 1.0;
   int orders = 1;
@@ -61,15 +62,17 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
   ercs_sum *= copies_ercs_factor;
   echo_count *= orders;
   const double tiny = std::numeric_limits<double>::min();
+  // A fluctuating target can be detected below the threshold: down to detection_floor_db.
+  const double headroom_db = kMarginDb + (law.detection_threshold_db - detection_floor_db(config));
   // (a): L0 - s (R - range_cell) + 20 log10(sum ERCS) < threshold.
   const double range_a_m =
-      detection_range_bound_m(law, std::max(ercs_sum, tiny), kMarginDb) + config.resolution.range_cell_m;
+      detection_range_bound_m(law, std::max(ercs_sum, tiny), headroom_db) + config.resolution.range_cell_m;
   b.by_range = true;
   b.cull_distance_m.reserve(objects.size());
   for (std::size_t i = 0; i < objects.size(); ++i) {
     // (b): L0 - s R + 20 log10(N max_ercs) < threshold.
     const double strongest = std::max(objects[i].model.max_ercs() * max_copy_factor, tiny);
-    const double range_b_m = detection_range_bound_m(law, echo_count * strongest, kMarginDb);
+    const double range_b_m = detection_range_bound_m(law, echo_count * strongest, headroom_db);
     const double range_m = std::max({range_a_m, range_b_m, 0.0});
     b.cull_distance_m.push_back(range_m + b.radius_m[i]);
   }

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "sim/amplitude.hpp"
+#include "sim/detection.hpp"
 #include "sim/effects.hpp"
 #include "sim/measurement_noise.hpp"
 #include "sim/monopulse.hpp"
@@ -14,7 +15,7 @@ SensorModel::SensorModel(const MountedSensor& mount_in, const Effects& effects_i
                          std::span<const SceneObject> objects)
     : mount(mount_in),
       antenna(mount_in.config.antenna),
-      threshold_amplitude(db_to_amplitude(mount_in.config.amplitude.detection_threshold_db)),
+      cell_gate_amplitude(db_to_amplitude(detection_floor_db(mount_in.config))),
       effects(effects_in),
       options(options_in),
       // The ideal target list shows every echo: only the view culling (exact) applies there.
@@ -65,14 +66,16 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   compute_echoes(config.amplitude, model.antenna, state.ideal, state.echoes);
   if (model.options.level == OutputLevel::ideal) return;
   // echoes => resolution cells, strongest first, upper amplitude bound          (eqs. (4)-(5))
-  form_resolution_cells(config.resolution, model.threshold_amplitude, state.echoes, state.cell_buffers, state.cells);
+  form_resolution_cells(config.resolution, model.cell_gate_amplitude, state.echoes, state.cell_buffers, state.cells);
+  // cells => cells whose RCS fluctuates from cycle to cycle (Swerling 1, 3)      (III-B, detection.hpp)
+  if (rng != nullptr) apply_fluctuation(config.detection.fluctuation, *rng, state.cells);
   // cells => detections: pointer noise, monopulse angle, resulting amplitude    (eqs. (7)-(8))
   if (model.options.fidelity == Fidelity::no_monopulse) {
     estimate_ideal_angles(model.options.angle_noise_sigma_rad, state.cells, state.ideal, rng, state.detections);
   } else {
     estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
   }
-  // detections => those whose amplitude passes the threshold                    (III-B)
+  // detections => those whose measured amplitude passes the threshold           (III-B)
   apply_detection_threshold(config.amplitude.detection_threshold_db, state.detections);
   // detections => with range and range-rate noise of amplitude-dependent variance (III-A)
   if (rng != nullptr) add_measurement_noise(config.noise, config.amplitude.detection_threshold_db, *rng, state.detections);

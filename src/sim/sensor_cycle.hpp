@@ -35,7 +35,7 @@ struct SensorModel {
 
   MountedSensor mount;
   MonopulseAntenna antenna;
-  double threshold_amplitude;
+  double cell_gate_amplitude;  // cells below it are not formed: detection_floor_db (detection.hpp)
   Effects effects;
   SimulationOptions options;
   CullingBounds culling;

@@ -92,5 +92,86 @@ TEST(Amplitude, PatternExponentIsOptionalAndRefusedOutsideOneToFour) {
   }
 }
 
+AmplitudeLaw radar_equation_law() {
+  AmplitudeLaw law;
+  law.kind = AmplitudeLawKind::radar_equation;
+  law.snr_at_1m_for_1m2_db = 90.0;
+  law.reference_rcs_dbsm = 10.0;
+  law.detection_threshold_db = 14.0;
+  return law;
+}
+
+TEST(Amplitude, RadarEquationByHand) {
+  const AmplitudeLaw law = radar_equation_law();
+  // SNR = K + sigma_ref - 40 log10 R: 90 + 10 - 80 = 20 dB at 100 m, 100 dB at 1 m, 88 dB at 2 m
+  EXPECT_NEAR(reference_range_level_db(law, 100.0), 20.0, 1e-12);
+  EXPECT_NEAR(reference_range_level_db(law, 1.0), 100.0, 1e-12);
+  EXPECT_NEAR(reference_range_level_db(law, 2.0), 100.0 - 40.0 * std::log10(2.0), 1e-12);
+  EXPECT_NEAR(amplitude_to_db(reference_range_amplitude(law, 100.0)), 20.0, 1e-12);
+  // An ERCS of 2 stands for sigma = 10 + 20 log10 2 = 16.02 dBsm: its echo 6.02 dB stronger.
+  const MonopulseAntenna antenna{AntennaGeometry{}};
+  IdealTargets ideal(1);
+  ideal[0].range_m = 100.0;
+  ideal[0].set_azimuth(0.0);
+  ideal[0].ercs = 2.0;
+  Echoes echoes;
+  compute_echoes(law, antenna, ideal, echoes);
+  EXPECT_NEAR(amplitude_to_db(echoes[0].amplitude), 20.0 + 20.0 * std::log10(2.0), 1e-9);
+  // The range at which the reference reflector falls to the 14 dB threshold: 100 - 40 log10 R = 14,
+  // R = 10^(86/40) = 141.25 m; an ERCS of 10 (+20 dB) reaches 10^(106/40) = 446.7 m.
+  EXPECT_TRUE(has_detection_range_bound(law));
+  EXPECT_NEAR(detection_range_bound_m(law, 1.0), std::pow(10.0, 86.0 / 40.0), 1e-9);
+  EXPECT_NEAR(detection_range_bound_m(law, 10.0), std::pow(10.0, 106.0 / 40.0), 1e-9);
+  EXPECT_NEAR(reference_range_level_db(law, detection_range_bound_m(law, 1.0)), 14.0, 1e-9);
+  // The paper's law without a slope never falls: no bound.
+  AmplitudeLaw flat;
+  flat.reference_slope_db_per_m = 0.0;
+  EXPECT_FALSE(has_detection_range_bound(flat));
+  EXPECT_TRUE(has_detection_range_bound(AmplitudeLaw{}));
+}
+
+TEST(Amplitude, RadarEquationAtZeroRangeStaysFinite) {
+  const AmplitudeLaw law = radar_equation_law();
+  EXPECT_TRUE(std::isfinite(reference_range_level_db(law, 0.0)));
+  EXPECT_NEAR(reference_range_level_db(law, 0.0), 100.0 + 120.0, 1e-9);  // taken at 1 mm
+}
+
+nlohmann::json builtin_sensor_json(const std::string& name) {
+  for (const auto& f : embedded_sensor_configs()) {
+    if (f.name == name) return nlohmann::json::parse(f.text);
+  }
+  return {};
+}
+
+std::string parse_error(const nlohmann::json& doc) {
+  try {
+    parse_sensor_config(JsonField(doc, "s.json", ""));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Amplitude, LawIsReadFromTheSensorConfigurationAndCheckedField) {
+  nlohmann::json doc = builtin_sensor_json("srr24");
+  ASSERT_FALSE(doc.is_null());
+  EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).amplitude.kind, AmplitudeLawKind::paper_eq1);
+  doc["amplitude"] = {{"law", "radar_equation"}, {"snr_at_1m_for_1m2_db", 90.0}, {"reference_rcs_dbsm", 10.0},
+                      {"detection_threshold_db", 14.0}};
+  const SensorConfig radar = parse_sensor_config(JsonField(doc, "s.json", ""));
+  EXPECT_EQ(radar.amplitude.kind, AmplitudeLawKind::radar_equation);
+  EXPECT_EQ(radar.amplitude.snr_at_1m_for_1m2_db, 90.0);
+  EXPECT_EQ(radar.amplitude.reference_rcs_dbsm, 10.0);
+  // The other law's fields are refused, not ignored; so are unknown laws and absurd levels.
+  doc["amplitude"]["reference_slope_db_per_m"] = 0.75;
+  EXPECT_NE(parse_error(doc).find("amplitude.reference_slope_db_per_m"), std::string::npos) << parse_error(doc);
+  doc["amplitude"].erase("reference_slope_db_per_m");
+  doc["amplitude"]["law"] = "radar_eq";
+  EXPECT_NE(parse_error(doc).find("amplitude.law"), std::string::npos) << parse_error(doc);
+  doc["amplitude"]["law"] = "radar_equation";
+  doc["amplitude"]["reference_rcs_dbsm"] = 1e308;
+  EXPECT_NE(parse_error(doc).find("amplitude.reference_rcs_dbsm"), std::string::npos) << parse_error(doc);
+}
+
 }  // namespace
 }  // namespace rcsim
