@@ -12,7 +12,6 @@
 
 #include "common/angles.hpp"
 #include "common/decibel.hpp"
-#include "common/embedded_data.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "replay/import/annotation_smoothing.hpp"
@@ -30,6 +29,7 @@ namespace {
 constexpr const char* kBoxDir = "dynamic/box/3d_body";
 constexpr const char* kRadarDir = "sensor/radar";
 constexpr const char* kCalibrationFile = "sensor/calibration/calibration.json";
+constexpr const char* kSensorProfile = "aimotive_lrr";  // src/sensor/sensors/aimotive_lrr.json
 
 bool is_sequence(const fs::path& dir) {
   return fs::is_directory(dir / kBoxDir) && fs::is_directory(dir / kRadarDir) && fs::is_regular_file(dir / kCalibrationFile);
@@ -311,27 +311,6 @@ void add_world_boxes(const std::vector<std::vector<BodyBox>>& boxes, const std::
   }
 }
 
-// A sensor configuration for these radars until one is fitted (docs/importers.md): the paper's
-// srr24 with the carrier, cycle time, view field and range of what the radar reported.
-std::string placeholder_sensor_config(const std::string& name, double cycle_time_s, double azimuth_half_rad,
-                                      double max_range_m) {
-  std::string srr24;
-  for (const auto& f : embedded_sensor_configs()) {
-    if (f.name == "srr24") srr24 = std::string(f.text);
-  }
-  nlohmann::ordered_json json = nlohmann::ordered_json::parse(srr24);
-  json["name"] = name;
-  json["description"] =
-      "Placeholder for the aiMotive long-range radars made by rcsim import --from aimotive: carrier, cycle time, "
-      "view field and maximum range from the recording; amplitude law, cells, noise and tracker copied from srr24, "
-      "not fitted.";
-  json["carrier_frequency_hz"] = 77.0e9;
-  json["cycle_time_s"] = std::round(cycle_time_s * 1e6) / 1e6;
-  json["field_of_view"]["azimuth_half_deg"] = std::ceil(rad_to_deg(azimuth_half_rad));
-  json["field_of_view"]["max_range_m"] = 5.0 * std::ceil(max_range_m / 5.0);
-  return json.dump(2) + "\n";
-}
-
 }  // namespace
 
 namespace {
@@ -410,9 +389,9 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
   out.warnings.insert(out.warnings.end(), ego.warnings.begin(), ego.warnings.end());
   const nlohmann::json ego_report = choose_ego(sequence, options, t_s, ego, out);
 
-  double azimuth_half_rad = 0.0, max_range_m = 0.0;
   for (std::size_t s = 0; s < mounts.size(); ++s) {
-    rec.sensors.push_back({mounts[s].label, "sensor_aimotive_lrr.json", mounts[s].X_VS.x_m, mounts[s].X_VS.y_m,
+    // The built-in profile derived from these radars (docs/sensor-profiles.md).
+    rec.sensors.push_back({mounts[s].label, aimotive::kSensorProfile, mounts[s].X_VS.x_m, mounts[s].X_VS.y_m,
                            mounts[s].X_VS.yaw_rad, ReportedLevel::detections});
   }
   for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -422,15 +401,11 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
         t.t_s = t_s[k];
         t.cycle = static_cast<int>(k);
         t.sensor = static_cast<int>(s);
-        azimuth_half_rad = std::max(azimuth_half_rad, std::abs(t.azimuth_rad));
-        max_range_m = std::max(max_range_m, t.range_m);
         rec.targets.push_back(t);
       }
     }
   }
   add_world_boxes(boxes, t_s, rec);
-  out.extra_files["sensor_aimotive_lrr.json"] =
-      placeholder_sensor_config("aimotive_lrr_placeholder", rec.cycle_time_s, azimuth_half_rad, max_range_m);
 
   rec.description = fmt::format(
       "aiMotive Multimodal Dataset sequence {}: {} keyframes at {:.1f} Hz, radars {}, {} annotated objects; "

@@ -1,4 +1,4 @@
-// rcsim models: the object model library.
+// rcsim models: the object model library; --sensors: the built-in sensor profiles.
 #include <fmt/format.h>
 
 #include <iostream>
@@ -7,7 +7,9 @@
 
 #include "cli/commands.hpp"
 #include "common/angles.hpp"
+#include "common/embedded_data.hpp"
 #include "model/model_library.hpp"
+#include "sensor/sensor_config.hpp"
 
 namespace rcsim::cli {
 namespace {
@@ -39,13 +41,75 @@ nlohmann::json model_to_json(const ObjectModel& m) {
           {"plane_reflectors", planes}};
 }
 
+const char* law_name(AmplitudeLawKind kind) {
+  return kind == AmplitudeLawKind::radar_equation ? "radar_equation" : "paper_eq1";
+}
+
+const char* fluctuation_name(Fluctuation f) {
+  switch (f) {
+    case Fluctuation::none: return "none";
+    case Fluctuation::swerling1: return "swerling1";
+    case Fluctuation::swerling3: return "swerling3";
+  }
+  return "none";
+}
+
+nlohmann::json sensor_to_json(const SensorConfig& c) {
+  nlohmann::json amplitude = {{"law", law_name(c.amplitude.kind)},
+                              {"detection_threshold_db", c.amplitude.detection_threshold_db}};
+  if (c.amplitude.kind == AmplitudeLawKind::radar_equation) {
+    amplitude["snr_at_1m_for_1m2_db"] = c.amplitude.snr_at_1m_for_1m2_db;
+    amplitude["reference_rcs_dbsm"] = c.amplitude.reference_rcs_dbsm;
+  } else {
+    amplitude["reference_level_db"] = c.amplitude.reference_level_db;
+    amplitude["reference_slope_db_per_m"] = c.amplitude.reference_slope_db_per_m;
+  }
+  return {{"name", c.name},
+          {"description", c.description},
+          {"reports", c.reports == SensorOutput::detections ? "detections" : "tracks"},
+          {"carrier_frequency_hz", c.carrier_frequency_hz},
+          {"cycle_time_s", c.cycle_time_s},
+          {"azimuth_half_deg", rad_to_deg(c.fov.azimuth_half_rad)},
+          {"min_range_m", c.fov.min_range_m},
+          {"max_range_m", c.fov.max_range_m},
+          {"amplitude", amplitude},
+          {"fluctuation", fluctuation_name(c.detection.fluctuation)},
+          {"range_cell_m", c.resolution.range_cell_m},
+          {"range_rate_cell_mps", c.resolution.range_rate_cell_mps}};
+}
+
+void print_sensors(bool json) {
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto& file : embedded_sensor_configs()) {
+    const SensorConfig c = builtin_sensor_config(std::string(file.name));
+    if (json) {
+      all.push_back(sensor_to_json(c));
+      continue;
+    }
+    std::cout << fmt::format("{:<14} {:4.0f} GHz  +-{:4.1f} deg  {:5.1f}-{:5.1f} m  {} law, threshold {:.1f} dB, "
+                             "fluctuation {}  cells {:.2f} m x {:.2f} m/s  reports {}\n  {}\n",
+                             c.name, c.carrier_frequency_hz / 1e9, rad_to_deg(c.fov.azimuth_half_rad), c.fov.min_range_m,
+                             c.fov.max_range_m, law_name(c.amplitude.kind), c.amplitude.detection_threshold_db,
+                             fluctuation_name(c.detection.fluctuation), c.resolution.range_cell_m,
+                             c.resolution.range_rate_cell_mps,
+                             c.reports == SensorOutput::detections ? "detections" : "tracks", c.description);
+  }
+  if (json) std::cout << all.dump(2) << '\n';
+}
+
 }  // namespace
 
 void add_models_command(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
-  auto* cmd = app.add_subcommand("models", "List the built-in object models");
-  cmd->add_flag("--json", *json, "Machine-readable output with every reflector");
-  cmd->callback([json] {
+  auto sensors = std::make_shared<bool>(false);
+  auto* cmd = app.add_subcommand("models", "List the built-in object models (--sensors: the sensor profiles)");
+  cmd->add_flag("--json", *json, "Machine-readable output with every reflector (or every profile's main values)");
+  cmd->add_flag("--sensors", *sensors, "List the built-in sensor profiles instead");
+  cmd->callback([json, sensors] {
+    if (*sensors) {
+      print_sensors(*json);
+      return;
+    }
     const auto library = ModelLibrary::builtin();
     if (*json) {
       nlohmann::json all = nlohmann::json::array();

@@ -49,10 +49,14 @@ AmplitudeLaw parse_amplitude_law(const JsonField& amp) {
     law.reference_level_db = level_db(amp, "reference_level_db");
     law.reference_slope_db_per_m = non_negative(amp, "reference_slope_db_per_m");
   } else if (kind == "radar_equation") {
-    amp.expect_only({"law", "snr_at_1m_for_1m2_db", "reference_rcs_dbsm", "detection_threshold_db"});
+    amp.expect_only({"law", "snr_at_1m_for_1m2_db", "reference_rcs_dbsm", "range_exponent", "detection_threshold_db"});
     law.kind = AmplitudeLawKind::radar_equation;
     law.snr_at_1m_for_1m2_db = level_db(amp, "snr_at_1m_for_1m2_db");
     law.reference_rcs_dbsm = level_db(amp, "reference_rcs_dbsm");
+    if (const auto n = amp.optional_number("range_exponent")) {
+      if (!(*n >= 1.0 && *n <= 6.0)) amp.fail("range_exponent", fmt::format("must be in [1, 6] (4: the radar equation's 1/R^4), got {}", *n));
+      law.range_exponent = *n;
+    }
   } else {
     amp.fail("law", fmt::format("unknown amplitude law \"{}\" (known: paper_eq1, radar_equation)", kind));
   }
@@ -61,7 +65,7 @@ AmplitudeLaw parse_amplitude_law(const JsonField& amp) {
 }
 
 DetectionModel parse_detection_model(const JsonField& detection) {
-  detection.expect_only({"fluctuation"});
+  detection.expect_only({"fluctuation", "local_maxima_only"});
   DetectionModel model;
   const std::string name = detection.string("fluctuation");
   if (name == "none" || name == "swerling0") {
@@ -73,19 +77,68 @@ DetectionModel parse_detection_model(const JsonField& detection) {
   } else {
     detection.fail("fluctuation", fmt::format("unknown fluctuation \"{}\" (known: none, swerling0, swerling1, swerling3)", name));
   }
+  model.local_maxima_only = detection.boolean_or("local_maxima_only", false);
   return model;
+}
+
+TrackerConfig parse_tracker(const JsonField& trk) {
+  TrackerConfig t;
+  trk.expect_only({"confirmation_hits", "max_misses_tentative", "max_misses_confirmed", "gate_chi2", "max_tracks",
+                   "process_accel_sigma_mps2", "process_azimuth_rate_sigma_radps", "process_amplitude_sigma_db",
+                   "measurement_sigma_range_m", "measurement_sigma_range_rate_mps", "measurement_sigma_azimuth_rad",
+                   "measurement_sigma_amplitude_db"});
+  t.confirmation_hits = positive_int(trk, "confirmation_hits");
+  t.max_misses_tentative = positive_int(trk, "max_misses_tentative");
+  t.max_misses_confirmed = positive_int(trk, "max_misses_confirmed");
+  t.gate_chi2 = positive(trk, "gate_chi2");
+  t.max_tracks = positive_int(trk, "max_tracks");
+  t.process_accel_sigma_mps2 = positive(trk, "process_accel_sigma_mps2");
+  t.process_azimuth_rate_sigma_radps = positive(trk, "process_azimuth_rate_sigma_radps");
+  t.process_amplitude_sigma_db = positive(trk, "process_amplitude_sigma_db");
+  t.measurement_sigma_range_m = positive(trk, "measurement_sigma_range_m");
+  t.measurement_sigma_range_rate_mps = positive(trk, "measurement_sigma_range_rate_mps");
+  t.measurement_sigma_azimuth_rad = positive(trk, "measurement_sigma_azimuth_rad");
+  t.measurement_sigma_amplitude_db = positive(trk, "measurement_sigma_amplitude_db");
+  return t;
+}
+
+ClutterConfig parse_clutter(const JsonField& clutter) {
+  clutter.expect_only({"false_detections_per_cycle", "amplitude_excess_mean_db"});
+  ClutterConfig c;
+  c.false_detections_per_cycle = non_negative(clutter, "false_detections_per_cycle");
+  if (c.false_detections_per_cycle > 100.0) clutter.fail("false_detections_per_cycle", "must be at most 100");
+  c.amplitude_excess_mean_db = positive(clutter, "amplitude_excess_mean_db");
+  return c;
+}
+
+MultibounceConfig parse_multibounce(const JsonField& mb) {
+  mb.expect_only({"max_range_m", "max_order", "loss_per_bounce_db"});
+  MultibounceConfig c;
+  c.max_range_m = non_negative(mb, "max_range_m");
+  c.max_order = positive_int(mb, "max_order");
+  if (c.max_order > 8) mb.fail("max_order", "must be at most 8");
+  c.loss_per_bounce_db = non_negative(mb, "loss_per_bounce_db");
+  return c;
 }
 
 }  // namespace
 
 SensorConfig parse_sensor_config(const JsonField& root) {
-  root.expect_only({"format", "version", "name", "description", "carrier_frequency_hz", "cycle_time_s",
-                    "field_of_view", "amplitude", "detection", "antenna", "resolution", "monopulse", "measurement_noise",
+  root.expect_only({"format", "version", "name", "description", "reports", "carrier_frequency_hz", "cycle_time_s",
+                    "field_of_view", "amplitude", "detection", "extended_objects", "occlusion", "antenna", "resolution", "monopulse", "measurement_noise",
                     "tracking", "clutter", "multibounce"});
   root.expect_format("rcsim-sensor", 1);
   SensorConfig c;
   c.name = root.string("name");
   c.description = root.has("description") ? root.string("description") : "";
+  if (root.has("reports")) {
+    const std::string reports = root.string("reports");
+    if (reports == "detections") {
+      c.reports = SensorOutput::detections;
+    } else if (reports != "tracks") {
+      root.fail("reports", fmt::format("must be \"tracks\" or \"detections\", got \"{}\"", reports));
+    }
+  }
   c.carrier_frequency_hz = positive(root, "carrier_frequency_hz");
   c.cycle_time_s = positive(root, "cycle_time_s");
 
@@ -100,6 +153,18 @@ SensorConfig parse_sensor_config(const JsonField& root) {
 
   c.amplitude = parse_amplitude_law(root.member("amplitude"));
   if (const auto detection = root.optional_member("detection")) c.detection = parse_detection_model(*detection);
+  if (const auto occlusion = root.optional_member("occlusion")) {
+    occlusion->expect_only({"loss_db"});
+    c.occlusion.loss_db = non_negative(*occlusion, "loss_db");
+    if (c.occlusion.loss_db > kMaxLevelMagnitudeDb) occlusion->fail("loss_db", fmt::format("must be at most {}", kMaxLevelMagnitudeDb));
+  }
+  if (const auto extended = root.optional_member("extended_objects")) {
+    extended->expect_only({"diffuse_relative_ercs_per_sqrt_m"});
+    c.extended_objects.diffuse_relative_ercs_per_sqrt_m = non_negative(*extended, "diffuse_relative_ercs_per_sqrt_m");
+    if (c.extended_objects.diffuse_relative_ercs_per_sqrt_m > 100.0) {
+      extended->fail("diffuse_relative_ercs_per_sqrt_m", "must be at most 100");
+    }
+  }
 
   const auto antenna = root.member("antenna");
   antenna.expect_only({"dipole_length_wavelengths", "element_spacing_wavelengths", "amplitude_pattern_exponent"});
@@ -130,36 +195,11 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   c.noise.range_rate_sigma_at_threshold_mps = non_negative(noise, "range_rate_sigma_at_threshold_mps");
   c.noise.range_rate_sigma_min_mps = non_negative(noise, "range_rate_sigma_min_mps");
 
-  const auto trk = root.member("tracking");
-  trk.expect_only({"confirmation_hits", "max_misses_tentative", "max_misses_confirmed", "gate_chi2", "max_tracks",
-                   "process_accel_sigma_mps2", "process_azimuth_rate_sigma_radps", "process_amplitude_sigma_db",
-                   "measurement_sigma_range_m", "measurement_sigma_range_rate_mps", "measurement_sigma_azimuth_rad",
-                   "measurement_sigma_amplitude_db"});
-  c.tracker.confirmation_hits = positive_int(trk, "confirmation_hits");
-  c.tracker.max_misses_tentative = positive_int(trk, "max_misses_tentative");
-  c.tracker.max_misses_confirmed = positive_int(trk, "max_misses_confirmed");
-  c.tracker.gate_chi2 = positive(trk, "gate_chi2");
-  c.tracker.max_tracks = positive_int(trk, "max_tracks");
-  c.tracker.process_accel_sigma_mps2 = positive(trk, "process_accel_sigma_mps2");
-  c.tracker.process_azimuth_rate_sigma_radps = positive(trk, "process_azimuth_rate_sigma_radps");
-  c.tracker.process_amplitude_sigma_db = positive(trk, "process_amplitude_sigma_db");
-  c.tracker.measurement_sigma_range_m = positive(trk, "measurement_sigma_range_m");
-  c.tracker.measurement_sigma_range_rate_mps = positive(trk, "measurement_sigma_range_rate_mps");
-  c.tracker.measurement_sigma_azimuth_rad = positive(trk, "measurement_sigma_azimuth_rad");
-  c.tracker.measurement_sigma_amplitude_db = positive(trk, "measurement_sigma_amplitude_db");
+  // A sensor that reports detections has no tracker: its `tracking` section may be left out.
+  if (c.reports == SensorOutput::tracks || root.has("tracking")) c.tracker = parse_tracker(root.member("tracking"));
 
-  const auto clutter = root.member("clutter");
-  clutter.expect_only({"false_detections_per_cycle", "amplitude_excess_mean_db"});
-  c.clutter.false_detections_per_cycle = non_negative(clutter, "false_detections_per_cycle");
-  if (c.clutter.false_detections_per_cycle > 100.0) clutter.fail("false_detections_per_cycle", "must be at most 100");
-  c.clutter.amplitude_excess_mean_db = positive(clutter, "amplitude_excess_mean_db");
-
-  const auto mb = root.member("multibounce");
-  mb.expect_only({"max_range_m", "max_order", "loss_per_bounce_db"});
-  c.multibounce.max_range_m = non_negative(mb, "max_range_m");
-  c.multibounce.max_order = positive_int(mb, "max_order");
-  if (c.multibounce.max_order > 8) mb.fail("max_order", "must be at most 8");
-  c.multibounce.loss_per_bounce_db = non_negative(mb, "loss_per_bounce_db");
+  c.clutter = parse_clutter(root.member("clutter"));
+  c.multibounce = parse_multibounce(root.member("multibounce"));
   return c;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Sensor configuration (`rcsim-sensor` files, schemas/sensor-config.md): every parameter of the
 // sensor model of paper section III, with the paper's values in the built-in `srr24`.
+#include <limits>
 #include <string>
 
 #include "common/json_reader.hpp"
@@ -23,10 +24,12 @@ struct AmplitudeLaw {
   AmplitudeLawKind kind = AmplitudeLawKind::paper_eq1;
   double reference_level_db = 26.5;        // paper eq. (1): level at R = 0
   double reference_slope_db_per_m = 0.75;  // paper eq. (1): fall per metre
-  // Radar equation: SNR = snr_at_1m_for_1m2_db + sigma_dbsm - 40 log10(R / 1 m) on boresight, where
-  // a reflector of ERCS e stands for sigma_dbsm = reference_rcs_dbsm + 20 log10(e) (docs/amplitude.md).
+  // Radar equation: SNR = snr_at_1m_for_1m2_db + sigma_dbsm - 10 n log10(R / 1 m) on boresight, where
+  // a reflector of ERCS e stands for sigma_dbsm = reference_rcs_dbsm + 20 log10(e) (docs/amplitude.md)
+  // and n = range_exponent (4: P ~ 1/R^4).
   double snr_at_1m_for_1m2_db = 0.0;
   double reference_rcs_dbsm = 0.0;
+  double range_exponent = 4.0;
   double detection_threshold_db = 6.0;  // paper III-B
 };
 
@@ -40,6 +43,10 @@ enum class Fluctuation {
 
 struct DetectionModel {
   Fluctuation fluctuation = Fluctuation::none;
+  // A detection is reported only where its measured amplitude is a local maximum of the
+  // range/range-rate map: no stronger detection within 1.5 cells in both (the peak search of a
+  // CFAR detector; docs/extended-objects.md). false: every cell above threshold (the paper's).
+  bool local_maxima_only = false;
 };
 
 struct AntennaGeometry {
@@ -89,14 +96,36 @@ struct MultibounceConfig {
   double loss_per_bounce_db = 6.0;
 };
 
+// How a sensor of fine range resolution sees a plane reflector's face beyond its specular point:
+// each range cell the face spans returns one diffuse piece (docs/extended-objects.md).
+struct ExtendedObjects {
+  // ERCS of a piece of length l: this x the plane's ERCS x sqrt(l / 1 m) (power grows with l);
+  // 0: no diffuse pieces (the paper's model).
+  double diffuse_relative_ercs_per_sqrt_m = 0.0;
+};
+
+// What another object's box does to a line of sight it blocks (effects.occlusion). The paper's
+// 2-D view hides the reflector; a 77 GHz radar still sees a car behind a car, weakened, by the
+// path under and around the nearer one (docs/extended-objects.md).
+struct OcclusionConfig {
+  double loss_db = std::numeric_limits<double>::infinity();  // infinite: the reflector is hidden
+};
+
+// What the sensor puts out: tracks confirmed by its internal tracker (paper III-E), or its raw
+// detections of each cycle (most of today's radars' detection interfaces).
+enum class SensorOutput { tracks, detections };
+
 struct SensorConfig {
   std::string name;
   std::string description;
+  SensorOutput reports = SensorOutput::tracks;
   double carrier_frequency_hz = 24.0e9;
   double cycle_time_s = 0.04;
   FieldOfView fov;
   AmplitudeLaw amplitude;
   DetectionModel detection;
+  ExtendedObjects extended_objects;
+  OcclusionConfig occlusion;
   AntennaGeometry antenna;
   ResolutionCell resolution;
   double pointer_noise_sigma = 0.1;  // std. dev. of the complex pointer noise, eq. (8)

@@ -17,7 +17,7 @@ double reference_range_level_db(const AmplitudeLaw& law, double range_m) {
       return law.reference_level_db - law.reference_slope_db_per_m * range_m;  // eq. (1)
     case AmplitudeLawKind::radar_equation:  // P_r ~ sigma G^2 / R^4, as SNR in dB
       return law.snr_at_1m_for_1m2_db + law.reference_rcs_dbsm -
-             4.0 * power_to_db(std::max(range_m, kRadarEquationMinRangeM));  // 40 log10 R
+             law.range_exponent * power_to_db(std::max(range_m, kRadarEquationMinRangeM));  // 10 n log10 R
   }
   return 0.0;
 }
@@ -36,9 +36,10 @@ double detection_range_bound_m(const AmplitudeLaw& law, double ercs, double head
       return (law.reference_level_db - law.detection_threshold_db + headroom_db + amplitude_to_db(ercs)) /
              law.reference_slope_db_per_m;  // eq. (1)
     case AmplitudeLawKind::radar_equation:
-      // R^4 = 10^((level at 1 m + 20 log10 ERCS - threshold + headroom) / 10)
-      return std::sqrt(std::sqrt(db_to_power(reference_range_level_db(law, 1.0) - law.detection_threshold_db +
-                                             headroom_db + amplitude_to_db(ercs))));
+      // R^n = 10^((level at 1 m + 20 log10 ERCS - threshold + headroom) / 10)
+      return std::pow(db_to_power(reference_range_level_db(law, 1.0) - law.detection_threshold_db + headroom_db +
+                                  amplitude_to_db(ercs)),
+                      1.0 / law.range_exponent);
   }
   return 0.0;
 }

@@ -8,6 +8,7 @@
 #include "sim/amplitude.hpp"
 #include "sim/detection.hpp"
 #include "sim/effects.hpp"
+#include "sim/visibility.hpp"
 
 namespace rcsim {
 namespace {
@@ -53,11 +54,25 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
       ++orders;
     }
   }
+  // Diffuse face pieces (visibility.hpp): at most kMaxDiffusePieces per plane, pieces of length
+  // l_k summing to the chord L, each of ERCS r e sqrt(l_k): together at most r e sqrt(n L).
+  const double diffuse = config.extended_objects.diffuse_relative_ercs_per_sqrt_m;
+  const auto diffuse_ercs_bound = [&](const PlaneReflector& p, double pieces) {
+    return diffuse * p.ercs * std::sqrt(pieces * (p.radius_m * (p.u_end_O - p.u_start_O)).norm());
+  };
+  std::vector<double> strongest_diffuse(objects.size(), 0.0);
   double ercs_sum = 0.0, echo_count = 0.0;
-  for (const auto& o : objects) {
-    for (const auto& p : o.model.points) ercs_sum += p.ercs_max;  // visibility <= 1 (paper II-C)
-    for (const auto& p : o.model.planes) ercs_sum += p.ercs;
-    echo_count += static_cast<double>(o.model.reflector_count());
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const ObjectModel& model = objects[i].model;
+    for (const auto& p : model.points) ercs_sum += p.ercs_max;  // visibility <= 1 (paper II-C)
+    for (const auto& p : model.planes) ercs_sum += p.ercs;
+    echo_count += static_cast<double>(model.reflector_count());
+    if (!(diffuse > 0.0)) continue;
+    for (const auto& p : model.planes) {
+      ercs_sum += diffuse_ercs_bound(p, kMaxDiffusePieces);
+      strongest_diffuse[i] = std::max(strongest_diffuse[i], diffuse_ercs_bound(p, 1.0));
+    }
+    echo_count += static_cast<double>(kMaxDiffusePieces * model.planes.size());
   }
   ercs_sum *= copies_ercs_factor;
   echo_count *= orders;
@@ -71,7 +86,7 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
   b.cull_distance_m.reserve(objects.size());
   for (std::size_t i = 0; i < objects.size(); ++i) {
     // (b): L0 - s R + 20 log10(N max_ercs) < threshold.
-    const double strongest = std::max(objects[i].model.max_ercs() * max_copy_factor, tiny);
+    const double strongest = std::max(std::max(objects[i].model.max_ercs(), strongest_diffuse[i]) * max_copy_factor, tiny);
     const double range_b_m = detection_range_bound_m(law, echo_count * strongest, headroom_db);
     const double range_m = std::max({range_a_m, range_b_m, 0.0});
     b.cull_distance_m.push_back(range_m + b.radius_m[i]);

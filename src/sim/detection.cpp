@@ -1,6 +1,7 @@
 #include "sim/detection.hpp"
 
 #include <boost/math/distributions/non_central_chi_squared.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "common/decibel.hpp"
@@ -54,6 +55,38 @@ void apply_fluctuation(Fluctuation fluctuation, Rng& rng, ResolutionCells& cells
     c.sum_pointer *= amplitude_factor;
     c.delta_pointer *= amplitude_factor;
   }
+}
+
+void keep_local_maxima(const ResolutionCell& cell, Detections& detections, LocalMaximaBuffers& buffers) {
+  const double range_window_m = 1.5 * cell.range_cell_m;
+  const double rate_window_mps = 1.5 * cell.range_rate_cell_mps;
+  const std::size_t n = detections.size();
+  auto& order = buffers.by_range;
+  order.resize(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return detections[a].range_m < detections[b].range_m;
+  });
+  const auto range_of = [&](std::size_t k) { return detections[order[k]].range_m; };
+  // `other` dominates `self`: within the range-rate window and stronger (or as strong and earlier).
+  const auto dominates = [&](std::size_t other, std::size_t self) {
+    const Detection& o = detections[other];
+    const Detection& d = detections[self];
+    if (std::abs(o.range_rate_mps - d.range_rate_mps) >= rate_window_mps) return false;
+    return o.amplitude_db > d.amplitude_db || (o.amplitude_db == d.amplitude_db && other < self);
+  };
+  buffers.peak.assign(n, 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t self = order[k];
+    bool peak = true;
+    for (std::size_t j = k; peak && j-- > 0 && range_of(k) - range_of(j) < range_window_m;) peak = !dominates(order[j], self);
+    for (std::size_t j = k + 1; peak && j < n && range_of(j) - range_of(k) < range_window_m; ++j) {
+      peak = !dominates(order[j], self);
+    }
+    buffers.peak[self] = peak ? 1 : 0;
+  }
+  std::size_t i = 0;
+  std::erase_if(detections, [&](const Detection&) { return buffers.peak[i++] == 0; });
 }
 
 }  // namespace rcsim

@@ -2,6 +2,8 @@
 // The detection decision (paper III-B) as a detection-probability curve: the threshold applies to
 // the measured cell amplitude |H_cell,Sigma + noise| of eq. (8), and a target's RCS may fluctuate
 // from cycle to cycle (Swerling). Without noise and fluctuation it is the paper's hard threshold.
+#include <vector>
+
 #include "common/rng.hpp"
 #include "sensor/sensor_config.hpp"
 #include "sim/stage_types.hpp"
@@ -30,5 +32,14 @@ double detection_floor_db(const SensorConfig& config);
 // chi-square with 4 degrees of freedom / 4), its pointers by the square root (the angle of eq.
 // (7) does not change). One draw (Swerling 1) or two (Swerling 3) per cell, in the cells' order.
 void apply_fluctuation(Fluctuation fluctuation, Rng& rng, ResolutionCells& cells);
+
+// Keeps the detections whose amplitude is a local maximum of the range/range-rate map: none
+// stronger within 1.5 range cells and 1.5 range-rate cells (ties: the earlier one stays). Order
+// kept. The buffers are the caller's (no allocation once they have grown).
+struct LocalMaximaBuffers {
+  std::vector<std::size_t> by_range;
+  std::vector<unsigned char> peak;
+};
+void keep_local_maxima(const ResolutionCell& cell, Detections& detections, LocalMaximaBuffers& buffers);
 
 }  // namespace rcsim

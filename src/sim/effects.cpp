@@ -30,11 +30,11 @@ bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, doubl
   return true;
 }
 
-void remove_occluded_targets(const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                             std::span<const BodyState> object_states, std::span<const unsigned char> candidates,
-                             IdealTargets& ideal) {
+void apply_occlusion(const OcclusionConfig& occlusion, const SensorKinematics& sensor, std::span<const SceneObject> objects,
+                     std::span<const BodyState> object_states, std::span<const unsigned char> candidates,
+                     IdealTargets& ideal) {
   const Vec2 p_WS_W = sensor.X_WS.translation();
-  std::erase_if(ideal, [&](const IdealTarget& t) {
+  const auto occluded = [&](const IdealTarget& t) {
     for (std::size_t i = 0; i < objects.size(); ++i) {
       if (static_cast<int>(i) == t.object_index || !candidates[i]) continue;
       const auto& model = objects[i].model;
@@ -43,7 +43,15 @@ void remove_occluded_targets(const SensorKinematics& sensor, std::span<const Sce
       if (segment_hits_box(p_WS_W, t.p_WT_W, object_states[i].X_WB, model.length_m, model.width_m)) return true;
     }
     return false;
-  });
+  };
+  if (std::isinf(occlusion.loss_db)) {
+    std::erase_if(ideal, occluded);
+    return;
+  }
+  const double factor = db_to_amplitude(-occlusion.loss_db);
+  for (auto& t : ideal) {
+    if (occluded(t)) t.ercs *= factor;
+  }
 }
 
 double multibounce_ercs_factor(const MultibounceConfig& config, int order) {

@@ -13,11 +13,12 @@ namespace rcsim {
 // Is the segment a -> b blocked by the oriented box of length x width at pose X_WB?
 bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, double length_m, double width_m);
 
-// Removes ideal targets whose line of sight passes through the box of another object among the
-// candidates (per object: 1 if it can occlude; its state must be valid).
-void remove_occluded_targets(const SensorKinematics& sensor, std::span<const SceneObject> objects,
-                             std::span<const BodyState> object_states, std::span<const unsigned char> candidates,
-                             IdealTargets& ideal);
+// Ideal targets whose line of sight passes through the box of another object among the
+// candidates (per object: 1 if it can occlude; its state must be valid) are removed, or with a
+// finite `occlusion.loss_db` kept with their ERCS lowered by that loss (once, however many boxes).
+void apply_occlusion(const OcclusionConfig& occlusion, const SensorKinematics& sensor, std::span<const SceneObject> objects,
+                     std::span<const BodyState> object_states, std::span<const unsigned char> candidates,
+                     IdealTargets& ideal);
 
 // The ERCS factor of a multibounce copy of order k >= 2: -loss_per_bounce_db per extra bounce,
 // 10^(-loss (k - 1) / 20).

@@ -80,24 +80,39 @@ class FalloffQueue {
 
 // Object i's visible reflection points that are in view, into `out` (their ERCS: paper II-C).
 void add_visible_targets(const SensorFrame& frame, const ObjectModel& model, const BodyState& body, std::size_t i,
-                         bool planes, IdealTargets& out, FalloffQueue& falloff) {
+                         const IdealTargetFilter& filter, IdealTargets& out, FalloffQueue& falloff) {
   const Vec2 p_WO_W = body.X_WB.translation();
   const double c = std::cos(body.X_WB.yaw_rad), s = std::sin(body.X_WB.yaw_rad);
   const Vec2 d = frame.p_WS_W - p_WO_W;
   const Vec2 p_OS_O(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
-  for_each_visible_reflector(model, p_OS_O, planes, [&](const VisibleReflector& r) {
-    const Vec2 p_WT_W(p_WO_W.x() + c * r.p_OT_O.x() - s * r.p_OT_O.y(), p_WO_W.y() + s * r.p_OT_O.x() + c * r.p_OT_O.y());
-    if (!in_view(frame.fov, frame.tan_half, frame.to_sensor(p_WT_W))) return;
+  const auto to_world = [&](const Vec2& p_OT_O) {
+    return Vec2(p_WO_W.x() + c * p_OT_O.x() - s * p_OT_O.y(), p_WO_W.y() + s * p_OT_O.x() + c * p_OT_O.y());
+  };
+  const auto add = [&](const Vec2& p_WT_W, double ercs, std::size_t index, ReflectorKind kind) -> bool {
+    if (!in_view(frame.fov, frame.tan_half, frame.to_sensor(p_WT_W))) return false;
     IdealTarget& t = out.emplace_back();  // built in place, not copied from the stack
     t.p_WT_W = p_WT_W;
-    t.ercs = r.ercs;
+    t.ercs = ercs;
     t.object_index = static_cast<int>(i);
-    t.reflector_index = static_cast<int>(r.index);
-    t.kind = r.kind;
-    if (r.kind == ReflectorKind::Point && r.zone.kind == VisibilityFunction::Zone::falloff) {
+    t.reflector_index = static_cast<int>(index);
+    t.kind = kind;
+    return true;
+  };
+  for_each_visible_reflector(model, p_OS_O, filter.planes, [&](const VisibleReflector& r) {
+    if (add(to_world(r.p_OT_O), r.ercs, r.index, r.kind) && r.kind == ReflectorKind::Point &&
+        r.zone.kind == VisibilityFunction::Zone::falloff) {
       falloff.add(out.size() - 1, r.point, r.zone);
     }
   });
+  if (!filter.planes || !(filter.diffuse_relative_ercs_per_sqrt_m > 0.0)) return;
+  // docs/extended-objects.md: a piece of length l has ERCS relative x plane ERCS x sqrt(l / 1 m).
+  for (std::size_t k = 0; k < model.planes.size(); ++k) {
+    const PlaneReflector& plane = model.planes[k];
+    for_each_diffuse_piece(plane, p_OS_O, filter.diffuse_piece_range_m, [&](const Vec2& p_OT_O, double length_m) {
+      add(to_world(p_OT_O), filter.diffuse_relative_ercs_per_sqrt_m * plane.ercs * std::sqrt(length_m), k,
+          ReflectorKind::PlaneDiffuse);
+    });
+  }
 }
 
 // Range, azimuth and range rate, target after target without branching on the data, so that
@@ -138,7 +153,7 @@ void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& senso
                      may_occlude != nullptr ? &(*may_occlude)[i] : nullptr)) {
       continue;
     }
-    add_visible_targets(frame, objects[i].model, object_states[i], i, filter.planes, out, falloff);
+    add_visible_targets(frame, objects[i].model, object_states[i], i, filter, out, falloff);
   }
   falloff.flush();
   // A point whose ERCS came out 0 (the raised cosine rounds to 0 at the far edge of its fall-off)

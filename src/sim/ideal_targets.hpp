@@ -26,8 +26,11 @@ struct IdealTargetFilter {
   // With culling: set per object to 1 if it is visited and can lie on a line of sight to a point
   // in view (within max range + radius, not culled by the view wedge), else 0. The segment from
   // the sensor to a target in view lies inside the convex view wedge and within max range, so only
-  // these objects can occlude (remove_occluded_targets). Range culling does not clear it.
+  // these objects can occlude (apply_occlusion). Range culling does not clear it.
   std::vector<unsigned char>* may_occlude = nullptr;
+  // The sensor's diffuse face pieces (ExtendedObjects; 0: none) and their range extent (its cell).
+  double diffuse_relative_ercs_per_sqrt_m = 0.0;
+  double diffuse_piece_range_m = 1.0;
 };
 
 // Per reflection center of every object: range check, view-field check, visibility check;

@@ -33,9 +33,13 @@ SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflect
   cell_buffers.reserve(capacity);
   cells.reserve(capacity);
   detections.reserve(capacity + 64);
-  reported.reserve(model.options.fidelity == Fidelity::no_tracking
+  reported.reserve(reports_detections(model)
                        ? capacity + 64  // every detection is reported
                        : static_cast<std::size_t>(model.mount.config.tracker.max_tracks));
+}
+
+bool reports_detections(const SensorModel& model) {
+  return model.options.fidelity == Fidelity::no_tracking || model.mount.config.reports == SensorOutput::detections;
 }
 
 void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_objects, const SceneSnapshot& snapshot,
@@ -53,13 +57,15 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   filter.planes = model.options.fidelity != Fidelity::points_only;
   filter.culling = model.options.culling ? &model.culling : nullptr;
   filter.may_occlude = &state.may_occlude;
+  filter.diffuse_relative_ercs_per_sqrt_m = config.extended_objects.diffuse_relative_ercs_per_sqrt_m;
+  filter.diffuse_piece_range_m = config.resolution.range_cell_m;
   compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.visited_indices, state.ideal,
                         filter);
-  // ideal targets => those not hidden behind another object (only objects near the view can hide)
+  // ideal targets => those not hidden (or weakened) behind another object (only those near the view)
   if (model.effects.occlusion) {
     const bool culled = model.options.culling && state.may_occlude.size() == objects.size();
-    remove_occluded_targets(state.kinematics, objects, snapshot.objects, culled ? state.may_occlude : snapshot.visited,
-                            state.ideal);
+    apply_occlusion(config.occlusion, state.kinematics, objects, snapshot.objects,
+                    culled ? state.may_occlude : snapshot.visited, state.ideal);
   }
   if (model.effects.multibounce) add_multibounce_targets(config.multibounce, state.ideal);
   // ideal targets => echoes: amplitude and weighted sum/delta pointers          (eqs. (1)-(3), (6))
@@ -75,6 +81,8 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   } else {
     estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
   }
+  // detections => the local maxima of the range/range-rate map (CFAR peak search) (detection.hpp)
+  if (config.detection.local_maxima_only) keep_local_maxima(config.resolution, state.detections, state.local_maxima);
   // detections => those whose measured amplitude passes the threshold           (III-B)
   apply_detection_threshold(config.amplitude.detection_threshold_db, state.detections);
   // detections => with range and range-rate noise of amplitude-dependent variance (III-A)
@@ -83,7 +91,8 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   if (model.effects.clutter && rng != nullptr) add_clutter(config, state.kinematics, *rng, state.detections);
   if (model.options.level == OutputLevel::detections) return;
   // detections => tracked target list, reported after four measurements         (III-E)
-  if (model.options.fidelity == Fidelity::no_tracking) {
+  //   (a sensor that reports its detections, or fidelity no_tracking: the detections as they are)
+  if (reports_detections(model)) {
     report_detections_directly(state.detections, state.reported);
   } else {
     state.tracker.step(state.detections, state.reported);

@@ -8,6 +8,7 @@
 #include "scene/scene.hpp"
 #include "sim/antenna.hpp"
 #include "sim/culling.hpp"
+#include "sim/detection.hpp"
 #include "sim/fidelity.hpp"
 #include "sim/ideal_targets.hpp"
 #include "sim/resolution_cells.hpp"
@@ -52,6 +53,7 @@ struct SensorCycleState {
   ResolutionCellBuffers cell_buffers;
   ResolutionCells cells;
   Detections detections;
+  LocalMaximaBuffers local_maxima;
   ReportedTargets reported;
   Tracker tracker;
   Rng rng;
@@ -73,6 +75,10 @@ struct SceneObjects {
   explicit SceneObjects(std::span<const SceneObject> objects_in) : objects(objects_in) {}
   std::span<const SceneObject> objects;
 };
+
+// Whether the cycle reports its detections as they are (the sensor reports detections, or
+// Fidelity::no_tracking) rather than the tracker's confirmed tracks.
+bool reports_detections(const SensorModel& model);
 
 void run_sensor_cycle(const SensorModel& model, const SceneObjects& objects, const SceneSnapshot& snapshot,
                       SensorCycleState& state);

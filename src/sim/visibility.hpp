@@ -2,6 +2,8 @@
 // Visibility check of reflection centers (paper II-B, Fig. 7): which reflection points of one
 // object a sensor sees, and where. The ideal target list (ideal_targets.cpp) visits every object
 // through for_each_visible_reflector.
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <optional>
 
@@ -13,6 +15,28 @@ namespace rcsim {
 // The reflection point of a plane reflector: where the line from the sensor to the circle centre
 // meets the arc; none if that line misses the sector or the sensor is inside the circle (Fig. 7).
 std::optional<Vec2> plane_reflection_point_O(const PlaneReflector& plane, const Vec2& p_OS_O);
+
+// At most this many diffuse pieces per face and cycle (a face spanning more range cells is cut
+// into this many longer pieces).
+inline constexpr int kMaxDiffusePieces = 16;
+
+// The diffuse pieces of a plane reflector's face seen from p_OS_O (docs/extended-objects.md): the
+// chord between the arc's ends, cut into n equal pieces, n = the face's range extent seen from the
+// sensor over `piece_range_m` (rounded up, 1 to kMaxDiffusePieces), so that each piece spans about
+// one range cell. Calls visit(p_OT_O, piece_length_m) at each piece's centre. Nothing when the
+// sensor is not in front of the face (on the side of the arc's centre, or on the chord's line).
+template <typename Visit>
+void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, double piece_range_m, Visit&& visit) {
+  const Vec2 a_O = plane.center_O + plane.radius_m * plane.u_start_O;
+  const Vec2 b_O = plane.center_O + plane.radius_m * plane.u_end_O;
+  const Vec2 mid_O = 0.5 * (a_O + b_O);
+  const Vec2 outward_O = mid_O - plane.center_O;  // from the circle centre through the chord
+  if (!((p_OS_O - mid_O).dot(outward_O) > 0.0)) return;
+  const double range_extent_m = std::abs((p_OS_O - a_O).norm() - (p_OS_O - b_O).norm());
+  const int n = std::clamp(static_cast<int>(std::ceil(range_extent_m / piece_range_m)), 1, kMaxDiffusePieces);
+  const double length_m = (b_O - a_O).norm() / n;
+  for (int k = 0; k < n; ++k) visit(Vec2(a_O + ((k + 0.5) / n) * (b_O - a_O)), length_m);
+}
 
 // One visible reflection point of an object, in the object frame.
 struct VisibleReflector {

@@ -88,7 +88,9 @@ TEST_F(AimotiveImporter, CountsAndMountingAsTheSampleHasThem) {
   for (const auto& o : rec().objects) {
     EXPECT_EQ(o.object_class, o.id.rfind("truck", 0) == 0 ? "truck_trailer" : "passenger_car") << o.id;
   }
-  EXPECT_EQ(imported_->extra_files.count("sensor_aimotive_lrr.json"), 1u);
+  // The radars get the built-in profile derived from them; no configuration file beside it.
+  for (const auto& sensor : rec().sensors) EXPECT_EQ(sensor.type, "aimotive_lrr") << sensor.id;
+  EXPECT_TRUE(imported_->extra_files.empty());
   EXPECT_TRUE(rec().all_sensors_report(ReportedLevel::detections));
   // RCS (dBsm), SNR and elevation kept as the optional columns.
   for (const RecordedTarget& t : rec().targets) {

@@ -50,7 +50,8 @@ TEST_F(RealDriveReplay, ClassesObjectFiguresAndOptionalColumnsOfTheSample) {
   EXPECT_LT(s.gospa_object_mean_m, 0.5 * s.gospa_mean_m);
 
   // Every annotated vehicle is in view of one radar or the other; the recorded detection rate
-  // over all of them is high, the placeholder model's far lower (nothing beyond ~35 m).
+  // over all of them is high, and the aimotive_lrr profile's within 0.15 of it (issue 18's goal;
+  // the placeholder with srr24's law had 20 %).
   long long in_view = 0, detected_recorded = 0, detected_simulated = 0, object_targets = 0;
   for (const ObjectFigureRow& o : s.objects) {
     in_view += o.cycles_in_view;
@@ -60,7 +61,8 @@ TEST_F(RealDriveReplay, ClassesObjectFiguresAndOptionalColumnsOfTheSample) {
   }
   EXPECT_EQ(static_cast<int>(s.objects.size()), 8);
   EXPECT_GT(detected_recorded, 0.7 * static_cast<double>(in_view));
-  EXPECT_LT(detected_simulated, 0.5 * static_cast<double>(detected_recorded));
+  EXPECT_NEAR(static_cast<double>(detected_simulated) / static_cast<double>(in_view),
+              static_cast<double>(detected_recorded) / static_cast<double>(in_view), 0.15);
   EXPECT_LE(object_targets, k.object[0]);  // object targets of boxes out of view are not counted
 
   // The optional columns reach the report for the recorded targets only.
