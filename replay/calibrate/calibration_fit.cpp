@@ -49,12 +49,6 @@ Json builtin_document(const std::vector<EmbeddedFile>& files, const std::string&
   throw std::out_of_range("no built-in document " + name);
 }
 
-// The rcsim-sensor document a recording's sensor type names: built-in or a file.
-Json sensor_document(const std::string& type, const std::string& base_dir) {
-  if (is_builtin_sensor_config(type)) return builtin_document(embedded_sensor_configs(), type);
-  const std::string path = resolve_relative(base_dir, type);
-  return parse_document(read_text_file(path), path);
-}
 
 // The documents of a start calibration, keyed as CalibrationParameter::document; none for "".
 std::map<std::string, Json> start_documents(const std::string& dir) {
@@ -370,6 +364,13 @@ class Fitter {
 };
 
 }  // namespace
+
+// The rcsim-sensor document a recording's sensor type names: built-in or a file.
+Json sensor_document(const std::string& type, const std::string& base_dir) {
+  if (is_builtin_sensor_config(type)) return builtin_document(embedded_sensor_configs(), type);
+  const std::string path = resolve_relative(base_dir, type);
+  return parse_document(read_text_file(path), path);
+}
 
 std::optional<ParameterGroup> parse_parameter_group(std::string_view name) {
   for (const ParameterGroup g : {ParameterGroup::ercs, ParameterGroup::position, ParameterGroup::visibility,

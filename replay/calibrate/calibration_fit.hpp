@@ -93,6 +93,10 @@ std::vector<RecordingFit> cross_validate(const std::vector<Recording>& recording
 // Writes the fitted documents (DIR/<name>.json) and the index DIR/calibration.json
 // (rcsim-calibration v1) that rcsim replay/bench --calibration DIR read; each file atomically,
 // the index last.
+// The rcsim-sensor document a recording's sensor type names: built-in or a file relative to
+// `base_dir` (the recording's directory).
+nlohmann::ordered_json sensor_document(const std::string& type, const std::string& base_dir);
+
 void write_calibration(const std::string& dir, const CalibrationResult& result, const CalibrationOptions& options,
                        const std::vector<Recording>& recordings, const std::vector<RecordingFit>* held_out);
 

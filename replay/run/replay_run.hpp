@@ -114,6 +114,9 @@ struct ReplaySummary {
   int latency_pairs = 0, latency_episodes = 0, latency_unconfirmed_recorded = 0, latency_unconfirmed_simulated = 0;
   double residual_range_rms_m = 0.0, residual_azimuth_rms_rad = 0.0, residual_range_rate_rms_mps = 0.0,
          residual_amplitude_mean_db = 0.0;
+  // The same over the matched pairs whose both targets belong to one annotated object.
+  long long object_pairs_matched = 0;
+  double residual_object_range_rms_m = 0.0, residual_object_azimuth_rms_rad = 0.0;
   double simulate_cpu_s = 0.0, total_wall_s = 0.0;
   std::vector<LatencyRow> latencies;
   std::vector<QuantityDistance> distances;  // all targets, then the background's (background_*)

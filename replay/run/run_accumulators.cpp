@@ -16,6 +16,12 @@ void RunAccumulators::add_cycle(const CycleComparison& cycle, long long merge_re
     rate_sq_m2ps2_ += std::pow(b.range_rate_mps - a.range_rate_mps, 2);
     amplitude_sum_db_ += b.amplitude_db - a.amplitude_db;
     ++targets_matched_;
+    if (a.target_class == metrics::TargetClass::object && b.target_class == metrics::TargetClass::object &&
+        a.object == b.object) {
+      object_range_sq_m2_ += std::pow(b.range_m - a.range_m, 2);
+      object_azimuth_sq_rad2_ += std::pow(angle_difference_rad(b.azimuth_rad, a.azimuth_rad), 2);
+      ++object_pairs_;
+    }
   }
   merge_recorded_ += merge_recorded;
   merge_simulated_ += merge_simulated;
@@ -75,6 +81,10 @@ void RunAccumulators::finish(ReplaySummary& summary) {
   summary.residual_azimuth_rms_rad = std::sqrt(azimuth_sq_rad2_ / m);
   summary.residual_range_rate_rms_mps = std::sqrt(rate_sq_m2ps2_ / m);
   summary.residual_amplitude_mean_db = amplitude_sum_db_ / m;
+  summary.object_pairs_matched = object_pairs_;
+  const double m_object = std::max<double>(1.0, static_cast<double>(object_pairs_));
+  summary.residual_object_range_rms_m = std::sqrt(object_range_sq_m2_ / m_object);
+  summary.residual_object_azimuth_rms_rad = std::sqrt(object_azimuth_sq_rad2_ / m_object);
 
   const auto distance = [](const std::vector<float>& a, const std::vector<float>& b) {
     return metrics::distribution_distance(std::vector<double>(a.begin(), a.end()), std::vector<double>(b.begin(), b.end()));

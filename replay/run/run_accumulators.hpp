@@ -25,6 +25,8 @@ class RunAccumulators {
   ClassCounts classes_;
   long long sensor_cycles_ = 0;
   double range_sq_m2_ = 0.0, azimuth_sq_rad2_ = 0.0, rate_sq_m2ps2_ = 0.0, amplitude_sum_db_ = 0.0;
+  double object_range_sq_m2_ = 0.0, object_azimuth_sq_rad2_ = 0.0;
+  long long object_pairs_ = 0;
   // Samples per origin: [0] recorded, [1] simulated (float: half the memory of an hour-long run).
   std::vector<float> range_m_[2], azimuth_rad_[2], rate_mps_[2], amplitude_db_[2], count_[2];
   std::vector<float> background_range_m_[2], background_azimuth_rad_[2], background_count_[2];

@@ -8,7 +8,9 @@
 #include "cli/commands.hpp"
 #include "cli/recording_dirs.hpp"
 #include "common/input_error.hpp"
+#include "common/atomic_file.hpp"
 #include "replay/calibrate/calibration_fit.hpp"
+#include "replay/calibrate/real_drive_fit.hpp"
 
 namespace rcsim::cli {
 
@@ -23,6 +25,8 @@ struct CalibrateArgs {
   double final_step_db = replay::CalibrationOptions{}.final_step_db;
   bool cross_validate = false;
   std::string start_dir;
+  bool real_drive = false;
+  bool hold_out = false;
 };
 
 std::vector<replay::ParameterGroup> parse_groups(const std::string& list) {
@@ -53,7 +57,91 @@ void print_fits(const std::string& title, const std::vector<replay::RecordingFit
   }
 }
 
+void print_figures_header() {
+  std::cout << fmt::format("{:<34} {:>7} {:>6} {:>16} {:>14} {:>7} {:>9} {:>9} {:>13} {:>6}\n", "", "count", "objs",
+                           "worst object", "det. rate", "Pd bin", "range", "azimuth", "background", "KS");
+  std::cout << fmt::format("{:<34} {:>7} {:>6} {:>16} {:>14} {:>7} {:>9} {:>9} {:>13} {:>6}\n", "", "sim/rec", "in goal",
+                           "sim/rec", "max diff", "max diff", "RMS m", "RMS deg", "rec / sim", "range");
+}
+
+void print_figures(const std::string& label, const replay::RealDriveFigures& f) {
+  std::cout << fmt::format("{:<34} {:>7.2f} {:>3}/{:<2} {:>9} {:>6.2f} {:>14.2f} {:>7.2f} {:>9.3f} {:>9.3f} {:>6.1f}/{:<6.1f} {:>6.3f}\n",
+                           label, f.object_count_ratio, f.objects_within_ratio_goal, f.objects_counted,
+                           f.worst_object.substr(0, 9), f.worst_object_ratio, f.max_detection_rate_difference,
+                           f.max_pd_bin_difference, f.residual_range_rms_m, f.residual_azimuth_rms_rad * 180.0 / 3.141592653589793,
+                           f.background_per_cycle_recorded, f.background_per_cycle_simulated, f.background_range_ks);
+}
+
+// rcsim calibrate --real-drive (docs/sensor-profiles.md): the profile's free values and the
+// stationary background fitted to real drives by their figures, with the hold-outs.
+void run_real_drive_calibration(const CalibrateArgs& args) {
+  std::vector<Recording> recordings;
+  for (const auto& dir : recording_dirs(args.recordings)) recordings.push_back(read_recording(dir));
+  replay::ReplayOptions options;
+  options.seed = static_cast<std::uint64_t>(args.seed);
+  options.fidelity = Fidelity::no_tracking;
+  std::vector<const Recording*> all;
+  for (const Recording& r : recordings) all.push_back(&r);
+  std::cout << fmt::format("rcsim calibrate --real-drive: {} recording(s), seed {}\n", recordings.size(), args.seed);
+  const replay::RealDriveFit fit = replay::fit_real_drive(all, options);
+  std::cout << fmt::format("fitted ({} evaluations): reference_rcs_dbsm {:.1f}, diffuse_relative_ercs_per_sqrt_m {:.2f}, "
+                           "occlusion loss_db {:.0f}; background {:.1f} targets per sensor cycle\n\n",
+                           fit.evaluations, fit.reference_rcs_dbsm, fit.diffuse_relative_ercs_per_sqrt_m, fit.occlusion_loss_db,
+                           fit.sensor_document["background"]["targets_per_cycle"].get<double>());
+  nlohmann::ordered_json index = {{"format", replay::kCalibrationFormat}, {"version", replay::kCalibrationVersion},
+                                  {"created_by", "rcsim calibrate --real-drive"}, {"seed", args.seed}};
+  nlohmann::ordered_json fitted_on = nlohmann::ordered_json::array();
+  for (const Recording& r : recordings) fitted_on.push_back({{"recording", r.name}, {"checksum", fmt::format("{:016x}", r.checksum)}});
+  index["fitted_on"] = fitted_on;
+  index["fit"] = {{"evaluations", fit.evaluations}, {"objective", fit.objective}, {"reference_rcs_dbsm", fit.reference_rcs_dbsm},
+                  {"diffuse_relative_ercs_per_sqrt_m", fit.diffuse_relative_ercs_per_sqrt_m},
+                  {"occlusion_loss_db", fit.occlusion_loss_db}};
+  print_figures_header();
+  nlohmann::ordered_json in_sample = nlohmann::ordered_json::array();
+  const SensorConfig fitted = parse_sensor_config(JsonField(fit.sensor_document, "fitted", ""));
+  for (const Recording& r : recordings) {
+    const auto figures = replay::real_drive_figures(r, replay::replay_with_sensor(r, options, fitted));
+    print_figures(fmt::format("in sample: {}", r.name.substr(0, 22)), figures);
+    in_sample.push_back({{"recording", r.name}, {"figures", replay::figures_to_json(figures)}});
+  }
+  index["in_sample"] = in_sample;
+  nlohmann::ordered_json hold_outs = nlohmann::ordered_json::array();
+  if (args.hold_out) {
+    for (const Recording& r : recordings) {
+      for (const replay::HoldOut& h : replay::hold_outs(r, options)) {
+        print_figures(fmt::format("{}: in sample", h.name.substr(0, 22)), h.in_sample);
+        print_figures(fmt::format("{}: held out", h.name.substr(0, 22)), h.held_out);
+        hold_outs.push_back({{"recording", r.name}, {"split", h.name}, {"reference_rcs_dbsm", h.fit.reference_rcs_dbsm},
+                             {"diffuse_relative_ercs_per_sqrt_m", h.fit.diffuse_relative_ercs_per_sqrt_m},
+                             {"occlusion_loss_db", h.fit.occlusion_loss_db},
+                             {"in_sample", replay::figures_to_json(h.in_sample)},
+                             {"held_out", replay::figures_to_json(h.held_out)}});
+      }
+    }
+  }
+  index["hold_outs"] = hold_outs;
+  nlohmann::ordered_json document = fit.sensor_document;
+  const std::string name = document.value("name", "sensor");
+  document["description"] = document.value("description", "") +
+                            fmt::format(" Calibrated by rcsim calibrate --real-drive on {} recording(s) (seed {}).",
+                                        recordings.size(), args.seed);
+  std::filesystem::create_directories(args.output_dir);
+  const std::string file = "sensor_" + name + ".json";
+  AtomicFileWriter sensor_writer((std::filesystem::path(args.output_dir) / file).string());
+  sensor_writer.stream() << document.dump(2) << '\n';
+  sensor_writer.commit();
+  index["sensors"] = {{name, file}};
+  index["models"] = nlohmann::ordered_json::object();
+  AtomicFileWriter index_writer((std::filesystem::path(args.output_dir) / replay::kCalibrationIndexFile).string());
+  index_writer.stream() << index.dump(2) << '\n';
+  index_writer.commit();
+  std::cout << fmt::format("\ncalibration written to {}; use it with rcsim replay --calibration {}\n", args.output_dir,
+                           args.output_dir);
+}
+
 void run_calibrate(const CalibrateArgs& args) {
+  if (args.real_drive) return run_real_drive_calibration(args);
+  if (args.hold_out) throw InputError("--hold-out", "", "goes with --real-drive");
   replay::CalibrationOptions options;
   options.groups = parse_groups(args.fit);
   options.seed = static_cast<std::uint64_t>(args.seed);
@@ -119,6 +207,12 @@ void add_calibrate_command(CLI::App& app) {
                   "calibration directory to start from instead of the built-ins (an earlier fit, or hand-edited models)");
   cmd->add_flag("--cross-validate", args->cross_validate,
                 "also fit on all recordings but one, in turn, and report each held-out recording's GOSPA");
+  cmd->add_flag("--real-drive", args->real_drive,
+                "fit a radar-equation profile's reference RCS, diffuse face return and occlusion loss, and the stationary "
+                "background, to real drives by their object counts and detection rates (docs/sensor-profiles.md)");
+  cmd->add_flag("--hold-out", args->hold_out,
+                "with --real-drive: also fit on one radar and measure on the other (both ways), and on the first half "
+                "of each drive and measure on the second");
   cmd->callback([args] { run_calibrate(*args); });
 }
 

@@ -126,7 +126,7 @@ MultibounceConfig parse_multibounce(const JsonField& mb) {
 SensorConfig parse_sensor_config(const JsonField& root) {
   root.expect_only({"format", "version", "name", "description", "reports", "carrier_frequency_hz", "cycle_time_s",
                     "field_of_view", "amplitude", "detection", "extended_objects", "occlusion", "antenna", "resolution", "monopulse", "measurement_noise",
-                    "tracking", "clutter", "multibounce"});
+                    "tracking", "clutter", "multibounce", "background"});
   root.expect_format("rcsim-sensor", 1);
   SensorConfig c;
   c.name = root.string("name");
@@ -200,6 +200,7 @@ SensorConfig parse_sensor_config(const JsonField& root) {
 
   c.clutter = parse_clutter(root.member("clutter"));
   c.multibounce = parse_multibounce(root.member("multibounce"));
+  if (const auto background = root.optional_member("background")) c.background = parse_stationary_background(*background);
   return c;
 }
 

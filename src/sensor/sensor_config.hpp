@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/json_reader.hpp"
+#include "sensor/stationary_background.hpp"
 
 namespace rcsim {
 
@@ -133,6 +134,7 @@ struct SensorConfig {
   TrackerConfig tracker;
   ClutterConfig clutter;
   MultibounceConfig multibounce;
+  StationaryBackground background;  // optional section; empty: none
 };
 
 SensorConfig parse_sensor_config(const JsonField& root);

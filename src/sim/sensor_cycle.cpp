@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "sim/amplitude.hpp"
+#include "sim/background.hpp"
 #include "sim/detection.hpp"
 #include "sim/effects.hpp"
 #include "sim/measurement_noise.hpp"
@@ -89,6 +90,8 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   if (rng != nullptr) add_measurement_noise(config.noise, config.amplitude.detection_threshold_db, *rng, state.detections);
   // detections => plus sporadic false detections                                 (VI)
   if (model.effects.clutter && rng != nullptr) add_clutter(config, state.kinematics, *rng, state.detections);
+  // detections => plus the fitted stationary background of the sensor's environment (VI)
+  if (rng != nullptr) add_stationary_background(config.background, state.kinematics, *rng, state.detections);
   if (model.options.level == OutputLevel::detections) return;
   // detections => tracked target list, reported after four measurements         (III-E)
   //   (a sensor that reports its detections, or fidelity no_tracking: the detections as they are)

@@ -1,0 +1,308 @@
+#include "replay/calibrate/real_drive_fit.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "replay/calibrate/calibration_fit.hpp"
+#include "replay/run/simulated_source.hpp"
+
+namespace rcsim::replay {
+
+using Json = nlohmann::ordered_json;
+
+Recording restrict_to_sensor(const Recording& recording, int sensor) {
+  Recording out = recording;
+  out.sensors = {recording.sensors.at(static_cast<std::size_t>(sensor))};
+  out.targets.clear();
+  for (const RecordedTarget& t : recording.targets) {
+    if (t.sensor != sensor) continue;
+    out.targets.push_back(t);
+    out.targets.back().sensor = 0;
+  }
+  out.name = recording.name + "/" + recording.sensors[static_cast<std::size_t>(sensor)].id;
+  return out;
+}
+
+Recording restrict_to_cycles(const Recording& recording, int first, int end) {
+  if (!(0 <= first && first < end && end <= recording.cycle_count())) throw std::out_of_range("restrict_to_cycles: no such cycles");
+  Recording out = recording;
+  out.ego.assign(recording.ego.begin() + first, recording.ego.begin() + end);
+  const double from_s = out.ego.front().t_s - 0.5 * recording.cycle_time_s;
+  const double until_s = out.ego.back().t_s + 0.5 * recording.cycle_time_s;
+  for (auto& boxes : out.boxes) {
+    std::erase_if(boxes, [&](const AnnotatedBox& b) { return b.t_s < from_s || b.t_s > until_s; });
+  }
+  out.targets.clear();
+  for (const RecordedTarget& t : recording.targets) {
+    if (t.cycle < first || t.cycle >= end) continue;
+    out.targets.push_back(t);
+    out.targets.back().cycle -= first;
+  }
+  out.name = fmt::format("{}[{}:{}]", recording.name, first, end);
+  return out;
+}
+
+RealDriveFigures real_drive_figures(const Recording& recording, const ReplaySummary& summary) {
+  RealDriveFigures f;
+  std::map<int, std::pair<long long, long long>> per_object;  // recorded, simulated over sensors
+  for (const ObjectFigureRow& o : summary.objects) {
+    f.object_targets_recorded += o.targets_recorded;
+    f.object_targets_simulated += o.targets_simulated;
+    per_object[o.object].first += o.targets_recorded;
+    per_object[o.object].second += o.targets_simulated;
+    const double difference = static_cast<double>(o.cycles_detected_simulated - o.cycles_detected_recorded) / o.cycles_in_view;
+    if (std::abs(difference) > std::abs(f.max_detection_rate_difference)) {
+      f.max_detection_rate_difference = difference;
+      f.max_detection_rate_object = fmt::format("{}@{}", recording.objects[static_cast<std::size_t>(o.object)].id,
+                                                recording.sensors[static_cast<std::size_t>(o.sensor)].id);
+    }
+  }
+  f.object_count_ratio = f.object_targets_recorded > 0
+                             ? static_cast<double>(f.object_targets_simulated) / static_cast<double>(f.object_targets_recorded)
+                             : 0.0;
+  for (const auto& [object, counts] : per_object) {
+    if (counts.first < 30) continue;
+    const double ratio = static_cast<double>(counts.second) / static_cast<double>(counts.first);
+    ++f.objects_counted;
+    if (ratio >= 0.67 && ratio <= 1.5) ++f.objects_within_ratio_goal;
+    if (std::abs(std::log(std::max(ratio, 1e-9))) > std::abs(std::log(std::max(f.worst_object_ratio, 1e-9)))) {
+      f.worst_object_ratio = ratio;
+      f.worst_object = recording.objects[static_cast<std::size_t>(object)].id;
+    }
+  }
+  std::map<double, std::array<long long, 3>> bins;  // in view, detected recorded, detected simulated
+  for (const ObjectRangeRow& r : summary.object_ranges) {
+    auto& b = bins[r.range_from_m];
+    b[0] += r.cycles_in_view, b[1] += r.cycles_detected_recorded, b[2] += r.cycles_detected_simulated;
+  }
+  for (const auto& [from_m, b] : bins) {
+    if (b[0] < 10) continue;
+    f.max_pd_bin_difference = std::max(f.max_pd_bin_difference, std::abs(static_cast<double>(b[2] - b[1]) / static_cast<double>(b[0])));
+  }
+  f.object_pairs = summary.object_pairs_matched;
+  f.residual_range_rms_m = summary.residual_object_range_rms_m;
+  f.residual_azimuth_rms_rad = summary.residual_object_azimuth_rms_rad;
+  const double sensor_cycles = std::max(1.0, static_cast<double>(summary.cycles) * static_cast<double>(recording.sensors.size()));
+  f.background_per_cycle_recorded = static_cast<double>(summary.classes.background[0]) / sensor_cycles;
+  f.background_per_cycle_simulated = static_cast<double>(summary.classes.background[1]) / sensor_cycles;
+  for (const QuantityDistance& d : summary.distances) {
+    if (d.quantity == "background_range") f.background_range_ks = d.distance.kolmogorov_smirnov;
+  }
+  return f;
+}
+
+nlohmann::ordered_json figures_to_json(const RealDriveFigures& f) {
+  return {{"object_targets_recorded", f.object_targets_recorded},
+          {"object_targets_simulated", f.object_targets_simulated},
+          {"object_count_ratio", f.object_count_ratio},
+          {"objects_counted", f.objects_counted},
+          {"objects_within_ratio_goal", f.objects_within_ratio_goal},
+          {"worst_object", f.worst_object},
+          {"worst_object_ratio", f.worst_object_ratio},
+          {"max_detection_rate_difference", f.max_detection_rate_difference},
+          {"max_detection_rate_object", f.max_detection_rate_object},
+          {"max_pd_bin_difference", f.max_pd_bin_difference},
+          {"object_pairs", f.object_pairs},
+          {"residual_range_rms_m", f.residual_range_rms_m},
+          {"residual_azimuth_rms_rad", f.residual_azimuth_rms_rad},
+          {"background_per_cycle_recorded", f.background_per_cycle_recorded},
+          {"background_per_cycle_simulated", f.background_per_cycle_simulated},
+          {"background_range_ks", f.background_range_ks}};
+}
+
+ReplaySummary replay_with_sensor(const Recording& recording, const ReplayOptions& options, const SensorConfig& config) {
+  ReplayOptions o = options;
+  o.object_range_bin_m = 20.0;
+  const ModelLibrary library = ModelLibrary::builtin();
+  ImportedScene imported = import_recording(recording, library, o.import);
+  auto calibration = std::make_shared<Calibration>();
+  calibration->sensors[config.name] = config;
+  imported.calibration = calibration;
+  const Scene scene = build_scene(imported, library, recording.dir.string());
+  ModelSource source(scene, model_options(o.seed, o.fidelity));
+  DiscardingSink sink;
+  return compare_with_recording(recording, imported, scene, source, o, sink);
+}
+
+namespace {
+
+// Collects the recorded targets of class stationary background.
+class BackgroundSink final : public ReplaySink {
+ public:
+  void begin_run(const Recording&, const ImportedScene&, const Scene&, const ReplayOptions&) override {}
+  void add_cycle(const CycleComparison& cycle) override {
+    ++sensor_cycles;
+    for (const ComparedTarget& t : cycle.recorded) {
+      if (t.target_class == metrics::TargetClass::stationary_background) targets.push_back(t);
+    }
+  }
+  void end_run(const ReplaySummary&) override {}
+  long long sensor_cycles = 0;
+  std::vector<ComparedTarget> targets;
+};
+
+constexpr double kBackgroundRangeBinM = 10.0;
+constexpr int kBackgroundAzimuthBins = 12;
+
+std::array<double, kAmplitudeQuantiles> deciles(std::vector<double> values) {
+  std::array<double, kAmplitudeQuantiles> q{};
+  std::sort(values.begin(), values.end());
+  for (int k = 0; k < kAmplitudeQuantiles; ++k) {
+    const double position = 0.1 * k * static_cast<double>(values.size() - 1);
+    const auto i = static_cast<std::size_t>(position);
+    const std::size_t j = std::min(i + 1, values.size() - 1);
+    q[static_cast<std::size_t>(k)] = values[i] + (position - static_cast<double>(i)) * (values[j] - values[i]);
+  }
+  return q;
+}
+
+// The recordings' sensor type, which they must share.
+std::string shared_sensor_type(const std::vector<const Recording*>& recordings) {
+  std::string type;
+  for (const Recording* r : recordings) {
+    for (const RecordingSensor& s : r->sensors) {
+      if (!type.empty() && s.type != type) {
+        throw std::invalid_argument(fmt::format("{}: sensor {} is a {}, not a {}: a real-drive fit takes recordings of one sensor type",
+                                                r->dir.string(), s.id, s.type, type));
+      }
+      type = s.type;
+    }
+  }
+  if (type.empty()) throw std::invalid_argument("a real-drive fit needs a recording with sensors");
+  return type;
+}
+
+// Lower is better: the log of the count ratio over all object targets, half the mean log ratio
+// of the objects with at least 30 targets, and the mean |detection rate difference|.
+double objective(const std::vector<const Recording*>& recordings, const ReplayOptions& options, const SensorConfig& config) {
+  double total = 0.0;
+  for (const Recording* r : recordings) {
+    const ReplaySummary s = replay_with_sensor(*r, options, config);
+    long long recorded = 0, simulated = 0;
+    double rate_difference = 0.0;
+    std::map<int, std::pair<long long, long long>> per_object;
+    for (const ObjectFigureRow& o : s.objects) {
+      recorded += o.targets_recorded, simulated += o.targets_simulated;
+      per_object[o.object].first += o.targets_recorded, per_object[o.object].second += o.targets_simulated;
+      rate_difference += std::abs(static_cast<double>(o.cycles_detected_simulated - o.cycles_detected_recorded)) / o.cycles_in_view;
+    }
+    double object_logs = 0.0;
+    int counted = 0;
+    for (const auto& [object, c] : per_object) {
+      if (c.first < 30) continue;
+      object_logs += std::abs(std::log((static_cast<double>(c.second) + 1.0) / (static_cast<double>(c.first) + 1.0)));
+      ++counted;
+    }
+    total += std::abs(std::log((static_cast<double>(simulated) + 1.0) / (static_cast<double>(recorded) + 1.0))) +
+             0.5 * object_logs / std::max(1, counted) + rate_difference / static_cast<double>(std::max<std::size_t>(1, s.objects.size()));
+  }
+  return total / static_cast<double>(recordings.size());
+}
+
+}  // namespace
+
+StationaryBackground fit_stationary_background(const std::vector<const Recording*>& recordings,
+                                               const ReplayOptions& options, const SensorConfig& config) {
+  BackgroundSink sink;
+  std::string names;
+  for (const Recording* r : recordings) {
+    replay_recording(*r, options, sink);
+    names += (names.empty() ? "" : ", ") + r->name;
+  }
+  StationaryBackground b;
+  b.fitted_on = names;
+  if (sink.targets.empty() || sink.sensor_cycles == 0) return b;
+  for (double edge = 0.0; edge < config.fov.max_range_m; edge += kBackgroundRangeBinM) b.range_edges_m.push_back(edge);
+  b.range_edges_m.push_back(config.fov.max_range_m);
+  for (int k = 0; k <= kBackgroundAzimuthBins; ++k) {
+    b.azimuth_edges_rad.push_back(config.fov.azimuth_half_rad * (2.0 * k / kBackgroundAzimuthBins - 1.0));
+  }
+  b.weights.assign(b.range_bins() * b.azimuth_bins(), 0.0);
+  std::vector<std::vector<double>> amplitudes(b.range_bins());
+  std::vector<double> all_amplitudes;
+  long long counted = 0;
+  for (const ComparedTarget& t : sink.targets) {
+    const auto bin = [](const std::vector<double>& edges, double x) {
+      return static_cast<std::size_t>(std::upper_bound(edges.begin(), edges.end(), x) - edges.begin()) - 1;
+    };
+    if (t.range_m < b.range_edges_m.front() || t.range_m >= b.range_edges_m.back()) continue;
+    if (t.azimuth_rad < b.azimuth_edges_rad.front() || t.azimuth_rad >= b.azimuth_edges_rad.back()) continue;
+    const std::size_t r = bin(b.range_edges_m, t.range_m), a = bin(b.azimuth_edges_rad, t.azimuth_rad);
+    b.weights[r * b.azimuth_bins() + a] += 1.0;
+    amplitudes[r].push_back(t.amplitude_db);
+    all_amplitudes.push_back(t.amplitude_db);
+    ++counted;
+  }
+  if (counted == 0) return b;
+  for (double& w : b.weights) w /= static_cast<double>(counted);
+  b.targets_per_cycle = static_cast<double>(counted) / static_cast<double>(sink.sensor_cycles);
+  // A range bin with few targets takes the deciles of all of them.
+  for (auto& a : amplitudes) b.amplitude_deciles_db.push_back(deciles(a.size() >= 10 ? a : all_amplitudes));
+  return b;
+}
+
+RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, const ReplayOptions& options) {
+  const std::string type = shared_sensor_type(recordings);
+  const Recording& first = *recordings.front();
+  Json doc = sensor_document(type, first.dir.string());
+  doc.erase("background");
+  SensorConfig config = parse_sensor_config(JsonField(doc, type, ""));
+  if (config.amplitude.kind != AmplitudeLawKind::radar_equation) {
+    throw std::invalid_argument(fmt::format("{}: a real-drive fit needs a sensor with the radar equation (amplitude.law)", type));
+  }
+  // The background first: the profile's values are then fitted with it in place.
+  config.background = fit_stationary_background(recordings, options, config);
+  RealDriveFit best;
+  best.objective = std::numeric_limits<double>::infinity();
+  for (const double rcs_dbsm : {2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0}) {
+    for (const double diffuse : {0.0, 0.05, 0.1, 0.2, 0.3}) {
+      for (const double loss_db : {6.0, 10.0, 20.0}) {
+        SensorConfig c = config;
+        c.amplitude.reference_rcs_dbsm = rcs_dbsm;
+        c.extended_objects.diffuse_relative_ercs_per_sqrt_m = diffuse;
+        c.occlusion.loss_db = loss_db;
+        const double value = objective(recordings, options, c);
+        ++best.evaluations;
+        if (value < best.objective) {
+          best.objective = value;
+          best.reference_rcs_dbsm = rcs_dbsm, best.diffuse_relative_ercs_per_sqrt_m = diffuse, best.occlusion_loss_db = loss_db;
+        }
+      }
+    }
+  }
+  doc["amplitude"]["reference_rcs_dbsm"] = best.reference_rcs_dbsm;
+  doc["extended_objects"] = {{"diffuse_relative_ercs_per_sqrt_m", best.diffuse_relative_ercs_per_sqrt_m}};
+  doc["occlusion"] = {{"loss_db", best.occlusion_loss_db}};
+  doc["background"] = stationary_background_to_json(config.background);
+  best.sensor_document = doc;
+  return best;
+}
+
+std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options) {
+  if (recording.sensors.size() != 2) {
+    throw std::invalid_argument(fmt::format("{}: the hold-outs need a recording with two sensors", recording.dir.string()));
+  }
+  const Recording sensor_a = restrict_to_sensor(recording, 0), sensor_b = restrict_to_sensor(recording, 1);
+  const int half = recording.cycle_count() / 2;
+  const Recording first = restrict_to_cycles(recording, 0, half), second = restrict_to_cycles(recording, half, recording.cycle_count());
+  std::vector<HoldOut> out;
+  const auto run = [&](std::string name, const Recording& train, const Recording& test) {
+    HoldOut h;
+    h.name = std::move(name);
+    h.fit = fit_real_drive({&train}, options);
+    const SensorConfig fitted = parse_sensor_config(JsonField(h.fit.sensor_document, h.name, ""));
+    h.in_sample = real_drive_figures(train, replay_with_sensor(train, options, fitted));
+    h.held_out = real_drive_figures(test, replay_with_sensor(test, options, fitted));
+    out.push_back(std::move(h));
+  };
+  run(fmt::format("{} -> {}", recording.sensors[0].id, recording.sensors[1].id), sensor_a, sensor_b);
+  run(fmt::format("{} -> {}", recording.sensors[1].id, recording.sensors[0].id), sensor_b, sensor_a);
+  run("first half -> second half", first, second);
+  return out;
+}
+
+}  // namespace rcsim::replay

@@ -1,0 +1,78 @@
+#pragma once
+// Fitting a sensor profile to a real drive and measuring it on data it was not fitted on
+// (docs/sensor-profiles.md, issue 18's goals): the profile's free values (the RCS an ERCS of 1
+// stands for, the diffuse face return, the occlusion loss) by a grid search on the real-drive
+// figures (object target counts and detection rates, not GOSPA), the stationary background by
+// its density; then the goal figures in sample and held out: fitted on the front radar and
+// measured on the rear one, the reverse, and fitted on the first half of the drive and measured
+// on the second.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/recording.hpp"
+#include "replay/run/replay_run.hpp"
+#include "sensor/stationary_background.hpp"
+
+namespace rcsim::replay {
+
+// The recording with one sensor's targets only (the other sensors gone).
+Recording restrict_to_sensor(const Recording& recording, int sensor);
+// The recording's cycles [first, end) (ego rows, boxes and targets of those cycles; cycle
+// numbers from 0 again).
+Recording restrict_to_cycles(const Recording& recording, int first, int end);
+
+// A replay of `recording` with `config` in place of the sensor type of the same name, the
+// detection probability in 20-m bins (for real_drive_figures).
+ReplaySummary replay_with_sensor(const Recording& recording, const ReplayOptions& options, const SensorConfig& config);
+
+// Issue 18's goal figures of one replay (docs/sensor-profiles.md).
+struct RealDriveFigures {
+  long long object_targets_recorded = 0, object_targets_simulated = 0;
+  double object_count_ratio = 0.0;  // simulated / recorded, objects in view
+  // Per object with at least 30 recorded targets: simulated / recorded; the one farthest from 1.
+  double worst_object_ratio = 1.0;
+  std::string worst_object;
+  int objects_counted = 0, objects_within_ratio_goal = 0;  // within [0.67, 1.5]
+  double max_detection_rate_difference = 0.0;  // per object and sensor, simulated - recorded, largest |.|
+  std::string max_detection_rate_object;
+  double max_pd_bin_difference = 0.0;  // detection probability in 20-m bins (>= 10 cycles in view)
+  double residual_range_rms_m = 0.0, residual_azimuth_rms_rad = 0.0;  // object pairs
+  long long object_pairs = 0;
+  double background_per_cycle_recorded = 0.0, background_per_cycle_simulated = 0.0;
+  double background_range_ks = 0.0;
+};
+
+// The figures of a replay of `recording` (its summary must come from options.object_range_bin_m
+// = 20).
+RealDriveFigures real_drive_figures(const Recording& recording, const ReplaySummary& summary);
+nlohmann::ordered_json figures_to_json(const RealDriveFigures& figures);
+
+// The stationary background of the recordings' sensors (recorded targets of class stationary
+// background, docs/metrics.md): targets per sensor cycle, density over 10-m range bins and 12
+// azimuth bins over the view field, amplitude deciles per range bin.
+StationaryBackground fit_stationary_background(const std::vector<const Recording*>& recordings,
+                                               const ReplayOptions& options, const SensorConfig& config);
+
+struct RealDriveFit {
+  nlohmann::ordered_json sensor_document;  // the recordings' rcsim-sensor document with the fitted values
+  double reference_rcs_dbsm = 0.0, diffuse_relative_ercs_per_sqrt_m = 0.0, occlusion_loss_db = 0.0;
+  double objective = 0.0;
+  int evaluations = 0;
+};
+
+// Fits the profile the recordings' sensors share (their one sensor type) to them.
+RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, const ReplayOptions& options);
+
+// One hold-out: fitted on `train`, figures in sample (on train) and held out (on `test`).
+struct HoldOut {
+  std::string name;  // "front -> rear", ...
+  RealDriveFit fit;
+  RealDriveFigures in_sample, held_out;
+};
+
+// The three hold-outs of one two-sensor recording: first sensor -> second, second -> first,
+// first half -> second half.
+std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options);
+
+}  // namespace rcsim::replay
