@@ -258,7 +258,7 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   config.background = fit_stationary_background(recordings, options, config);
   RealDriveFit best;
   best.objective = std::numeric_limits<double>::infinity();
-  for (const double rcs_dbsm : {2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0}) {
+  for (const double rcs_dbsm : {-4.0, -2.0, 0.0, 2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0}) {
     for (const double diffuse : {0.0, 0.05, 0.1, 0.2, 0.3}) {
       for (const double loss_db : {6.0, 10.0, 20.0}) {
         SensorConfig c = config;

@@ -174,8 +174,13 @@ SensorConfig parse_sensor_config(const JsonField& root) {
     if (!(*n >= 1.0 && *n <= 4.0)) antenna.fail("amplitude_pattern_exponent", "must be in [1, 4] (1: the paper's |H_sum|)");
     c.antenna.amplitude_pattern_exponent = *n;
   }
-  if (c.antenna.element_spacing_wavelengths > 0.5) {
-    antenna.fail("element_spacing_wavelengths", "must be at most 0.5 so that eq. (7) stays monotone over +-90 deg");
+  // eq. (7) inverts while u = pi (d / lambda) sin(phi) stays within pi/2 over the view field:
+  // d / lambda <= 0.5 / sin(half view), 0.5 for a view field reaching +-90 deg.
+  const double max_spacing = 0.5 / std::sin(c.fov.azimuth_half_rad);
+  if (c.antenna.element_spacing_wavelengths > max_spacing) {
+    antenna.fail("element_spacing_wavelengths",
+                 fmt::format("must be at most 0.5 / sin(azimuth_half) = {:.4f} so that eq. (7) stays monotone over the "
+                             "view field, got {}", max_spacing, c.antenna.element_spacing_wavelengths));
   }
 
   const auto res = root.member("resolution");
