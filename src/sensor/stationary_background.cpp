@@ -84,7 +84,7 @@ StationaryBackground parse_stationary_background(const JsonField& f) {
 
 nlohmann::ordered_json stationary_background_to_json(const StationaryBackground& b) {
   nlohmann::ordered_json out;
-  out["fitted_on"] = b.fitted_on;
+  if (!b.fitted_on.empty()) out["fitted_on"] = b.fitted_on;
   out["targets_per_cycle"] = b.targets_per_cycle;
   out["range_edges_m"] = b.range_edges_m;
   nlohmann::ordered_json azimuth = nlohmann::ordered_json::array();

@@ -1,0 +1,114 @@
+// The fitted stationary background (paper VI): drawn as its density says, each target a stationary
+// reflector; the section read strictly and written back unchanged.
+#include "sim/background.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+
+namespace rcsim {
+namespace {
+
+// One range bin [10, 20) m, two azimuth bins [-0.1, 0) and [0, 0.1) rad weighted 1 : 3, 20 targets
+// per cycle, amplitudes 10 to 20 dB evenly (deciles 10, 11, ..., 20).
+StationaryBackground hand_background() {
+  StationaryBackground b;
+  b.targets_per_cycle = 20.0;
+  b.range_edges_m = {10.0, 20.0};
+  b.azimuth_edges_rad = {-0.1, 0.0, 0.1};
+  b.weights = {0.25, 0.75};
+  auto& q = b.amplitude_deciles_db.emplace_back();
+  for (int k = 0; k < kAmplitudeQuantiles; ++k) q[static_cast<std::size_t>(k)] = 10.0 + k;
+  return b;
+}
+
+SensorKinematics moving_sensor() {
+  SensorKinematics k;
+  k.X_WS = Pose2{0.0, 0.0, 0.0};
+  k.v_WS_W = Vec2(30.0, 0.0);
+  return k;
+}
+
+TEST(StationaryBackground, DrawsFollowTheDensityAndAreStationary) {
+  const StationaryBackground b = hand_background();
+  Rng rng(5, 0);
+  constexpr int kCycles = 2000;
+  long long count = 0, right_bin = 0;
+  double amplitude_sum_db = 0.0;
+  for (int c = 0; c < kCycles; ++c) {
+    Detections d;
+    add_stationary_background(b, moving_sensor(), rng, d);
+    for (const Detection& t : d) {
+      ++count;
+      EXPECT_GE(t.range_m, 10.0);
+      EXPECT_LT(t.range_m, 20.0);
+      EXPECT_GE(t.azimuth_rad, -0.1);
+      EXPECT_LT(t.azimuth_rad, 0.1);
+      right_bin += t.azimuth_rad >= 0.0;
+      // A stationary point seen from a sensor moving at 30 m/s along x: -30 cos(az).
+      EXPECT_NEAR(t.range_rate_mps, -30.0 * std::cos(t.azimuth_rad), 1e-9);
+      EXPECT_GE(t.amplitude_db, 10.0);
+      EXPECT_LE(t.amplitude_db, 20.0);
+      EXPECT_EQ(t.object_index, -1);
+      amplitude_sum_db += t.amplitude_db;
+    }
+  }
+  // Poisson(20) over 2000 cycles: the mean within 5 sigma (0.5); 3/4 in the right bin; amplitudes
+  // uniform over 10..20 dB, mean 15.
+  EXPECT_NEAR(static_cast<double>(count) / kCycles, 20.0, 0.5);
+  EXPECT_NEAR(static_cast<double>(right_bin) / static_cast<double>(count), 0.75, 0.02);
+  EXPECT_NEAR(amplitude_sum_db / static_cast<double>(count), 15.0, 0.1);
+}
+
+TEST(StationaryBackground, EmptyDrawsNothing) {
+  Rng rng(5, 0), untouched(5, 0);
+  Detections d;
+  add_stationary_background(StationaryBackground{}, moving_sensor(), rng, d);
+  EXPECT_TRUE(d.empty());
+  EXPECT_EQ(rng.next_u64(), untouched.next_u64());
+}
+
+std::string parse_error(const nlohmann::ordered_json& doc) {
+  const nlohmann::json plain = nlohmann::json::parse(doc.dump());
+  try {
+    parse_stationary_background(JsonField(plain, "s.json", "background"));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(StationaryBackground, SectionRoundTripsAndBadFieldsAreNamed) {
+  const StationaryBackground b = hand_background();
+  const nlohmann::ordered_json doc = stationary_background_to_json(b);
+  const nlohmann::json plain = nlohmann::json::parse(doc.dump());
+  const StationaryBackground back = parse_stationary_background(JsonField(plain, "s.json", "background"));
+  EXPECT_EQ(back.targets_per_cycle, 20.0);
+  EXPECT_EQ(back.range_edges_m, b.range_edges_m);
+  ASSERT_EQ(back.azimuth_edges_rad.size(), 3u);
+  EXPECT_NEAR(back.azimuth_edges_rad[2], 0.1, 1e-12);  // written in degrees, read back in radians
+  EXPECT_EQ(back.weights, b.weights);
+  EXPECT_EQ(back.amplitude_deciles_db, b.amplitude_deciles_db);
+
+  auto bad = doc;
+  bad["weights"][0][1] = -1.0;
+  EXPECT_NE(parse_error(bad).find("background.weights"), std::string::npos) << parse_error(bad);
+  bad = doc;
+  bad["range_edges_m"] = {20.0, 10.0};
+  EXPECT_NE(parse_error(bad).find("background.range_edges_m"), std::string::npos) << parse_error(bad);
+  bad = doc;
+  bad["amplitude_deciles_db"][0][3] = 0.0;  // falls below the decile before it
+  EXPECT_NE(parse_error(bad).find("background.amplitude_deciles_db"), std::string::npos) << parse_error(bad);
+  bad = doc;
+  bad["weights"].push_back({0.5, 0.5});  // a row more than range bins
+  EXPECT_NE(parse_error(bad).find("background.weights"), std::string::npos) << parse_error(bad);
+  bad = doc;
+  bad["targets_per_cycle"] = 1e9;
+  EXPECT_NE(parse_error(bad).find("background.targets_per_cycle"), std::string::npos) << parse_error(bad);
+}
+
+}  // namespace
+}  // namespace rcsim
