@@ -173,5 +173,56 @@ TEST(Amplitude, LawIsReadFromTheSensorConfigurationAndCheckedField) {
   EXPECT_NE(parse_error(doc).find("amplitude.reference_rcs_dbsm"), std::string::npos) << parse_error(doc);
 }
 
+
+TEST(Amplitude, RangeExponentByHand) {
+  AmplitudeLaw law = radar_equation_law();
+  law.range_exponent = 2.5;
+  // SNR = K + sigma_ref - 10 n log10 R = 90 + 10 - 25 * 2 = 50 dB at 100 m; 100 - 25 = 75 dB at 10 m
+  EXPECT_NEAR(reference_range_level_db(law, 100.0), 50.0, 1e-12);
+  EXPECT_NEAR(reference_range_level_db(law, 10.0), 75.0, 1e-12);
+  EXPECT_NEAR(reference_range_level_db(law, 1.0), 100.0, 1e-12);  // n does not move the 1-m level
+  // Threshold 14 dB: 100 - 25 log10 R = 14  =>  R = 10^(86/25) = 10^3.44 = 2754.23 m;
+  // ERCS 10 (+20 dB): 10^(106/25) = 10^4.24 = 17378.0 m; 3 dB headroom: 10^(89/25) = 3630.78 m.
+  EXPECT_NEAR(detection_range_bound_m(law, 1.0), std::pow(10.0, 3.44), 1e-9 * 2754.23);
+  EXPECT_NEAR(detection_range_bound_m(law, 1.0), 2754.2287, 1e-3);
+  EXPECT_NEAR(detection_range_bound_m(law, 10.0), std::pow(10.0, 4.24), 1e-9 * 17378.0);
+  EXPECT_NEAR(detection_range_bound_m(law, 1.0, 3.0), std::pow(10.0, 89.0 / 25.0), 1e-9 * 3630.78);
+  EXPECT_NEAR(reference_range_level_db(law, detection_range_bound_m(law, 1.0)), 14.0, 1e-9);
+  // The echo at 100 m of an ERCS of 2 on boresight: 50 + 20 log10 2 = 56.02 dB.
+  const MonopulseAntenna antenna{AntennaGeometry{}};
+  IdealTargets ideal(1);
+  ideal[0].range_m = 100.0;
+  ideal[0].set_azimuth(0.0);
+  ideal[0].ercs = 2.0;
+  Echoes echoes;
+  compute_echoes(law, antenna, ideal, echoes);
+  EXPECT_NEAR(amplitude_to_db(echoes[0].amplitude), 50.0 + 20.0 * std::log10(2.0), 1e-9);
+}
+
+TEST(Amplitude, RangeExponentIsOptionalAndRefusedOutsideOneToSix) {
+  nlohmann::json doc = builtin_sensor_json("srr24");
+  ASSERT_FALSE(doc.is_null());
+  doc["amplitude"] = {{"law", "radar_equation"}, {"snr_at_1m_for_1m2_db", 90.0}, {"reference_rcs_dbsm", 10.0},
+                      {"detection_threshold_db", 14.0}};
+  EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).amplitude.range_exponent, 4.0);  // absent: 1/R^4
+  for (const double n : {1.0, 2.53, 6.0}) {
+    doc["amplitude"]["range_exponent"] = n;
+    EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).amplitude.range_exponent, n);
+  }
+  for (const double n : {0.5, 7.0, 0.0, -4.0}) {
+    doc["amplitude"]["range_exponent"] = n;
+    EXPECT_NE(parse_error(doc).find("amplitude.range_exponent"), std::string::npos) << n << ": " << parse_error(doc);
+  }
+  // Only the radar equation has a range exponent: the paper's law refuses it.
+  doc["amplitude"] = {{"reference_level_db", 26.5}, {"reference_slope_db_per_m", 0.75}, {"detection_threshold_db", 6.0},
+                      {"range_exponent", 4.0}};
+  EXPECT_NE(parse_error(doc).find("amplitude.range_exponent"), std::string::npos) << parse_error(doc);
+  // The built-in aimotive_lrr gives its fitted n (docs/sensor-profiles.md), not the default 4.
+  const nlohmann::json lrr = builtin_sensor_json("aimotive_lrr");
+  ASSERT_TRUE(lrr["amplitude"].contains("range_exponent"));
+  EXPECT_EQ(builtin_sensor_config("aimotive_lrr").amplitude.range_exponent, lrr["amplitude"]["range_exponent"].get<double>());
+  EXPECT_NE(builtin_sensor_config("aimotive_lrr").amplitude.range_exponent, 4.0);
+}
+
 }  // namespace
 }  // namespace rcsim

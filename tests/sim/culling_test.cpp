@@ -206,5 +206,87 @@ TEST(Culling, SceneCullingSelectsObjectsInReach) {
   EXPECT_EQ(unculled.snapshot().visited_indices, (std::vector<std::uint32_t>{0, 1, 2, 3}));
 }
 
+
+// The bound with diffuse face pieces (sensor_config ExtendedObjects) by hand, srr24's eq. (1):
+// L0 26.5 dB, 0.75 dB/m, threshold 6 dB, no fluctuation: headroom = the 1-dB margin. One object:
+// a 4-m face (chord (-2, 1) .. (2, 1), 1 cm sagitta) of ERCS 1, no points; reflection radius
+// |(2, 1)| = sqrt(5) (its arc ends).
+TEST(Culling, DiffusePiecesWidenTheBoundByHand) {
+  const SensorConfig srr24 = builtin_sensor_config("srr24");
+  std::vector<SceneObject> objects(1);
+  objects[0].model.planes.push_back(plane_from_chord("face", {-2.0, 1.0}, {2.0, 1.0}, 0.01, 1.0));
+  const Effects effects;
+  const auto cull_m = [&](double diffuse) {
+    SensorConfig config = srr24;
+    config.extended_objects.diffuse_relative_ercs_per_sqrt_m = diffuse;
+    const CullingBounds b = make_culling_bounds(config, effects, objects, true, true);
+    EXPECT_NEAR(b.radius_m[0], std::sqrt(5.0), 1e-9);
+    return b.cull_distance_m[0];
+  };
+  // Without pieces: (a) (26.5 - 6 + 1 + 20 log10 1) / 0.75 + 0.3 = 28.9667 m, (b) 28.6667 m:
+  // 28.9667 + 2.2361 = 31.2027 m.
+  EXPECT_NEAR(cull_m(0.0), 21.5 / 0.75 + 0.3 + std::sqrt(5.0), 1e-9);
+  // r = 0.5: ERCS sum 1 + 0.5 x 1 x sqrt(16 x 4) = 5, echoes 1 + 16 = 17, the strongest single one
+  // max(1, 0.5 sqrt(4)) = 1: (a) (21.5 + 13.9794) / 0.75 + 0.3 = 47.6059 m, (b) (21.5 + 20 log10 17)
+  // / 0.75 = (21.5 + 24.6090) / 0.75 = 61.4786 m: 61.4786 + 2.2361 = 63.7147 m.
+  EXPECT_NEAR(cull_m(0.5), (21.5 + 20.0 * std::log10(17.0)) / 0.75 + std::sqrt(5.0), 1e-9);
+  EXPECT_NEAR(cull_m(0.5), 63.7147, 1e-4);
+  // r = 2: one piece of the whole chord is the strongest, 2 sqrt(4) = 4: (b) (21.5 + 20 log10(17 x 4))
+  // / 0.75 = 77.5336 m (beyond (a): sum 1 + 2 x 8 = 17, 61.7786 m): 79.7696 m.
+  EXPECT_NEAR(cull_m(2.0), (21.5 + 20.0 * std::log10(68.0)) / 0.75 + std::sqrt(5.0), 1e-9);
+  EXPECT_NEAR(cull_m(2.0), 79.7696, 1e-4);
+}
+
+// With diffuse face pieces the culling is still exact: the bundled scenes with srr24 plus an
+// extended_objects block, and with the aimotive_lrr profile (radar equation with its fitted range
+// exponent, Swerling 1, local maxima, occlusion as a loss, diffuse pieces) in the scenes' own
+// mounting geometry.
+TEST(Culling, DiffusePiecesByteIdentical) {
+  int srr24_with_pieces = 0, lrr_with_pieces = 0;  // scenes whose ideal targets include pieces
+  for (const char* file : {"front_approach.json", "perpendicular_crossing.json", "parking_area.json"}) {
+    const Scene original = load_scene_file((fs::path(RCSIM_SOURCE_DIR) / "docs/examples" / file).string(), testing::library());
+    Scene diffuse = original;
+    for (auto& sensor : diffuse.sensors) sensor.config.extended_objects.diffuse_relative_ercs_per_sqrt_m = 0.5;
+    srr24_with_pieces += target_lists(diffuse, OutputLevel::ideal, true).find("#diffuse") != std::string::npos;
+    expect_culling_invisible(diffuse, std::string(file) + " (srr24, diffuse 0.5)");
+    Scene lrr = original;
+    for (auto& sensor : lrr.sensors) sensor.config = builtin_sensor_config("aimotive_lrr");
+    lrr.effects.occlusion = true;
+    lrr_with_pieces += target_lists(lrr, OutputLevel::ideal, true).find("#diffuse") != std::string::npos;
+    expect_culling_invisible(lrr, std::string(file) + " (aimotive_lrr)");
+  }
+  EXPECT_EQ(srr24_with_pieces, 3);
+  EXPECT_GE(lrr_with_pieces, 1);  // its +-17 deg view misses the car of front_approach (sensors at +-29 deg)
+}
+
+// Random traffic, where the range bound does cull (RandomTrafficByteIdentical), with strong
+// pieces (r = 2) and a 400-m view range: the pieces' ERCS must be inside the bound.
+TEST(Culling, DiffusePiecesInRandomTrafficByteIdentical) {
+  const fs::path dir = fs::temp_directory_path() / ("rcsim_culling_diffuse_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path scene_path = dir / "traffic.json";
+  ASSERT_EQ(testing::run_rcsim("traffic --layout highway --duration-s 6 --seed 2 -o " + scene_path.string()).exit_code, 0);
+  Scene scene = load_scene_file(scene_path.string(), testing::library());
+  fs::remove_all(dir);
+  for (auto& sensor : scene.sensors) {
+    sensor.config.extended_objects.diffuse_relative_ercs_per_sqrt_m = 2.0;
+    sensor.config.fov.max_range_m = 400.0;
+  }
+  for (const OutputLevel level : {OutputLevel::detections, OutputLevel::tracks}) {
+    const std::string on = target_lists(scene, level, true);
+    EXPECT_GT(on.size(), 0u);
+    EXPECT_TRUE(on == target_lists(scene, level, false)) << "level " << static_cast<int>(level);
+  }
+  // The bound, wider with the pieces, still culls here: some present object lies beyond it.
+  const CullingBounds b = make_culling_bounds(scene.sensors[0].config, scene.effects, scene.objects, true, true);
+  const Vec2 p_WE_W = scene.ego.state_at(0.0).X_WB.translation();
+  int beyond = 0;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const double d_m = (scene.objects[i].trajectory.state_at(0.0).X_WB.translation() - p_WE_W).norm();
+    if (scene.objects[i].present_at(0.0) && d_m > b.cull_distance_m[i] + 5.0 && d_m < 395.0) ++beyond;
+  }
+  EXPECT_GT(beyond, 0);
+}
+
 }  // namespace
 }  // namespace rcsim

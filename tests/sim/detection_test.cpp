@@ -147,5 +147,87 @@ TEST(Detection, FluctuationIsReadAndUnknownNamesRefused) {
   }
 }
 
+
+// keep_local_maxima: detections of a range/range-rate map with 1-m x 0.5-m/s cells, so the window
+// is 1.5 m x 0.75 m/s. object_index tells the detections apart.
+Detection at(double range_m, double range_rate_mps, double amplitude_db, int id) {
+  Detection d;
+  d.range_m = range_m;
+  d.range_rate_mps = range_rate_mps;
+  d.amplitude_db = amplitude_db;
+  d.object_index = id;
+  return d;
+}
+
+std::vector<int> ids_after_local_maxima(Detections detections) {
+  LocalMaximaBuffers buffers;
+  keep_local_maxima(ResolutionCell{1.0, 0.5}, detections, buffers);
+  std::vector<int> ids;
+  for (const auto& d : detections) ids.push_back(d.object_index);
+  return ids;
+}
+
+TEST(LocalMaxima, ThreeInARowOneCellApartKeepTheStrongest) {
+  // 10, 11, 12 m at 0 m/s: 20, 30, 25 dB. |11 - 10| = |12 - 11| = 1 < 1.5 with 30 dB stronger than
+  // both neighbours: only the middle one stays; 10 and 12 are 2 m apart, outside each other's window.
+  EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.0, 0.0, 30.0, 1), at(12.0, 0.0, 25.0, 2)}),
+            (std::vector<int>{1}));
+  // The same in any input order.
+  EXPECT_EQ(ids_after_local_maxima({at(12.0, 0.0, 25.0, 2), at(10.0, 0.0, 20.0, 0), at(11.0, 0.0, 30.0, 1)}),
+            (std::vector<int>{1}));
+  // A strongest one at the end: 10 m 20 dB < 11 m 25 dB < 12 m 30 dB: 12 hides 11, 11 hides 10.
+  EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.0, 0.0, 25.0, 1), at(12.0, 0.0, 30.0, 2)}),
+            (std::vector<int>{2}));
+}
+
+TEST(LocalMaxima, TwoRangeRateCellsApartAllStay) {
+  // Range rates 0, 1, 2 m/s: neighbours differ by 1 m/s = 2 cells >= the 0.75 m/s window: all peaks.
+  EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.0, 1.0, 30.0, 1), at(12.0, 2.0, 25.0, 2)}),
+            (std::vector<int>{0, 1, 2}));
+  // Within the window in range rate (0.7 m/s < 0.75) but not in range (1.6 m > 1.5): both stay;
+  // within both (1.4 m, 0.7 m/s): the weaker goes.
+  EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.6, 0.7, 30.0, 1)}), (std::vector<int>{0, 1}));
+  EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.4, 0.7, 30.0, 1)}), (std::vector<int>{1}));
+  EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(10.0, -0.7, 30.0, 1)}), (std::vector<int>{1}));
+  EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(10.0, -0.8, 30.0, 1)}), (std::vector<int>{0, 1}));
+}
+
+TEST(LocalMaxima, EqualAmplitudesKeepTheEarlier) {
+  // 25 dB both, 1 m apart: the one first in the list stays, whichever is nearer.
+  EXPECT_EQ(ids_after_local_maxima({at(12.0, 0.0, 25.0, 0), at(11.0, 0.0, 25.0, 1)}), (std::vector<int>{0}));
+  EXPECT_EQ(ids_after_local_maxima({at(11.0, 0.0, 25.0, 0), at(12.0, 0.0, 25.0, 1)}), (std::vector<int>{0}));
+}
+
+TEST(LocalMaxima, SurvivorsKeepTheirOrder) {
+  // Two peaks far apart (30 m, 10 m) and one at another range rate (5 m, 3 m/s); 10.5 m 15 dB lies
+  // in the 10-m peak's window and goes. The others stay in the order they came, not by range.
+  EXPECT_EQ(ids_after_local_maxima({at(30.0, 0.0, 20.0, 0), at(10.0, 0.0, 25.0, 1), at(10.5, 0.2, 15.0, 2),
+                                    at(5.0, 3.0, 18.0, 3)}),
+            (std::vector<int>{0, 1, 3}));
+  EXPECT_TRUE(ids_after_local_maxima({}).empty());
+  EXPECT_EQ(ids_after_local_maxima({at(7.0, 1.0, 9.0, 4)}), (std::vector<int>{4}));
+}
+
+TEST(LocalMaxima, OptionIsReadAndOffByDefault) {
+  EXPECT_FALSE(builtin_sensor_config("srr24").detection.local_maxima_only);
+  EXPECT_TRUE(builtin_sensor_config("aimotive_lrr").detection.local_maxima_only);
+  nlohmann::json doc;
+  for (const auto& f : embedded_sensor_configs()) {
+    if (f.name == "srr24") doc = nlohmann::json::parse(f.text);
+  }
+  ASSERT_FALSE(doc.is_null());
+  doc["detection"] = {{"fluctuation", "none"}};
+  EXPECT_FALSE(parse_sensor_config(JsonField(doc, "s.json", "")).detection.local_maxima_only);
+  doc["detection"]["local_maxima_only"] = true;
+  EXPECT_TRUE(parse_sensor_config(JsonField(doc, "s.json", "")).detection.local_maxima_only);
+  doc["detection"]["local_maxima_only"] = "yes";
+  try {
+    parse_sensor_config(JsonField(doc, "s.json", ""));
+    FAIL() << "a string accepted as a boolean";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("detection.local_maxima_only"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rcsim

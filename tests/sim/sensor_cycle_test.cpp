@@ -6,6 +6,9 @@
 #include <cmath>
 
 #include "common/angles.hpp"
+#include "common/embedded_data.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "sim/simulation.hpp"
 #include "test_support.hpp"
 
@@ -218,6 +221,94 @@ TEST(SensorCyclePresence, AnObjectTakesPartOnlyWhilePresent) {
   EXPECT_EQ(pole_targets(0.25), 0);  // present, but behind the board
   EXPECT_EQ(pole_targets(0.35), 1);  // the board has gone
   EXPECT_EQ(pole_targets(0.5), 0);   // gone itself
+}
+
+}  // namespace
+}  // namespace rcsim
+
+namespace rcsim {
+namespace {
+
+nlohmann::json srr24_json() {
+  for (const auto& f : embedded_sensor_configs()) {
+    if (f.name == "srr24") return nlohmann::json::parse(f.text);
+  }
+  return {};
+}
+
+std::string sensor_config_error(const nlohmann::json& doc) {
+  try {
+    parse_sensor_config(JsonField(doc, "s.json", ""));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SensorCycleReports, DetectionsWithoutTrackingSectionParse) {
+  nlohmann::json doc = srr24_json();
+  ASSERT_FALSE(doc.is_null());
+  EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).reports, SensorOutput::tracks);  // absent: tracks
+  doc["reports"] = "detections";
+  doc.erase("tracking");
+  EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).reports, SensorOutput::detections);
+  EXPECT_EQ(builtin_sensor_config("aimotive_lrr").reports, SensorOutput::detections);
+  // A tracker needs its section.
+  doc["reports"] = "tracks";
+  EXPECT_NE(sensor_config_error(doc).find("tracking"), std::string::npos) << sensor_config_error(doc);
+  doc.erase("reports");
+  EXPECT_NE(sensor_config_error(doc).find("tracking"), std::string::npos) << sensor_config_error(doc);
+  doc["reports"] = "foo";
+  doc["tracking"] = srr24_json()["tracking"];
+  EXPECT_NE(sensor_config_error(doc).find("reports"), std::string::npos) << sensor_config_error(doc);
+  EXPECT_NE(sensor_config_error(doc).find("foo"), std::string::npos) << sensor_config_error(doc);
+}
+
+TEST(SensorCycleReports, ASensorThatReportsDetectionsReportsThemAtTheTracksLevel) {
+  // Two poles and a car, noise and clutter on: at the tracks level the sensor reports, cycle by
+  // cycle, exactly the detections the detections level gives with the same seed (no tracker: no
+  // 4-hit confirmation, so already in the first cycle).
+  Scene scene = testing::single_sensor_scene(0.6);
+  scene.effects.clutter = true;
+  nlohmann::json doc = srr24_json();
+  doc["reports"] = "detections";
+  doc.erase("tracking");
+  scene.sensors[0].config = parse_sensor_config(JsonField(doc, "s.json", ""));
+  testing::add_object(scene, "pole", "pole", {testing::sample(0, 10.0, 1.0, 0, 0)});
+  testing::add_object(scene, "pole2", "pole", {testing::sample(0, 14.0, -3.0, 0, 0)});
+  testing::add_object(scene, "car", "passenger_car", {testing::sample(0, 20.0, 2.0, kPi, 3.0)});
+  SimulationOptions at_tracks;
+  at_tracks.level = OutputLevel::tracks;
+  at_tracks.seed = 11;
+  SimulationOptions at_detections = at_tracks;
+  at_detections.level = OutputLevel::detections;
+  Simulation tracks(scene, at_tracks), detections(scene, at_detections);
+  ASSERT_GT(tracks.cycle_count(), 10);
+  std::size_t total = 0;
+  for (int k = 0; k < tracks.cycle_count(); ++k) {
+    tracks.run_cycle(k);
+    detections.run_cycle(k);
+    const auto& reported = tracks.sensor_state(0).reported;
+    const auto& detected = detections.sensor_state(0).detections;
+    ASSERT_EQ(reported.size(), detected.size()) << "cycle " << k;
+    if (k == 0) {
+      EXPECT_GE(reported.size(), 3u);
+    }
+    for (std::size_t i = 0; i < reported.size(); ++i) {
+      EXPECT_EQ(reported[i].range_m, detected[i].range_m) << "cycle " << k;
+      EXPECT_EQ(reported[i].azimuth_rad, detected[i].azimuth_rad) << "cycle " << k;
+      EXPECT_EQ(reported[i].amplitude_db, detected[i].amplitude_db) << "cycle " << k;
+    }
+    total += reported.size();
+  }
+  EXPECT_GT(total, 3u * static_cast<std::size_t>(tracks.cycle_count()));
+  // The same scene with the srr24's tracker reports nothing in the first three cycles (III-E).
+  scene.sensors[0].config = builtin_sensor_config("srr24");
+  Simulation tracked(scene, at_tracks);
+  for (int k = 0; k < 3; ++k) {
+    tracked.run_cycle(k);
+    EXPECT_TRUE(tracked.sensor_state(0).reported.empty()) << "cycle " << k;
+  }
 }
 
 }  // namespace

@@ -124,5 +124,84 @@ TEST(Visibility, ScaledModelKeepsChordEndsAndApex) {
   EXPECT_NEAR(q.arc_point_O(q.start_rad + 0.5 * q.span_rad).x(), 4.6, 1e-9);
 }
 
+
+// The diffuse pieces of a face (for_each_diffuse_piece) as (centre, length) pairs.
+std::vector<std::pair<Vec2, double>> diffuse_pieces(const PlaneReflector& plane, const Vec2& p_OS_O, double piece_range_m) {
+  std::vector<std::pair<Vec2, double>> pieces;
+  for_each_diffuse_piece(plane, p_OS_O, piece_range_m, [&](const Vec2& p_OT_O, double length_m) {
+    pieces.emplace_back(p_OT_O, length_m);
+  });
+  return pieces;
+}
+
+// A nearly straight face: chord (-2, 1) .. (2, 1), 4 m, 1 cm sagitta (circle radius
+// (4 + 1e-4) / 0.02 = 200.005 m, centre at (0, 1.01 - 200.005)), bulging towards +y.
+PlaneReflector four_metre_face() { return plane_from_chord("side", {-2.0, 1.0}, {2.0, 1.0}, 0.01, 1.0); }
+
+TEST(DiffusePieces, BroadsideIsOnePieceTheWholeChord) {
+  const PlaneReflector face = four_metre_face();
+  // From (0, 21), 20 m in front of the chord's middle: both ends sqrt(4 + 400) away, range extent 0
+  // => ceil(0 / 0.5) = 0, at least 1 piece: the whole 4-m chord, centred at (0, 1).
+  const auto pieces = diffuse_pieces(face, {0.0, 21.0}, 0.5);
+  ASSERT_EQ(pieces.size(), 1u);
+  EXPECT_NEAR(pieces[0].first.x(), 0.0, 1e-9);
+  EXPECT_NEAR(pieces[0].first.y(), 1.0, 1e-9);
+  EXPECT_NEAR(pieces[0].second, 4.0, 1e-9);
+  // From (1, 21): ends sqrt(1 + 400) = 20.02498 and sqrt(9 + 400) = 20.22375 m away, extent
+  // 0.19877 m: 1 piece of 0.5-m range cells, 2 of 0.15-m cells (ceil(1.325)), each 2 m long.
+  EXPECT_EQ(diffuse_pieces(face, {1.0, 21.0}, 0.5).size(), 1u);
+  const auto two = diffuse_pieces(face, {1.0, 21.0}, 0.15);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_NEAR(two[0].second, 2.0, 1e-9);
+  EXPECT_NEAR(std::abs(two[0].first.x()), 1.0, 1e-9);
+  EXPECT_NEAR(two[0].first.x() + two[1].first.x(), 0.0, 1e-9);
+}
+
+TEST(DiffusePieces, ObliqueViewOnePiecePerRangeCell) {
+  const PlaneReflector face = four_metre_face();
+  // From (10, 11): the ends (2, 1) and (-2, 1) lie sqrt(64 + 100) = 12.80625 m and
+  // sqrt(144 + 100) = 15.62050 m away: range extent 2.81425 m; 0.5-m cells: ceil(5.6285) = 6
+  // pieces of 4/6 m, centred at x = 2 - (2k + 1)/3 (from the arc's start, the +x end) on y = 1.
+  const auto pieces = diffuse_pieces(face, {10.0, 11.0}, 0.5);
+  ASSERT_EQ(pieces.size(), 6u);
+  const double first_end_x = (face.center_O + face.radius_m * face.u_start_O).x();
+  const double sign = first_end_x > 0.0 ? 1.0 : -1.0;  // the arc's start end, +-2
+  EXPECT_NEAR(std::abs(first_end_x), 2.0, 1e-9);
+  double total_m = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_NEAR(pieces[k].first.x(), sign * (2.0 - (2.0 * k + 1.0) / 3.0), 1e-9) << k;
+    EXPECT_NEAR(pieces[k].first.y(), 1.0, 1e-9) << k;
+    EXPECT_NEAR(pieces[k].second, 4.0 / 6.0, 1e-9) << k;
+    total_m += pieces[k].second;
+  }
+  EXPECT_NEAR(total_m, 4.0, 1e-9);  // the pieces tile the chord
+  // 1.4-m cells: ceil(2.01018) = 3 pieces of 4/3 m.
+  const auto coarse = diffuse_pieces(face, {10.0, 11.0}, 1.4);
+  ASSERT_EQ(coarse.size(), 3u);
+  EXPECT_NEAR(coarse[1].first.x(), 0.0, 1e-9);
+  EXPECT_NEAR(coarse[1].second, 4.0 / 3.0, 1e-9);
+}
+
+TEST(DiffusePieces, AtMostTheMaximumNumberOfPieces) {
+  const PlaneReflector face = four_metre_face();
+  // 0.1-m cells from (10, 11): ceil(28.14) = 29 > 16: 16 pieces of 0.25 m.
+  const auto pieces = diffuse_pieces(face, {10.0, 11.0}, 0.1);
+  ASSERT_EQ(pieces.size(), static_cast<std::size_t>(kMaxDiffusePieces));
+  EXPECT_EQ(kMaxDiffusePieces, 16);
+  for (const auto& [p, length_m] : pieces) EXPECT_NEAR(length_m, 4.0 / 16.0, 1e-9);
+  EXPECT_NEAR(std::abs(pieces[0].first.x()), 2.0 - 0.125, 1e-9);
+}
+
+TEST(DiffusePieces, NothingFromBehindTheFace) {
+  const PlaneReflector face = four_metre_face();
+  EXPECT_TRUE(diffuse_pieces(face, {0.0, -10.0}, 0.5).empty());  // behind, straight
+  EXPECT_TRUE(diffuse_pieces(face, {10.0, 0.5}, 0.5).empty());   // behind the chord's line, off to the side
+  EXPECT_TRUE(diffuse_pieces(face, face.center_O, 0.5).empty());  // at the circle's centre
+  // In front, far off to the side (no specular point there: the line to the centre, 2.7 deg off the apex, misses
+  // the +-0.57-deg sector), the face still returns diffuse pieces.
+  EXPECT_FALSE(plane_reflection_point_O(face, {10.0, 11.0}));
+  EXPECT_FALSE(diffuse_pieces(face, {10.0, 11.0}, 0.5).empty());
+}
+
 }  // namespace
 }  // namespace rcsim
