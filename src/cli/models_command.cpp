@@ -1,6 +1,7 @@
 // rcsim models: the object model library; --sensors: the built-in sensor profiles.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -60,6 +61,7 @@ nlohmann::json sensor_to_json(const SensorConfig& c) {
   if (c.amplitude.kind == AmplitudeLawKind::radar_equation) {
     amplitude["snr_at_1m_for_1m2_db"] = c.amplitude.snr_at_1m_for_1m2_db;
     amplitude["reference_rcs_dbsm"] = c.amplitude.reference_rcs_dbsm;
+    amplitude["range_exponent"] = c.amplitude.range_exponent;
   } else {
     amplitude["reference_level_db"] = c.amplitude.reference_level_db;
     amplitude["reference_slope_db_per_m"] = c.amplitude.reference_slope_db_per_m;
@@ -74,6 +76,10 @@ nlohmann::json sensor_to_json(const SensorConfig& c) {
           {"max_range_m", c.fov.max_range_m},
           {"amplitude", amplitude},
           {"fluctuation", fluctuation_name(c.detection.fluctuation)},
+          {"local_maxima_only", c.detection.local_maxima_only},
+          {"diffuse_relative_ercs_per_sqrt_m", c.extended_objects.diffuse_relative_ercs_per_sqrt_m},
+          {"occlusion_loss_db", std::isinf(c.occlusion.loss_db) ? nlohmann::json() : nlohmann::json(c.occlusion.loss_db)},
+          {"background_targets_per_cycle", c.background.targets_per_cycle},
           {"range_cell_m", c.resolution.range_cell_m},
           {"range_rate_cell_mps", c.resolution.range_rate_cell_mps}};
 }

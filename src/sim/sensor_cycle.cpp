@@ -9,6 +9,7 @@
 #include "sim/measurement_noise.hpp"
 #include "sim/monopulse.hpp"
 #include "sim/resolution_cells.hpp"
+#include "sim/visibility.hpp"
 
 namespace rcsim {
 
@@ -27,15 +28,21 @@ SensorModel::SensorModel(const MountedSensor& mount_in, const Effects& effects_i
 SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflector_capacity, double cycle_time_s, std::uint64_t seed,
                                    std::uint64_t stream)
     : tracker(model.mount.config.tracker, cycle_time_s), rng(seed, stream) {
-  const std::size_t capacity = reflector_capacity * static_cast<std::size_t>(model.mount.config.multibounce.max_order);
+  // Every reflector with its multibounce copies, and with diffuse face pieces up to
+  // kMaxDiffusePieces more per reflector (a bound: only planes have them).
+  const SensorConfig& config = model.mount.config;
+  const std::size_t pieces = config.extended_objects.diffuse_relative_ercs_per_sqrt_m > 0.0 ? kMaxDiffusePieces : 0;
+  const std::size_t capacity = reflector_capacity * (1 + pieces) * static_cast<std::size_t>(config.multibounce.max_order);
+  // Clutter and background: a Poisson draw exceeds four times its mean + 64 about never.
+  const auto drawn = static_cast<std::size_t>(4.0 * (config.clutter.false_detections_per_cycle + config.background.targets_per_cycle)) + 64;
   ideal.reserve(capacity);
   may_occlude.reserve(model.culling.radius_m.size());
   echoes.reserve(capacity);
   cell_buffers.reserve(capacity);
   cells.reserve(capacity);
-  detections.reserve(capacity + 64);
+  detections.reserve(capacity + drawn);
   reported.reserve(reports_detections(model)
-                       ? capacity + 64  // every detection is reported
+                       ? capacity + drawn  // every detection is reported
                        : static_cast<std::size_t>(model.mount.config.tracker.max_tracks));
 }
 

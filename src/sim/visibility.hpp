@@ -30,7 +30,9 @@ void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, dou
   const Vec2 a_O = plane.center_O + plane.radius_m * plane.u_start_O;
   const Vec2 b_O = plane.center_O + plane.radius_m * plane.u_end_O;
   const Vec2 mid_O = 0.5 * (a_O + b_O);
-  const Vec2 outward_O = mid_O - plane.center_O;  // from the circle centre through the chord
+  // The face's outward direction: from the circle centre to the arc's middle (a half circle's
+  // chord passes through the centre, so the chord's middle would not do).
+  const Vec2 outward_O = plane.arc_point_O(plane.start_rad + 0.5 * plane.span_rad) - plane.center_O;
   if (!((p_OS_O - mid_O).dot(outward_O) > 0.0)) return;
   const double range_extent_m = std::abs((p_OS_O - a_O).norm() - (p_OS_O - b_O).norm());
   const int n = std::clamp(static_cast<int>(std::ceil(range_extent_m / piece_range_m)), 1, kMaxDiffusePieces);
