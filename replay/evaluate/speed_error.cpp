@@ -207,6 +207,7 @@ BenchGoals evaluate_goals(const std::vector<BenchRow>& rows) {
   if (reference->sensor_cycles_per_cpu_s > 0.0) g.speedup = full->sensor_cycles_per_cpu_s / reference->sensor_cycles_per_cpu_s;
   g.at_least_100x = g.speedup >= 100.0;
   g.all_within_1_5 = true;
+  g.all_within_1_1_reference = true;
   for (const BenchRow& r : rows) {
     if (r.level != fidelity_name(Fidelity::full)) continue;
     const auto floor = std::find_if(rows.begin(), rows.end(), [&](const BenchRow& f) {
@@ -221,7 +222,12 @@ BenchGoals evaluate_goals(const std::vector<BenchRow>& rows) {
       return f.recording == r.recording && f.level == kReferenceLevel;
     });
     if (ref != rows.end() && floor->gospa_mean_m > 0.0) p.reference_ratio = ref->gospa_mean_m / floor->gospa_mean_m;
+    if (ref != rows.end()) {
+      p.over_reference = ref->gospa_mean_m > 0.0 ? r.gospa_mean_m / ref->gospa_mean_m : (r.gospa_mean_m > 0.0 ? 1e300 : 1.0);
+    }
+    p.within_1_1_reference = ref != rows.end() && p.over_reference <= 1.1;
     g.all_within_1_5 = g.all_within_1_5 && p.within_1_5;
+    g.all_within_1_1_reference = g.all_within_1_1_reference && p.within_1_1_reference;
     g.per_recording.push_back(p);
   }
   return g;

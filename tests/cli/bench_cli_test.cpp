@@ -1,4 +1,4 @@
-// rcsim bench as a user runs it: the table, --json (rcsim-bench v1), storage in the report
+// rcsim bench as a user runs it: the table, --json (rcsim-bench v2), storage in the report
 // database, determinism of the error columns, and refusals that leave the database alone.
 #include <gtest/gtest.h>
 
@@ -33,7 +33,7 @@ TEST_F(BenchCli, JsonRowsAndTheSameSeedRepeatsTheErrors) {
   ASSERT_EQ(first.exit_code, 0) << first.output;
   const auto j = nlohmann::json::parse(first.output);
   EXPECT_EQ(j["format"], "rcsim-bench");
-  EXPECT_EQ(j["version"], 1);
+  EXPECT_EQ(j["version"], 2);  // v2: goal 3 against the reference row
   EXPECT_TRUE(j["bench_id"].is_null());  // not stored
   EXPECT_TRUE(j["goals"].is_null());     // no reference, no noise floor
   ASSERT_EQ(j["rows"].size(), 4u);

@@ -153,6 +153,12 @@ TEST(BenchRun, GoalsByHand) {
   EXPECT_FALSE(g.all_within_1_5);
   EXPECT_DOUBLE_EQ(g.per_recording[0].reference_ratio, 0.6 / 0.4);  // the reference row over the floor
   EXPECT_DOUBLE_EQ(g.per_recording[1].reference_ratio, 1.0);
+  // The goal: full over the reference on the imported scene, <= 1.1: 0.5 / 0.6 met, 1.6 / 1.0 not.
+  EXPECT_DOUBLE_EQ(g.per_recording[0].over_reference, 0.5 / 0.6);
+  EXPECT_TRUE(g.per_recording[0].within_1_1_reference);
+  EXPECT_DOUBLE_EQ(g.per_recording[1].over_reference, 1.6);
+  EXPECT_FALSE(g.per_recording[1].within_1_1_reference);
+  EXPECT_FALSE(g.all_within_1_1_reference);
 
   auto rows = hand_rows();
   rows.erase(rows.begin() + 1);  // a noise floor missing
