@@ -10,6 +10,7 @@
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "sensor/sensor_config.hpp"
+#include "sensor_json.hpp"
 
 namespace rcsim {
 namespace {
@@ -75,10 +76,7 @@ TEST(Amplitude, PatternExponentTwoSquaresTheAntennaFactorAndKeepsTheAngle) {
 }
 
 TEST(Amplitude, PatternExponentIsOptionalAndRefusedOutsideOneToFour) {
-  nlohmann::json srr24;
-  for (const auto& f : embedded_sensor_configs()) {
-    if (f.name == "srr24") srr24 = nlohmann::json::parse(f.text);
-  }
+  nlohmann::json srr24 = testing::builtin_sensor_json("srr24");
   ASSERT_FALSE(srr24.is_null());
   EXPECT_EQ(parse_sensor_config(JsonField(srr24, "srr24.json", "")).antenna.amplitude_pattern_exponent, 1.0);
   srr24["antenna"]["amplitude_pattern_exponent"] = 1.7;
@@ -90,6 +88,18 @@ TEST(Amplitude, PatternExponentIsOptionalAndRefusedOutsideOneToFour) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("antenna.amplitude_pattern_exponent"), std::string::npos) << e.what();
   }
+}
+
+// The level of one reflector's echo on boresight (eqs. (2)-(3) with the paper's antenna).
+double boresight_echo_db(const AmplitudeLaw& law, double range_m, double ercs) {
+  const MonopulseAntenna antenna{AntennaGeometry{}};
+  IdealTargets ideal(1);
+  ideal[0].range_m = range_m;
+  ideal[0].set_azimuth(0.0);
+  ideal[0].ercs = ercs;
+  Echoes echoes;
+  compute_echoes(law, antenna, ideal, echoes);
+  return amplitude_to_db(echoes[0].amplitude);
 }
 
 AmplitudeLaw radar_equation_law() {
@@ -109,14 +119,7 @@ TEST(Amplitude, RadarEquationByHand) {
   EXPECT_NEAR(reference_range_level_db(law, 2.0), 100.0 - 40.0 * std::log10(2.0), 1e-12);
   EXPECT_NEAR(amplitude_to_db(reference_range_amplitude(law, 100.0)), 20.0, 1e-12);
   // An ERCS of 2 stands for sigma = 10 + 20 log10 2 = 16.02 dBsm: its echo 6.02 dB stronger.
-  const MonopulseAntenna antenna{AntennaGeometry{}};
-  IdealTargets ideal(1);
-  ideal[0].range_m = 100.0;
-  ideal[0].set_azimuth(0.0);
-  ideal[0].ercs = 2.0;
-  Echoes echoes;
-  compute_echoes(law, antenna, ideal, echoes);
-  EXPECT_NEAR(amplitude_to_db(echoes[0].amplitude), 20.0 + 20.0 * std::log10(2.0), 1e-9);
+  EXPECT_NEAR(boresight_echo_db(law, 100.0, 2.0), 20.0 + 20.0 * std::log10(2.0), 1e-9);
   // The range at which the reference reflector falls to the 14 dB threshold: 100 - 40 log10 R = 14,
   // R = 10^(86/40) = 141.25 m; an ERCS of 10 (+20 dB) reaches 10^(106/40) = 446.7 m.
   EXPECT_TRUE(has_detection_range_bound(law));
@@ -136,24 +139,8 @@ TEST(Amplitude, RadarEquationAtZeroRangeStaysFinite) {
   EXPECT_NEAR(reference_range_level_db(law, 0.0), 100.0 + 120.0, 1e-9);  // taken at 1 mm
 }
 
-nlohmann::json builtin_sensor_json(const std::string& name) {
-  for (const auto& f : embedded_sensor_configs()) {
-    if (f.name == name) return nlohmann::json::parse(f.text);
-  }
-  return {};
-}
-
-std::string parse_error(const nlohmann::json& doc) {
-  try {
-    parse_sensor_config(JsonField(doc, "s.json", ""));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(Amplitude, LawIsReadFromTheSensorConfigurationAndCheckedField) {
-  nlohmann::json doc = builtin_sensor_json("srr24");
+  nlohmann::json doc = testing::builtin_sensor_json("srr24");
   ASSERT_FALSE(doc.is_null());
   EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).amplitude.kind, AmplitudeLawKind::paper_eq1);
   doc["amplitude"] = {{"law", "radar_equation"}, {"snr_at_1m_for_1m2_db", 90.0}, {"reference_rcs_dbsm", 10.0},
@@ -164,13 +151,13 @@ TEST(Amplitude, LawIsReadFromTheSensorConfigurationAndCheckedField) {
   EXPECT_EQ(radar.amplitude.reference_rcs_dbsm, 10.0);
   // The other law's fields are refused, not ignored; so are unknown laws and absurd levels.
   doc["amplitude"]["reference_slope_db_per_m"] = 0.75;
-  EXPECT_NE(parse_error(doc).find("amplitude.reference_slope_db_per_m"), std::string::npos) << parse_error(doc);
+  EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.reference_slope_db_per_m"), std::string::npos) << testing::sensor_config_error(doc);
   doc["amplitude"].erase("reference_slope_db_per_m");
   doc["amplitude"]["law"] = "radar_eq";
-  EXPECT_NE(parse_error(doc).find("amplitude.law"), std::string::npos) << parse_error(doc);
+  EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.law"), std::string::npos) << testing::sensor_config_error(doc);
   doc["amplitude"]["law"] = "radar_equation";
   doc["amplitude"]["reference_rcs_dbsm"] = 1e308;
-  EXPECT_NE(parse_error(doc).find("amplitude.reference_rcs_dbsm"), std::string::npos) << parse_error(doc);
+  EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.reference_rcs_dbsm"), std::string::npos) << testing::sensor_config_error(doc);
 }
 
 
@@ -189,18 +176,11 @@ TEST(Amplitude, RangeExponentByHand) {
   EXPECT_NEAR(detection_range_bound_m(law, 1.0, 3.0), std::pow(10.0, 89.0 / 25.0), 1e-9 * 3630.78);
   EXPECT_NEAR(reference_range_level_db(law, detection_range_bound_m(law, 1.0)), 14.0, 1e-9);
   // The echo at 100 m of an ERCS of 2 on boresight: 50 + 20 log10 2 = 56.02 dB.
-  const MonopulseAntenna antenna{AntennaGeometry{}};
-  IdealTargets ideal(1);
-  ideal[0].range_m = 100.0;
-  ideal[0].set_azimuth(0.0);
-  ideal[0].ercs = 2.0;
-  Echoes echoes;
-  compute_echoes(law, antenna, ideal, echoes);
-  EXPECT_NEAR(amplitude_to_db(echoes[0].amplitude), 50.0 + 20.0 * std::log10(2.0), 1e-9);
+  EXPECT_NEAR(boresight_echo_db(law, 100.0, 2.0), 50.0 + 20.0 * std::log10(2.0), 1e-9);
 }
 
 TEST(Amplitude, RangeExponentIsOptionalAndRefusedOutsideOneToSix) {
-  nlohmann::json doc = builtin_sensor_json("srr24");
+  nlohmann::json doc = testing::builtin_sensor_json("srr24");
   ASSERT_FALSE(doc.is_null());
   doc["amplitude"] = {{"law", "radar_equation"}, {"snr_at_1m_for_1m2_db", 90.0}, {"reference_rcs_dbsm", 10.0},
                       {"detection_threshold_db", 14.0}};
@@ -211,14 +191,14 @@ TEST(Amplitude, RangeExponentIsOptionalAndRefusedOutsideOneToSix) {
   }
   for (const double n : {0.5, 7.0, 0.0, -4.0}) {
     doc["amplitude"]["range_exponent"] = n;
-    EXPECT_NE(parse_error(doc).find("amplitude.range_exponent"), std::string::npos) << n << ": " << parse_error(doc);
+    EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.range_exponent"), std::string::npos) << n << ": " << testing::sensor_config_error(doc);
   }
   // Only the radar equation has a range exponent: the paper's law refuses it.
   doc["amplitude"] = {{"reference_level_db", 26.5}, {"reference_slope_db_per_m", 0.75}, {"detection_threshold_db", 6.0},
                       {"range_exponent", 4.0}};
-  EXPECT_NE(parse_error(doc).find("amplitude.range_exponent"), std::string::npos) << parse_error(doc);
+  EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.range_exponent"), std::string::npos) << testing::sensor_config_error(doc);
   // The built-in aimotive_lrr gives its fitted n (docs/sensor-profiles.md), not the default 4.
-  const nlohmann::json lrr = builtin_sensor_json("aimotive_lrr");
+  const nlohmann::json lrr = testing::builtin_sensor_json("aimotive_lrr");
   ASSERT_TRUE(lrr["amplitude"].contains("range_exponent"));
   EXPECT_EQ(builtin_sensor_config("aimotive_lrr").amplitude.range_exponent, lrr["amplitude"]["range_exponent"].get<double>());
   EXPECT_NE(builtin_sensor_config("aimotive_lrr").amplitude.range_exponent, 4.0);

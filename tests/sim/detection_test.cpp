@@ -14,6 +14,7 @@
 #include "sim/amplitude.hpp"
 #include "sim/antenna.hpp"
 #include "sim/monopulse.hpp"
+#include "sensor_json.hpp"
 
 namespace rcsim {
 namespace {
@@ -131,10 +132,7 @@ TEST(Detection, FluctuationKeepsTheMonopulseAngle) {
 
 TEST(Detection, FluctuationIsReadAndUnknownNamesRefused) {
   EXPECT_EQ(builtin_sensor_config("srr24").detection.fluctuation, Fluctuation::none);  // the paper's
-  nlohmann::json doc;
-  for (const auto& f : embedded_sensor_configs()) {
-    if (f.name == "srr24") doc = nlohmann::json::parse(f.text);
-  }
+  nlohmann::json doc = testing::builtin_sensor_json("srr24");
   ASSERT_FALSE(doc.is_null());
   doc["detection"] = {{"fluctuation", "swerling3"}};
   EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).detection.fluctuation, Fluctuation::swerling3);
@@ -211,10 +209,7 @@ TEST(LocalMaxima, SurvivorsKeepTheirOrder) {
 TEST(LocalMaxima, OptionIsReadAndOffByDefault) {
   EXPECT_FALSE(builtin_sensor_config("srr24").detection.local_maxima_only);
   EXPECT_TRUE(builtin_sensor_config("aimotive_lrr").detection.local_maxima_only);
-  nlohmann::json doc;
-  for (const auto& f : embedded_sensor_configs()) {
-    if (f.name == "srr24") doc = nlohmann::json::parse(f.text);
-  }
+  nlohmann::json doc = testing::builtin_sensor_json("srr24");
   ASSERT_FALSE(doc.is_null());
   doc["detection"] = {{"fluctuation", "none"}};
   EXPECT_FALSE(parse_sensor_config(JsonField(doc, "s.json", "")).detection.local_maxima_only);

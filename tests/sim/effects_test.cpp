@@ -13,6 +13,7 @@
 #include "common/json_reader.hpp"
 #include "sim/simulation.hpp"
 #include "test_support.hpp"
+#include "sensor_json.hpp"
 
 namespace rcsim {
 namespace {
@@ -172,11 +173,8 @@ TEST(Effects, OcclusionWithAnInfiniteLossRemovesTheTarget) {
 
 TEST(Effects, OcclusionLossIsReadFromTheSensorConfiguration) {
   EXPECT_TRUE(std::isinf(builtin_sensor_config("srr24").occlusion.loss_db));
-  nlohmann::json doc, lrr;
-  for (const auto& f : embedded_sensor_configs()) {
-    if (f.name == "srr24") doc = nlohmann::json::parse(f.text);
-    if (f.name == "aimotive_lrr") lrr = nlohmann::json::parse(f.text);
-  }
+  nlohmann::json doc = testing::builtin_sensor_json("srr24");
+  const nlohmann::json lrr = testing::builtin_sensor_json("aimotive_lrr");
   ASSERT_TRUE(lrr.contains("occlusion"));  // the 77 GHz profile weakens, does not hide
   EXPECT_EQ(builtin_sensor_config("aimotive_lrr").occlusion.loss_db, lrr["occlusion"]["loss_db"].get<double>());
   ASSERT_FALSE(doc.is_null());

@@ -11,6 +11,7 @@
 #include "common/json_reader.hpp"
 #include "sim/simulation.hpp"
 #include "test_support.hpp"
+#include "sensor_json.hpp"
 
 namespace rcsim {
 namespace {
@@ -229,24 +230,8 @@ TEST(SensorCyclePresence, AnObjectTakesPartOnlyWhilePresent) {
 namespace rcsim {
 namespace {
 
-nlohmann::json srr24_json() {
-  for (const auto& f : embedded_sensor_configs()) {
-    if (f.name == "srr24") return nlohmann::json::parse(f.text);
-  }
-  return {};
-}
-
-std::string sensor_config_error(const nlohmann::json& doc) {
-  try {
-    parse_sensor_config(JsonField(doc, "s.json", ""));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(SensorCycleReports, DetectionsWithoutTrackingSectionParse) {
-  nlohmann::json doc = srr24_json();
+  nlohmann::json doc = testing::builtin_sensor_json("srr24");
   ASSERT_FALSE(doc.is_null());
   EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).reports, SensorOutput::tracks);  // absent: tracks
   doc["reports"] = "detections";
@@ -255,13 +240,13 @@ TEST(SensorCycleReports, DetectionsWithoutTrackingSectionParse) {
   EXPECT_EQ(builtin_sensor_config("aimotive_lrr").reports, SensorOutput::detections);
   // A tracker needs its section.
   doc["reports"] = "tracks";
-  EXPECT_NE(sensor_config_error(doc).find("tracking"), std::string::npos) << sensor_config_error(doc);
+  EXPECT_NE(testing::sensor_config_error(doc).find("tracking"), std::string::npos) << testing::sensor_config_error(doc);
   doc.erase("reports");
-  EXPECT_NE(sensor_config_error(doc).find("tracking"), std::string::npos) << sensor_config_error(doc);
+  EXPECT_NE(testing::sensor_config_error(doc).find("tracking"), std::string::npos) << testing::sensor_config_error(doc);
   doc["reports"] = "foo";
-  doc["tracking"] = srr24_json()["tracking"];
-  EXPECT_NE(sensor_config_error(doc).find("reports"), std::string::npos) << sensor_config_error(doc);
-  EXPECT_NE(sensor_config_error(doc).find("foo"), std::string::npos) << sensor_config_error(doc);
+  doc["tracking"] = testing::builtin_sensor_json("srr24")["tracking"];
+  EXPECT_NE(testing::sensor_config_error(doc).find("reports"), std::string::npos) << testing::sensor_config_error(doc);
+  EXPECT_NE(testing::sensor_config_error(doc).find("foo"), std::string::npos) << testing::sensor_config_error(doc);
 }
 
 TEST(SensorCycleReports, ASensorThatReportsDetectionsReportsThemAtTheTracksLevel) {
@@ -270,7 +255,7 @@ TEST(SensorCycleReports, ASensorThatReportsDetectionsReportsThemAtTheTracksLevel
   // 4-hit confirmation, so already in the first cycle).
   Scene scene = testing::single_sensor_scene(0.6);
   scene.effects.clutter = true;
-  nlohmann::json doc = srr24_json();
+  nlohmann::json doc = testing::builtin_sensor_json("srr24");
   doc["reports"] = "detections";
   doc.erase("tracking");
   scene.sensors[0].config = parse_sensor_config(JsonField(doc, "s.json", ""));
