@@ -37,9 +37,20 @@ nlohmann::json model_to_json(const ObjectModel& m) {
                       {"span_deg", rad_to_deg(p.span_rad)},
                       {"ercs", p.ercs}});
   }
-  return {{"name", m.name},           {"description", m.description},   {"length_m", m.length_m},
-          {"width_m", m.width_m},     {"max_ercs", m.max_ercs()},       {"point_reflectors", points},
-          {"plane_reflectors", planes}};
+  nlohmann::json out = {{"name", m.name},           {"description", m.description},   {"length_m", m.length_m},
+                        {"width_m", m.width_m},     {"max_ercs", m.max_ercs()},       {"point_reflectors", points},
+                        {"plane_reflectors", planes}};
+  if (m.polyline) {
+    const PolylineTemplate& t = *m.polyline;
+    out["polyline"] = {{"spacing_m", t.spacing_m},
+                       {"post_ercs", t.post_ercs},
+                       {"post_visibility",
+                        {{"center_deg", rad_to_deg(t.post_visibility.center_rad())},
+                         {"full_halfwidth_deg", rad_to_deg(t.post_visibility.full_halfwidth_rad())},
+                         {"falloff_deg", rad_to_deg(t.post_visibility.falloff_rad())}}},
+                       {"face_ercs_per_m", t.face_ercs_per_m}};
+  }
+  return out;
 }
 
 const char* law_name(AmplitudeLawKind kind) {
@@ -124,6 +135,12 @@ void add_models_command(CLI::App& app) {
       return;
     }
     for (const auto& [name, m] : library.models()) {
+      if (m.polyline) {
+        std::cout << fmt::format("{:<14} along a polyline: posts every {:.1f} m of ERCS {:.2f}, face ERCS {:.3f} per m\n  {}\n",
+                                 name, m.polyline->spacing_m, m.polyline->post_ercs, m.polyline->face_ercs_per_m,
+                                 m.description);
+        continue;
+      }
       std::cout << fmt::format("{:<14} {:5.2f} m x {:4.2f} m  {:2} point + {} plane reflectors  max ERCS {:.1f}\n  {}\n",
                                name, m.length_m, m.width_m, m.points.size(), m.planes.size(), m.max_ercs(),
                                m.description);

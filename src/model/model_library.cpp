@@ -22,11 +22,27 @@ VisibilityFunction parse_visibility(const JsonField& field) {
   return {deg_to_rad(center_deg), deg_to_rad(full_deg), deg_to_rad(falloff_deg)};
 }
 
+PolylineTemplate parse_polyline_template(const JsonField& f) {
+  f.expect_only({"spacing_m", "post_ercs", "post_visibility", "face_ercs_per_m"});
+  PolylineTemplate t;
+  t.spacing_m = f.number("spacing_m");
+  if (!(t.spacing_m >= 0.1 && t.spacing_m <= 1000.0)) f.fail("spacing_m", "must be in [0.1, 1000] m");
+  t.post_ercs = f.number_or("post_ercs", 0.0);
+  t.face_ercs_per_m = f.number_or("face_ercs_per_m", 0.0);
+  require_non_negative(f, "post_ercs", t.post_ercs);
+  require_non_negative(f, "face_ercs_per_m", t.face_ercs_per_m);
+  if (t.post_ercs > 1e6) f.fail("post_ercs", "must be at most 1e6");
+  if (t.face_ercs_per_m > 1e6) f.fail("face_ercs_per_m", "must be at most 1e6");
+  if (!(t.post_ercs > 0.0) && !(t.face_ercs_per_m > 0.0)) f.fail("needs post_ercs or face_ercs_per_m above 0");
+  if (t.post_ercs > 0.0) t.post_visibility = parse_visibility(f.member("post_visibility"));
+  return t;
+}
+
 }  // namespace
 
 ObjectModel parse_object_model(const JsonField& root) {
   root.expect_only({"format", "version", "name", "description", "length_m", "width_m", "point_reflectors",
-                    "plane_reflectors"});
+                    "plane_reflectors", "polyline"});
   root.expect_format("rcsim-object-model", 1);
   ObjectModel model;
   model.name = root.string("name");
@@ -60,6 +76,13 @@ ObjectModel parse_object_model(const JsonField& root) {
       if (sagitta_m > 0.5 * (to - from).norm()) p.fail("sagitta_m", "must be at most half the chord length");
       model.planes.push_back(plane_from_chord(p.string("name"), from, to, sagitta_m, ercs));
     }
+  }
+  if (const auto polyline = root.optional_member("polyline")) {
+    if (!model.points.empty() || !model.planes.empty()) {
+      root.fail("polyline", "a polyline model has no point or plane reflectors of its own (its polyline makes them)");
+    }
+    model.polyline = parse_polyline_template(*polyline);
+    return model;
   }
   if (model.points.empty() && model.planes.empty()) root.fail("a model needs at least one reflector");
   std::set<std::string> names;

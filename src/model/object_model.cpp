@@ -1,5 +1,7 @@
 #include "model/object_model.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -67,16 +69,22 @@ double ObjectModel::bounding_radius_m() const {
 PlaneReflector plane_from_chord(std::string name, const Vec2& from_O, const Vec2& to_O, double sagitta_m,
                                 double ercs) {
   const Vec2 chord = to_O - from_O;
+  Vec2 normal(chord.y(), -chord.x());
+  if (normal.norm() > 0.0) normal.normalize();
+  // The arc bulges away from the object origin.
+  if (normal.dot(0.5 * (from_O + to_O)) < 0.0) normal = -normal;
+  return plane_from_chord_facing(std::move(name), from_O, to_O, sagitta_m, ercs, normal);
+}
+
+PlaneReflector plane_from_chord_facing(std::string name, const Vec2& from_O, const Vec2& to_O, double sagitta_m,
+                                       double ercs, const Vec2& normal) {
+  const Vec2 chord = to_O - from_O;
   const double half_chord_m = 0.5 * chord.norm();
   if (!(half_chord_m > 0.0)) throw std::invalid_argument("plane reflector chord has zero length");
   if (!(sagitta_m > 0.0) || sagitta_m > half_chord_m) {
     throw std::invalid_argument("plane reflector sagitta must be in (0, half the chord]");
   }
   const Vec2 mid = 0.5 * (from_O + to_O);
-  Vec2 normal(chord.y(), -chord.x());
-  normal.normalize();
-  // The arc bulges away from the object origin.
-  if (normal.dot(mid) < 0.0) normal = -normal;
   const double radius_m = (half_chord_m * half_chord_m + sagitta_m * sagitta_m) / (2.0 * sagitta_m);
   PlaneReflector plane;
   plane.name = std::move(name);
@@ -107,6 +115,47 @@ ObjectModel scale_model(const ObjectModel& model, double length_m, double width_
     const Vec2 apex = scale(plane.arc_point_O(plane.start_rad + 0.5 * plane.span_rad));
     const Vec2 mid = 0.5 * (from + to);
     out.planes[i] = plane_from_chord(plane.name, from, to, std::max((apex - mid).norm(), 1e-9), plane.ercs);
+  }
+  return out;
+}
+
+ObjectModel expand_polyline(const ObjectModel& polyline_model, const std::vector<Vec2>& vertices_O) {
+  if (!polyline_model.polyline) throw std::invalid_argument("model \"" + polyline_model.name + "\" is no polyline model");
+  if (vertices_O.size() < 2) throw std::invalid_argument("a polyline needs at least two points");
+  const PolylineTemplate& t = *polyline_model.polyline;
+  ObjectModel out;
+  out.name = polyline_model.name;
+  out.description = polyline_model.description;
+  out.length_m = out.width_m = 1e-3;
+  out.polyline_points = vertices_O.size();
+  // A face this flat: 1 cm over a piece of up to spacing_m (a flat face's specular return
+  // comes only from near its normal).
+  constexpr double kFaceSagittaM = 0.01;
+  double next_post_m = 0.0, walked_m = 0.0;
+  for (std::size_t k = 0; k + 1 < vertices_O.size(); ++k) {
+    const Vec2 a = vertices_O[k], b = vertices_O[k + 1];
+    const double length_m = (b - a).norm();
+    if (!(length_m > 0.0)) throw std::invalid_argument(fmt::format("polyline points {} and {} coincide", k, k + 1));
+    const Vec2 along = (b - a) / length_m;
+    const Vec2 left(-along.y(), along.x());
+    const double left_rad = std::atan2(left.y(), left.x());
+    for (; t.post_ercs > 0.0 && next_post_m <= walked_m + length_m; next_post_m += t.spacing_m) {
+      PointReflector post;
+      post.name = fmt::format("post_{}", out.points.size());
+      post.p_OR_O = a + (next_post_m - walked_m) * along;
+      post.ercs_max = t.post_ercs;
+      post.visibility = VisibilityFunction(left_rad + t.post_visibility.center_rad(), t.post_visibility.full_halfwidth_rad(),
+                                           t.post_visibility.falloff_rad());
+      out.points.push_back(std::move(post));
+    }
+    walked_m += length_m;
+    const int pieces = static_cast<int>(std::ceil(length_m / t.spacing_m - 1e-9));
+    for (int p = 0; t.face_ercs_per_m > 0.0 && p < pieces; ++p) {
+      const Vec2 from = a + (length_m * p / pieces) * along, to = a + (length_m * (p + 1) / pieces) * along;
+      const double piece_m = length_m / pieces;
+      out.planes.push_back(plane_from_chord_facing(fmt::format("face_{}", out.planes.size()), from, to,
+                                                   std::min(kFaceSagittaM, 0.5 * piece_m), t.face_ercs_per_m * piece_m, left));
+    }
   }
   return out;
 }

@@ -3,6 +3,7 @@
 // visibility function of the impinging angle, and plane reflectors (circle sectors).
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,19 @@ struct PlaneReflector {
   }
 };
 
+// A static object along a line (guard rail, wall; docs/static-world.md): the template a scene's
+// polyline is expanded with (expand_polyline).
+struct PolylineTemplate {
+  double spacing_m = 4.0;  // posts every spacing_m along the line; face pieces at most this long
+  double post_ercs = 0.0;  // 0: no posts
+  // The posts' visibility; its centre is measured from the line's left normal (0: facing the side
+  // to the left of the direction from one vertex to the next).
+  VisibilityFunction post_visibility;
+  // The face: plane reflectors of length l <= spacing_m facing left, ERCS face_ercs_per_m x l
+  // (a flat face reflects coherently: amplitude grows with its length); 0: no face.
+  double face_ercs_per_m = 0.0;
+};
+
 struct ObjectModel {
   std::string name;
   std::string description;
@@ -116,6 +130,8 @@ struct ObjectModel {
   double width_m = 0.0;
   std::vector<PointReflector> points;
   std::vector<PlaneReflector> planes;
+  std::optional<PolylineTemplate> polyline;  // set: a template; a scene's polyline makes the model
+  std::size_t polyline_points = 0;           // > 0: made by expand_polyline from that many points
 
   double max_ercs() const;
   std::size_t reflector_count() const { return points.size() + planes.size(); }
@@ -127,6 +143,16 @@ struct ObjectModel {
 // away from the object origin): the form used in the model files.
 PlaneReflector plane_from_chord(std::string name, const Vec2& from_O, const Vec2& to_O, double sagitta_m,
                                 double ercs);
+
+// The same, the arc bulging towards `outward_O` (a unit vector normal to the chord).
+PlaneReflector plane_from_chord_facing(std::string name, const Vec2& from_O, const Vec2& to_O, double sagitta_m,
+                                       double ercs, const Vec2& outward_O);
+
+// The model a polyline template makes along `vertices_O` (object frame, at least two, no two
+// consecutive equal): posts at arc lengths 0, spacing, 2 spacing, ... (`post_K`), and each segment
+// cut into ceil(length / spacing) face pieces (`face_K`), facing left. Its box is 1 mm: a
+// polyline occludes nothing.
+ObjectModel expand_polyline(const ObjectModel& polyline_model, const std::vector<Vec2>& vertices_O);
 
 // The model stretched to another length and width: reflector positions scale with the box;
 // plane reflectors keep passing through their scaled chord ends and apex.

@@ -33,6 +33,37 @@ ObjectModel model_for(const JsonField& object, const ModelLibrary& library, cons
   }
 }
 
+std::vector<TimeInterval> parse_presence(const JsonField& o);
+
+// A static object along a polyline (docs/static-world.md): its model a polyline template, its
+// points in the world; the object frame is the world frame moved to the points' mean.
+void parse_polyline_object(const JsonField& o, SceneObject& object) {
+  if (!object.model.polyline) o.fail("polyline", "model \"" + object.model_name + "\" is no polyline model (guard_rail is one)");
+  if (!o.has("polyline")) o.fail("model \"" + object.model_name + "\" is a polyline model: give a polyline, not a trajectory");
+  if (o.has("trajectory")) o.fail("trajectory", "a polyline object stands still: give its polyline only");
+  std::vector<Vec2> points_W;
+  for (const auto& p : o.array("polyline")) {
+    p.expect_only({"x_m", "y_m"});
+    points_W.emplace_back(p.number("x_m"), p.number("y_m"));
+    if (points_W.back().cwiseAbs().maxCoeff() > 1e7) p.fail("x_m", "beyond 10^7 m");
+  }
+  if (points_W.size() < 2 || points_W.size() > 100000) o.fail("polyline", "needs 2 to 100000 points");
+  Vec2 mean_W = Vec2::Zero();
+  for (const Vec2& p : points_W) mean_W += p / static_cast<double>(points_W.size());
+  std::vector<Vec2> points_O;
+  for (const Vec2& p : points_W) points_O.push_back(p - mean_W);
+  try {
+    object.model = expand_polyline(object.model, points_O);
+  } catch (const std::invalid_argument& e) {
+    o.fail("polyline", e.what());
+  }
+  TrajectorySample at_rest;
+  at_rest.x_m = mean_W.x();
+  at_rest.y_m = mean_W.y();
+  object.trajectory = Trajectory({at_rest});
+  object.presence = parse_presence(o);
+}
+
 // Either present_from_s / present_until_s (one interval, either end open) or present_s: a list of
 // [from_s, until_s] pairs in increasing, non-overlapping order.
 std::vector<TimeInterval> parse_presence(const JsonField& o) {
@@ -175,12 +206,17 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
   std::set<std::string> object_ids;
   if (root.has("objects")) {
     for (const auto& o : root.array("objects")) {
-      o.expect_only({"id", "model", "trajectory", "present_from_s", "present_until_s", "present_s"});
+      o.expect_only({"id", "model", "trajectory", "polyline", "present_from_s", "present_until_s", "present_s"});
       SceneObject object;
       object.id = o.string("id");
       if (!object_ids.insert(object.id).second) o.fail("id", "duplicate object id \"" + object.id + "\"");
       object.model_name = o.string("model");
       object.model = model_for(o, library, base_dir);
+      if (object.model.polyline || o.has("polyline")) {
+        parse_polyline_object(o, object);
+        scene.objects.push_back(std::move(object));
+        continue;
+      }
       const auto samples = parse_trajectory(o, "trajectory");
       // Sizes given on the samples (annotated boxes) scale the model; the median resists outliers.
       std::vector<double> lengths, widths;

@@ -1,6 +1,7 @@
 #include "synth/reference_simulator.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "common/angles.hpp"
 
@@ -19,6 +20,10 @@ double clutter_radius_m(const SynthConfig& config) { return config.antenna.max_r
 ReferenceSimulator::ReferenceSimulator(const Scene& scene, const SynthConfig& config, std::uint64_t seed)
     : scene_(scene), config_(config), seed_(seed), propagation_(config) {
   for (const auto& object : scene_.objects) {
+    if (object.model.polyline_points > 0) {
+      throw std::invalid_argument("object \"" + object.id + "\" is a polyline (" + object.model_name +
+                                  "), which the signal-level reference does not model (docs/static-world.md)");
+    }
     bodies_.push_back(make_body(object.model_name, object.model.length_m, object.model.width_m));
   }
   const SignalChain prototype(config_);  // calibrated once, copied per sensor

@@ -9,6 +9,7 @@
 
 #include "common/angles.hpp"
 #include "common/rng.hpp"
+#include "sim/visibility.hpp"
 
 namespace rcsim {
 namespace {
@@ -143,6 +144,57 @@ TEST(PlaneReflector, SetArcKeepsAnglesAndEndDirections) {
   EXPECT_TRUE(plane.covers_direction(Vec2(1.0, 0.0)));
   EXPECT_FALSE(plane.covers_direction(Vec2(-1.0, 0.0)));
   EXPECT_FALSE(plane.covers_direction(Vec2(0.0, 1.0)));
+}
+
+// A polyline template: posts of ERCS 0.5 seen within 60 + 30 deg of the line's left normal, a face
+// of 0.1 per metre, every 3 m.
+ObjectModel rail_template() {
+  ObjectModel m;
+  m.name = "rail";
+  m.length_m = m.width_m = 0.3;
+  PolylineTemplate t;
+  t.spacing_m = 3.0;
+  t.post_ercs = 0.5;
+  t.post_visibility = VisibilityFunction(0.0, deg_to_rad(60.0), deg_to_rad(30.0));
+  t.face_ercs_per_m = 0.1;
+  m.polyline = t;
+  return m;
+}
+
+TEST(Polyline, PostsEverySpacingAlongTheLineAndAroundCorners) {
+  // An L: (0,0) -> (4,0) -> (4,4), 8 m long: posts at arc lengths 0, 3, 6: (0,0), (3,0), (4,2).
+  const ObjectModel m = expand_polyline(rail_template(), {{0.0, 0.0}, {4.0, 0.0}, {4.0, 4.0}});
+  ASSERT_EQ(m.points.size(), 3u);
+  EXPECT_NEAR((m.points[0].p_OR_O - Vec2(0.0, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((m.points[1].p_OR_O - Vec2(3.0, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((m.points[2].p_OR_O - Vec2(4.0, 2.0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(m.points[2].name, "post_2");
+  // Visibility centred on the left normal: +y on the first leg (90 deg), -x on the second (180).
+  EXPECT_NEAR(m.points[0].visibility.center_rad(), 0.5 * kPi, 1e-12);
+  EXPECT_NEAR(std::abs(m.points[2].visibility.center_rad()), kPi, 1e-12);
+  EXPECT_DOUBLE_EQ(m.points[0].ercs(0.5 * kPi), 0.5);
+  EXPECT_DOUBLE_EQ(m.points[0].ercs(-0.5 * kPi), 0.0);  // from the right: nothing
+  // Faces: each 4 m leg in ceil(4 / 3) = 2 pieces of 2 m, ERCS 0.1 x 2 = 0.2.
+  ASSERT_EQ(m.planes.size(), 4u);
+  for (const auto& p : m.planes) EXPECT_DOUBLE_EQ(p.ercs, 0.2);
+  EXPECT_EQ(m.planes[3].name, "face_3");
+  // The first piece, (0,0) to (2,0), bulges 1 cm to the left: seen from (1, 10) its reflection
+  // point is the apex (1, 0.01); from the right (1, -10) there is none.
+  const auto hit = plane_reflection_point_O(m.planes[0], Vec2(1.0, 10.0));
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_NEAR((*hit - Vec2(1.0, 0.01)).norm(), 0.0, 1e-9);
+  EXPECT_FALSE(plane_reflection_point_O(m.planes[0], Vec2(1.0, -10.0)).has_value());
+  // A polyline occludes nothing: its box is 1 mm.
+  EXPECT_EQ(m.length_m, 1e-3);
+  EXPECT_EQ(m.polyline_points, 3u);
+}
+
+TEST(Polyline, RefusesWhatIsNoPolyline) {
+  EXPECT_THROW(expand_polyline(rail_template(), {{0.0, 0.0}}), std::invalid_argument);
+  EXPECT_THROW(expand_polyline(rail_template(), {{0.0, 0.0}, {0.0, 0.0}}), std::invalid_argument);
+  ObjectModel not_a_template = rail_template();
+  not_a_template.polyline.reset();
+  EXPECT_THROW(expand_polyline(not_a_template, {{0.0, 0.0}, {1.0, 0.0}}), std::invalid_argument);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "common/json_reader.hpp"
+#include "sim/simulation.hpp"
 #include "test_support.hpp"
 
 namespace rcsim {
@@ -112,6 +113,68 @@ TEST(ModelLibrary, BuiltinsAreThere) {
   EXPECT_DOUBLE_EQ(pole.points[0].ercs(1.234), 1.0);  // visible from every direction, ERCS 1
   EXPECT_EQ(testing::library().at("passenger_car").points.size(), 8u);  // Fig. 3: A..H
   EXPECT_EQ(testing::library().at("passenger_car").planes.size(), 4u);
+}
+
+// A guard rail 3.5 m left of a road along x: its polyline runs against x so that its left (the
+// side its posts face) is the road.
+const std::string kRail = R"({
+  "format": "rcsim-scene", "version": 1, "duration_s": 1.0, "cycle_time_s": 0.5,
+  "ego": {"trajectory": [{"t_s": 0, "x_m": 0, "y_m": 0, "yaw_rad": 0, "speed_mps": 20}],
+          "sensors": [{"id": "fr", "type": "srr24", "x_m": 0, "y_m": 0, "yaw_rad": 0}]},
+  "objects": [{"id": "rail", "model": "guard_rail", "polyline": [{"x_m": 100, "y_m": 3.5}, {"x_m": -100, "y_m": 3.5}]}]
+})";
+
+TEST(Scene, PolylineObjectStandsStillAlongItsPoints) {
+  const Scene scene = parse(kRail);
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const SceneObject& rail = scene.objects[0];
+  // 200 m at 4 m: posts at 0, 4, ..., 200 m: 51; faces: 50 pieces of 4 m.
+  EXPECT_EQ(rail.model.points.size(), 51u);
+  EXPECT_EQ(rail.model.planes.size(), 50u);
+  const BodyState state = rail.trajectory.state_at(0.7);
+  EXPECT_NEAR(state.X_WB.x_m, 0.0, 1e-12);  // the points' mean, standing still
+  EXPECT_NEAR(state.X_WB.y_m, 3.5, 1e-12);
+  EXPECT_NEAR(rail.model.points[0].p_OR_O.x(), 100.0, 1e-12);
+
+  // Ideal level: every rail target lies on the rail (y = 3.5 m) and has the range rate of a
+  // stationary point seen at 20 m/s: -20 cos(az).
+  SimulationOptions options;
+  options.level = OutputLevel::ideal;
+  options.noise = false;
+  Simulation simulation(scene, options);
+  int targets = 0;
+  simulation.run_at(0.0);
+  for (const IdealTarget& t : simulation.sensor_state(0).ideal) {
+    ++targets;
+    EXPECT_NEAR(t.range_m * std::sin(t.azimuth_rad), 3.5, 0.011);  // faces bulge 1 cm
+    EXPECT_NEAR(t.range_rate_mps, -20.0 * std::cos(t.azimuth_rad), 1e-9);
+  }
+  EXPECT_GT(targets, 3);
+
+  // The same rail drawn the other way faces away from the road: no post is seen.
+  std::string reversed = kRail;
+  const std::string forward = R"([{"x_m": 100, "y_m": 3.5}, {"x_m": -100, "y_m": 3.5}])";
+  reversed.replace(reversed.find(forward), forward.size(), R"([{"x_m": -100, "y_m": 3.5}, {"x_m": 100, "y_m": 3.5}])");
+  Simulation other(parse(reversed), options);
+  other.run_at(0.0);
+  EXPECT_TRUE(other.sensor_state(0).ideal.empty());
+}
+
+TEST(Scene, PolylineObjectsRefusedWhereTheyDoNotFit) {
+  const auto refused = [](const std::string& from, const std::string& to, const std::string& needle) {
+    std::string text = kRail;
+    text.replace(text.find(from), from.size(), to);
+    try {
+      parse(text);
+      ADD_FAILURE() << "accepted: " << to;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  refused("\"model\": \"guard_rail\"", "\"model\": \"passenger_car\"", "objects[0].polyline");
+  refused("\"polyline\": [{\"x_m\": 100, \"y_m\": 3.5}, ", "\"polyline\": [", "objects[0].polyline");
+  refused("\"polyline\"", "\"trajectory\"", "polyline model");
+  refused("\"y_m\": 3.5}]", "\"y_m\": 3.5}], \"trajectory\": []", "objects[0].trajectory");
 }
 
 }  // namespace

@@ -165,5 +165,23 @@ TEST(SynthReference, IndependentOfTheReflectionCenterModel) {
   EXPECT_GE(files, 10);
 }
 
+// A polyline (guard rail) is no body the reference has a model of: refused by name, not drawn as
+// a point at its mean.
+TEST(ReferenceSimulator, RefusesPolylineObjects) {
+  Scene scene = testing::single_sensor_scene(0.2);
+  SceneObject rail;
+  rail.id = "rail_left";
+  rail.model_name = "guard_rail";
+  rail.model = expand_polyline(testing::library().at("guard_rail"), {{10.0, 3.5}, {-10.0, 3.5}});
+  rail.trajectory = Trajectory({testing::sample(0.0, 0.0, 0.0, 0.0, 0.0)});
+  scene.objects.push_back(rail);
+  try {
+    ReferenceSimulator simulator(scene, SynthConfig{}, 1);
+    FAIL() << "a polyline was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("rail_left"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rcsim::synth
