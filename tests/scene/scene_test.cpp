@@ -155,7 +155,8 @@ TEST(Scene, PolylineObjectStandsStillAlongItsPoints) {
   std::string reversed = kRail;
   const std::string forward = R"([{"x_m": 100, "y_m": 3.5}, {"x_m": -100, "y_m": 3.5}])";
   reversed.replace(reversed.find(forward), forward.size(), R"([{"x_m": -100, "y_m": 3.5}, {"x_m": 100, "y_m": 3.5}])");
-  Simulation other(parse(reversed), options);
+  const Scene reversed_scene = parse(reversed);  // the simulation keeps a reference to its scene
+  Simulation other(reversed_scene, options);
   other.run_at(0.0);
   EXPECT_TRUE(other.sensor_state(0).ideal.empty());
 }
