@@ -44,6 +44,19 @@ void expect_culling_invisible(const Scene& scene, const std::string& name) {
   }
 }
 
+// Present objects at t = 0 more than 5 m beyond the first sensor's cull distance (and within
+// 395 m): where the range bound culls, so that an on/off comparison tests it.
+int objects_beyond_cull_distance(const Scene& scene) {
+  const CullingBounds b = make_culling_bounds(scene.sensors[0].config, scene.effects, scene.objects, true, true);
+  const Vec2 p_WE_W = scene.ego.state_at(0.0).X_WB.translation();
+  int beyond = 0;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const double d_m = (scene.objects[i].trajectory.state_at(0.0).X_WB.translation() - p_WE_W).norm();
+    if (scene.objects[i].present_at(0.0) && d_m > b.cull_distance_m[i] + 5.0 && d_m < 395.0) ++beyond;
+  }
+  return beyond;
+}
+
 TEST(Culling, ExampleScenesByteIdentical) {
   int scenes = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(RCSIM_SOURCE_DIR) / "docs/examples")) {
@@ -83,13 +96,7 @@ TEST(Culling, RandomTrafficByteIdentical) {
     expect_culling_invisible(scene, scene_path.filename().string());
     // The range bound does cull here (so the 400 m comparison above tests it): some present object
     // at t = 0 lies beyond its cull distance from the first sensor.
-    const CullingBounds b = make_culling_bounds(scene.sensors[0].config, scene.effects, scene.objects, true, true);
-    const Vec2 p_WE_W = scene.ego.state_at(0.0).X_WB.translation();
-    int beyond = 0;
-    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-      const double d_m = (scene.objects[i].trajectory.state_at(0.0).X_WB.translation() - p_WE_W).norm();
-      if (scene.objects[i].present_at(0.0) && d_m > b.cull_distance_m[i] + 5.0 && d_m < 395.0) ++beyond;
-    }
+    const int beyond = objects_beyond_cull_distance(scene);
     EXPECT_GT(beyond, 0) << layout;
   }
   // And through the command line, as a user runs it.
@@ -278,13 +285,7 @@ TEST(Culling, DiffusePiecesInRandomTrafficByteIdentical) {
     EXPECT_TRUE(on == target_lists(scene, level, false)) << "level " << static_cast<int>(level);
   }
   // The bound, wider with the pieces, still culls here: some present object lies beyond it.
-  const CullingBounds b = make_culling_bounds(scene.sensors[0].config, scene.effects, scene.objects, true, true);
-  const Vec2 p_WE_W = scene.ego.state_at(0.0).X_WB.translation();
-  int beyond = 0;
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const double d_m = (scene.objects[i].trajectory.state_at(0.0).X_WB.translation() - p_WE_W).norm();
-    if (scene.objects[i].present_at(0.0) && d_m > b.cull_distance_m[i] + 5.0 && d_m < 395.0) ++beyond;
-  }
+  const int beyond = objects_beyond_cull_distance(scene);
   EXPECT_GT(beyond, 0);
 }
 
