@@ -1,18 +1,109 @@
 #include "common/text_file.hpp"
 
-#include <fstream>
+#include <cstring>
+#include <fmt/format.h>
 #include <sstream>
+#include <system_error>
 
 #include "common/input_error.hpp"
 
 namespace rcsim {
 
-std::string read_text_file(const std::filesystem::path& path) {
+namespace fs = std::filesystem;
+
+std::ifstream open_regular_file(const fs::path& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (error || !fs::exists(status)) throw InputError(path.string(), "", "cannot open file: it does not exist");
+  if (!fs::is_regular_file(status)) {
+    throw InputError(path.string(), "",
+                     "not a regular file (a directory, device, pipe or socket): rcsim reads only regular files, "
+                     "whose end is known");
+  }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "", "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  if (!in) throw InputError(path.string(), "", std::string("cannot open file: ") + std::strerror(errno));
+  return in;
+}
+
+std::string read_text_file(const fs::path& path, std::uintmax_t max_bytes) {
+  std::ifstream in = open_regular_file(path);
+  std::error_code error;
+  const std::uintmax_t size = fs::file_size(path, error);
+  if (!error && size > max_bytes) {
+    throw InputError(path.string(), "",
+                     fmt::format("{} bytes exceed the limit of {} bytes for this file", size, max_bytes));
+  }
+  std::string text;
+  text.reserve(error ? 0 : static_cast<std::size_t>(size));
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_bytes) {
+      throw InputError(path.string(), "", fmt::format("longer than the limit of {} bytes for this file", max_bytes));
+    }
+  }
+  return text;
+}
+
+LineReader::LineReader(fs::path path) : path_text_(path.string()), in_(open_regular_file(path)) {
+  buffer_.resize(2 * kMaxLineBytes);
+}
+
+bool LineReader::fill() {
+  if (eof_) return false;
+  if (begin_ > 0) {  // move the unread tail to the front
+    std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
+    end_ -= begin_;
+    begin_ = 0;
+  }
+  in_.read(buffer_.data() + end_, static_cast<std::streamsize>(buffer_.size() - end_));
+  const auto n = static_cast<std::size_t>(in_.gcount());
+  end_ += n;
+  if (n == 0) eof_ = true;
+  return n > 0;
+}
+
+bool LineReader::next(std::string_view& line) {
+  std::size_t scanned = begin_;
+  for (;;) {
+    const void* newline = std::memchr(buffer_.data() + scanned, '\n', end_ - scanned);
+    if (newline != nullptr) {
+      const std::size_t at = static_cast<std::size_t>(static_cast<const char*>(newline) - buffer_.data());
+      line = std::string_view(buffer_.data() + begin_, at - begin_);
+      begin_ = at + 1;
+      break;
+    }
+    if (end_ - begin_ > kMaxLineBytes) {
+      throw InputError(path_text_, fmt::format("line {}", line_number_ + 1),
+                       fmt::format("line longer than the limit of {} bytes (a binary file?)", kMaxLineBytes));
+    }
+    scanned = end_ - begin_;  // relative to the front after fill()
+    if (!fill()) {
+      if (begin_ == end_) return false;
+      line = std::string_view(buffer_.data() + begin_, end_ - begin_);  // a last line without '\n'
+      begin_ = end_;
+      break;
+    }
+  }
+  if (line.size() > kMaxLineBytes) {
+    throw InputError(path_text_, fmt::format("line {}", line_number_ + 1),
+                     fmt::format("line longer than the limit of {} bytes (a binary file?)", kMaxLineBytes));
+  }
+  ++line_number_;
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return true;
+}
+
+std::uint64_t fnv1a64_file(const fs::path& path, std::uint64_t hash) {
+  std::ifstream in = open_regular_file(path);
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      hash ^= static_cast<unsigned char>(chunk[i]);
+      hash *= 0x100000001b3ULL;
+    }
+  }
+  return hash;
 }
 
 }  // namespace rcsim

@@ -3,17 +3,19 @@
 // has exactly that many fields, numbers must parse whole and be finite, and every complaint names
 // the file, the line and the column. Fields may be quoted ("a,b", "say ""hi""") but may not span
 // lines.
-#include <fstream>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "common/text_file.hpp"
 
 namespace rcsim {
 
 class CsvReader {
  public:
-  // Opens the file and reads its header; refuses a missing file, an empty file, a missing
-  // required column or a duplicate column name.
+  // Opens the file and reads its header; refuses a missing file, a special file (a device or
+  // pipe), an empty file, a missing required column or a duplicate column name. Lines longer
+  // than kMaxLineBytes are refused (text_file.hpp): a file of any size is read in bounded memory.
   CsvReader(std::string path, const std::vector<std::string_view>& required_columns);
 
   // Reads the next data row (blank lines are skipped); false at the end of the file.
@@ -33,10 +35,10 @@ class CsvReader {
   [[noreturn]] void fail_line(const std::string& message) const;
 
  private:
-  bool read_fields(std::string& line_text);
+  bool read_fields();
 
   std::string path_;
-  std::ifstream in_;
+  LineReader in_;
   std::vector<std::string> header_;
   std::vector<std::string> fields_;
   int line_ = 0;

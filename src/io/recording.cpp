@@ -14,6 +14,7 @@
 #include "common/json_reader.hpp"
 #include "common/text_file.hpp"
 #include "io/csv_reader.hpp"
+#include "io/recording_stream.hpp"
 
 namespace rcsim {
 
@@ -24,7 +25,7 @@ namespace {
 // Times in a recording agree when they differ by less than this (files carry 6 decimals).
 constexpr double kTimeTolerance_s = 2e-6;
 
-void read_header(Recording& rec, const fs::path& path) {
+void read_header(Recording& rec, const fs::path& path) {  // recording.json
   const std::string file = path.string();
   const nlohmann::json json = parse_json_text(read_text_file(path), file);
   const JsonField root(json, file, "");
@@ -71,138 +72,6 @@ void read_header(Recording& rec, const fs::path& path) {
   }
 }
 
-// Counts, over the row pairs where the vehicle turns (|yaw rate| >= 0.05 rad/s), those whose yaw
-// changed 20 to 100 times faster than the yaw rate says (180/π = 57.3: a yaw in degrees beside a
-// yaw rate in rad/s). Mostly so, once 5 such pairs are in: the yaw is in degrees.
-struct DegreeYawCheck {
-  int turning = 0, degree_like = 0;
-  bool add(const EgoSample& previous, const EgoSample& row) {
-    const double dt_s = row.t_s - previous.t_s;
-    const double rate_radps = 0.5 * (row.yaw_rate_radps + previous.yaw_rate_radps);
-    if (dt_s > 1.0 || std::abs(rate_radps) < 0.05) return false;
-    ++turning;
-    const double ratio = (row.yaw_rad - previous.yaw_rad) / dt_s / rate_radps;
-    degree_like += ratio > 20.0 && ratio < 100.0;
-    return turning >= 5 && 2 * degree_like > turning;
-  }
-};
-
-// Rows of an ego log in ego.csv's columns, times increasing; with cycle_time_s > 0, one row per
-// sensor cycle (no gap beyond 1.5 cycles).
-std::vector<EgoSample> read_ego_rows(const fs::path& path, double cycle_time_s) {
-  std::vector<EgoSample> ego;
-  DegreeYawCheck degree_check;
-  CsvReader csv(path.string(), {"t_s", "x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps"});
-  const int t = csv.column("t_s"), x = csv.column("x_m"), y = csv.column("y_m"), yaw = csv.column("yaw_rad"),
-            v = csv.column("speed_mps"), w = csv.column("yaw_rate_radps");
-  while (csv.next()) {
-    EgoSample s{csv.number(t), csv.number(x), csv.number(y), csv.number(yaw), csv.number(v), csv.number(w)};
-    if (!ego.empty() && s.t_s <= ego.back().t_s) {
-      csv.fail(t, fmt::format("time {} s does not follow the previous row's {} s (times must increase)", s.t_s,
-                              ego.back().t_s));
-    }
-    if (cycle_time_s > 0.0 && !ego.empty() && s.t_s - ego.back().t_s > 1.5 * cycle_time_s) {
-      csv.fail(t, fmt::format("gap of {:.6f} s after the previous row (cycle time {} s): the ego log must have "
-                              "one row per sensor cycle",
-                              s.t_s - ego.back().t_s, cycle_time_s));
-    }
-    if (ego.empty() && std::abs(s.yaw_rad) > 2.0 * std::numbers::pi) {
-      csv.fail(yaw, "yaw beyond ±2π in the first row: is it in degrees?");
-    }
-    if (!ego.empty() && degree_check.add(ego.back(), s)) {
-      csv.fail(yaw, "the yaw changes about 57 times faster than yaw_rate_radps says: is it in degrees?");
-    }
-    ego.push_back(s);
-  }
-  if (ego.empty()) csv.fail_line("the ego log has no rows");
-  return ego;
-}
-
-void read_ego(Recording& rec, const fs::path& path) { rec.ego = read_ego_rows(path, rec.cycle_time_s); }
-
-void read_boxes(Recording& rec, const fs::path& path) {
-  rec.boxes.assign(rec.objects.size(), {});
-  CsvReader csv(path.string(), {"t_s", "object", "x_m", "y_m", "yaw_rad", "speed_mps"});
-  const int t = csv.column("t_s"), id = csv.column("object"), x = csv.column("x_m"), y = csv.column("y_m"),
-            yaw = csv.column("yaw_rad"), v = csv.column("speed_mps");
-  while (csv.next()) {
-    const std::string& object_id = csv.text(id);
-    std::size_t index = 0;
-    while (index < rec.objects.size() && rec.objects[index].id != object_id) ++index;
-    if (index == rec.objects.size()) {
-      csv.fail(id, fmt::format("object '{}' is not listed in recording.json", object_id));
-    }
-    AnnotatedBox box{csv.number(t), csv.number(x), csv.number(y), csv.number(yaw), csv.number(v), csv.line()};
-    auto& boxes = rec.boxes[index];
-    if (!boxes.empty() && box.t_s <= boxes.back().t_s) {
-      csv.fail(t, fmt::format("time {} s of object '{}' does not follow its previous row's {} s (line {})", box.t_s,
-                              object_id, boxes.back().t_s, boxes.back().line));
-    }
-    boxes.push_back(box);
-  }
-  for (std::size_t i = 0; i < rec.objects.size(); ++i) {
-    if (rec.boxes[i].empty()) {
-      throw InputError(path.string(), "", fmt::format("object '{}' of recording.json has no rows", rec.objects[i].id));
-    }
-  }
-}
-
-// Limits on a target's numbers (schemas/recording.md): beyond them a value is a unit or format
-// error, not a measurement (a range of 1e308 would be averaged into GOSPA).
-constexpr double kMaxRange_m = 10'000.0, kMaxRangeRate_mps = 1'000.0, kMaxLevel_db = 1'000.0;
-
-double number_within(CsvReader& csv, int column, double limit, const char* unit) {
-  const double value = csv.number(column);
-  if (std::abs(value) > limit) csv.fail(column, fmt::format("|{}| exceeds the limit of {} {}", value, limit, unit));
-  return value;
-}
-
-void read_targets(Recording& rec, const fs::path& path) {
-  CsvReader csv(path.string(),
-                {"t_s", "cycle", "sensor", "range_m", "azimuth_rad", "range_rate_mps", "amplitude_db"});
-  const int t = csv.column("t_s"), k = csv.column("cycle"), s = csv.column("sensor"), id = csv.column("id"),
-            r = csv.column("range_m"), az = csv.column("azimuth_rad"), rr = csv.column("range_rate_mps"),
-            amp = csv.column("amplitude_db");
-  const int rcs = csv.column("rcs_dbsm"), snr = csv.column("snr_db"), el = csv.column("elevation_rad");  // optional
-  int previous_cycle = 0;
-  while (csv.next()) {
-    RecordedTarget target;
-    target.t_s = csv.number(t);
-    const long long cycle = csv.integer(k);
-    if (cycle < 0 || cycle >= rec.cycle_count()) {
-      csv.fail(k, fmt::format("cycle {} is outside the ego log's cycles 0..{}", cycle, rec.cycle_count() - 1));
-    }
-    target.cycle = static_cast<int>(cycle);
-    if (target.cycle < previous_cycle) csv.fail(k, fmt::format("cycle {} after cycle {}: rows must be in cycle order",
-                                                               target.cycle, previous_cycle));
-    previous_cycle = target.cycle;
-    if (std::abs(target.t_s - rec.ego[target.cycle].t_s) > kTimeTolerance_s) {
-      csv.fail(t, fmt::format("time {} s differs from cycle {}'s time {} s in ego.csv", target.t_s, target.cycle,
-                              rec.ego[target.cycle].t_s));
-    }
-    target.sensor = rec.sensor_index(csv.text(s));
-    if (target.sensor < 0) csv.fail(s, fmt::format("sensor '{}' is not listed in recording.json", csv.text(s)));
-    if (id >= 0) {
-      const long long track_id = csv.integer(id);
-      if (track_id < 0 || track_id > 1'000'000'000) csv.fail(id, "track id out of range");
-      target.id = static_cast<int>(track_id);
-    }
-    target.range_m = number_within(csv, r, kMaxRange_m, "m");
-    if (target.range_m < 0.0) csv.fail(r, "range must not be negative");
-    target.azimuth_rad = csv.number(az);
-    if (std::abs(target.azimuth_rad) > 3.15) csv.fail(az, "azimuth beyond ±π: is it in degrees?");
-    target.range_rate_mps = number_within(csv, rr, kMaxRangeRate_mps, "m/s");
-    target.amplitude_db = number_within(csv, amp, kMaxLevel_db, "dB");
-    if (rcs >= 0) target.rcs_dbsm = number_within(csv, rcs, kMaxLevel_db, "dBsm");
-    if (snr >= 0) target.snr_db = number_within(csv, snr, kMaxLevel_db, "dB");
-    if (el >= 0) {
-      target.elevation_rad = csv.number(el);
-      if (std::abs(target.elevation_rad) > 1.58) csv.fail(el, "elevation beyond ±π/2: is it in degrees?");
-    }
-    rec.targets.push_back(target);
-  }
-}
-
 void write_file(const fs::path& path, const std::string& text) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) throw InputError(path.string(), "", std::string("cannot create file: ") + std::strerror(errno));
@@ -243,7 +112,12 @@ std::string header_text(const Recording& rec) {
 
 }  // namespace
 
-std::vector<EgoSample> read_ego_log(const fs::path& path) { return read_ego_rows(path, 0.0); }
+std::vector<EgoSample> read_ego_log(const fs::path& path) {
+  std::vector<EgoSample> rows;
+  EgoRowReader reader(path, 0.0);
+  for (EgoSample s; reader.next(s);) rows.push_back(s);
+  return rows;
+}
 
 bool Recording::all_sensors_report(ReportedLevel level) const {
   return std::all_of(sensors.begin(), sensors.end(), [&](const RecordingSensor& s) { return s.reports == level; });
@@ -264,19 +138,34 @@ std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t hash) {
   return hash;
 }
 
-Recording read_recording(const fs::path& dir) {
+Recording read_recording_header(const fs::path& dir) {
   if (!fs::is_directory(dir)) throw InputError(dir.string(), "", "not a recording directory");
   Recording rec;
   rec.dir = dir;
   read_header(rec, dir / "recording.json");
-  read_ego(rec, dir / "ego.csv");
-  read_boxes(rec, dir / "objects.csv");
-  read_targets(rec, dir / "targets.csv");
+  return rec;
+}
+
+std::uint64_t recording_checksum(const fs::path& dir) {
   std::uint64_t hash = fnv1a64("rcsim-recording/1");
   for (const char* name : {"recording.json", "ego.csv", "objects.csv", "targets.csv"}) {
-    hash = fnv1a64(read_text_file(dir / name), hash);
+    hash = fnv1a64_file(dir / name, hash);
   }
-  rec.checksum = hash;
+  return hash;
+}
+
+Recording read_recording(const fs::path& dir) {
+  RecordingStream stream(dir);
+  Recording rec = stream.header();
+  rec.ego.reserve(static_cast<std::size_t>(rec.cycle_count()));
+  for (EgoSample s; stream.ego().next(s);) rec.ego.push_back(s);
+  rec.boxes.assign(rec.objects.size(), {});
+  std::size_t object = 0;
+  for (AnnotatedBox box; stream.boxes().next(object, box);) rec.boxes[object].push_back(box);
+  stream.boxes().finish();
+  for (int k = 0; k < rec.cycle_count(); ++k) stream.targets().read_cycle(k, rec.ego[k].t_s, rec.targets);
+  stream.targets().finish();
+  rec.streamed_cycles = 0;  // the rows are here
   return rec;
 }
 

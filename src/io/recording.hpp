@@ -65,8 +65,10 @@ struct Recording {
   std::vector<std::vector<AnnotatedBox>> boxes;         // per object, time-ordered
   std::vector<RecordedTarget> targets;                  // in file order (cycle-ordered)
   std::uint64_t checksum = 0;                           // FNV-1a 64 over the four files
+  // A streamed recording (recording_stream.hpp) holds no rows: its cycle count, from the header pass.
+  int streamed_cycles = 0;
 
-  int cycle_count() const { return static_cast<int>(ego.size()); }
+  int cycle_count() const { return ego.empty() ? streamed_cycles : static_cast<int>(ego.size()); }
   bool all_sensors_report(ReportedLevel level) const;
   int sensor_index(const std::string& id) const;  // -1 if unknown
 };

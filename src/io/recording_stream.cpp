@@ -1,0 +1,213 @@
+#include "io/recording_stream.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "common/input_error.hpp"
+#include "common/text_file.hpp"
+
+namespace rcsim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Times in a recording agree when they differ by less than this (files carry 6 decimals).
+constexpr double kTimeTolerance_s = 2e-6;
+
+// Limits on a target's numbers (schemas/recording.md): beyond them a value is a unit or format
+// error, not a measurement (a range of 1e308 would be averaged into GOSPA).
+constexpr double kMaxRange_m = 10'000.0, kMaxRangeRate_mps = 1'000.0, kMaxLevel_db = 1'000.0;
+
+double number_within(const CsvReader& csv, int column, double limit, const char* unit) {
+  const double value = csv.number(column);
+  if (std::abs(value) > limit) csv.fail(column, fmt::format("|{}| exceeds the limit of {} {}", value, limit, unit));
+  return value;
+}
+
+// The data rows of a CSV file as CsvReader counts them: its non-blank lines but the header.
+int count_data_rows(const fs::path& path) {
+  LineReader lines(path);
+  int rows = -1;
+  for (std::string_view line; lines.next(line);) {
+    if (line.find_first_not_of(" \t") != std::string_view::npos) ++rows;
+  }
+  return std::max(rows, 0);
+}
+
+}  // namespace
+
+bool EgoRowReader::DegreeYawCheck::add(const EgoSample& previous, const EgoSample& row) {
+  const double dt_s = row.t_s - previous.t_s;
+  const double rate_radps = 0.5 * (row.yaw_rate_radps + previous.yaw_rate_radps);
+  if (dt_s > 1.0 || std::abs(rate_radps) < 0.05) return false;
+  ++turning;
+  const double ratio = (row.yaw_rad - previous.yaw_rad) / dt_s / rate_radps;
+  degree_like += ratio > 20.0 && ratio < 100.0;
+  return turning >= 5 && 2 * degree_like > turning;
+}
+
+EgoRowReader::EgoRowReader(const fs::path& path, double cycle_time_s)
+    : csv_(path.string(), {"t_s", "x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps"}),
+      cycle_time_s_(cycle_time_s),
+      t_(csv_.column("t_s")),
+      x_(csv_.column("x_m")),
+      y_(csv_.column("y_m")),
+      yaw_(csv_.column("yaw_rad")),
+      v_(csv_.column("speed_mps")),
+      w_(csv_.column("yaw_rate_radps")) {}
+
+bool EgoRowReader::next(EgoSample& s) {
+  if (!csv_.next()) {
+    if (!previous_) csv_.fail_line("the ego log has no rows");
+    return false;
+  }
+  s = {csv_.number(t_), csv_.number(x_), csv_.number(y_), csv_.number(yaw_), csv_.number(v_), csv_.number(w_)};
+  if (previous_ && s.t_s <= previous_->t_s) {
+    csv_.fail(t_, fmt::format("time {} s does not follow the previous row's {} s (times must increase)", s.t_s,
+                              previous_->t_s));
+  }
+  if (cycle_time_s_ > 0.0 && previous_ && s.t_s - previous_->t_s > 1.5 * cycle_time_s_) {
+    csv_.fail(t_, fmt::format("gap of {:.6f} s after the previous row (cycle time {} s): the ego log must have "
+                              "one row per sensor cycle",
+                              s.t_s - previous_->t_s, cycle_time_s_));
+  }
+  if (!previous_ && std::abs(s.yaw_rad) > 2.0 * std::numbers::pi) {
+    csv_.fail(yaw_, "yaw beyond ±2π in the first row: is it in degrees?");
+  }
+  if (previous_ && degree_check_.add(*previous_, s)) {
+    csv_.fail(yaw_, "the yaw changes about 57 times faster than yaw_rate_radps says: is it in degrees?");
+  }
+  previous_ = s;
+  return true;
+}
+
+BoxRowReader::BoxRowReader(const fs::path& path, const std::vector<RecordingObject>& objects)
+    : csv_(path.string(), {"t_s", "object", "x_m", "y_m", "yaw_rad", "speed_mps"}),
+      objects_(objects),
+      t_(csv_.column("t_s")),
+      id_(csv_.column("object")),
+      x_(csv_.column("x_m")),
+      y_(csv_.column("y_m")),
+      yaw_(csv_.column("yaw_rad")),
+      v_(csv_.column("speed_mps")),
+      last_(objects.size()) {
+  for (std::size_t i = 0; i < objects.size(); ++i) index_of_.emplace(objects[i].id, i);
+}
+
+bool BoxRowReader::next(std::size_t& object, AnnotatedBox& box) {
+  if (!csv_.next()) return false;
+  const std::string& object_id = csv_.text(id_);
+  const auto found = index_of_.find(object_id);
+  if (found == index_of_.end()) csv_.fail(id_, fmt::format("object '{}' is not listed in recording.json", object_id));
+  object = found->second;
+  box = {csv_.number(t_), csv_.number(x_), csv_.number(y_), csv_.number(yaw_), csv_.number(v_), csv_.line()};
+  const AnnotatedBox& last = last_[object];
+  if (last.line > 0 && box.t_s <= last.t_s) {
+    csv_.fail(t_, fmt::format("time {} s of object '{}' does not follow its previous row's {} s (line {})", box.t_s,
+                              object_id, last.t_s, last.line));
+  }
+  // Replay reads the annotations alongside the cycles, so the file must be in time order.
+  if (box.t_s < last_t_s_) {
+    csv_.fail(t_, fmt::format("time {} s precedes line {}'s {} s: rows must be in time order", box.t_s, last_line_,
+                              last_t_s_));
+  }
+  last_t_s_ = box.t_s;
+  last_line_ = box.line;
+  last_[object] = box;
+  return true;
+}
+
+void BoxRowReader::finish() const {
+  for (std::size_t i = 0; i < objects_.size(); ++i) {
+    if (last_[i].line == 0) {
+      throw InputError(csv_.path(), "", fmt::format("object '{}' of recording.json has no rows", objects_[i].id));
+    }
+  }
+}
+
+TargetRowReader::TargetRowReader(const fs::path& path, const Recording& header, int cycle_count)
+    : csv_(path.string(), {"t_s", "cycle", "sensor", "range_m", "azimuth_rad", "range_rate_mps", "amplitude_db"}),
+      header_(header),
+      cycle_count_(cycle_count),
+      t_(csv_.column("t_s")),
+      k_(csv_.column("cycle")),
+      s_(csv_.column("sensor")),
+      id_(csv_.column("id")),
+      r_(csv_.column("range_m")),
+      az_(csv_.column("azimuth_rad")),
+      rr_(csv_.column("range_rate_mps")),
+      amp_(csv_.column("amplitude_db")),
+      rcs_(csv_.column("rcs_dbsm")),  // optional, like id and elevation
+      snr_(csv_.column("snr_db")),
+      el_(csv_.column("elevation_rad")) {}
+
+bool TargetRowReader::read_row() {
+  pending_.reset();
+  if (at_end_ || !csv_.next()) {
+    at_end_ = true;
+    return false;
+  }
+  RecordedTarget target;
+  target.t_s = csv_.number(t_);
+  const long long cycle = csv_.integer(k_);
+  if (cycle < 0 || cycle >= cycle_count_) {
+    csv_.fail(k_, fmt::format("cycle {} is outside the ego log's cycles 0..{}", cycle, cycle_count_ - 1));
+  }
+  target.cycle = static_cast<int>(cycle);
+  if (target.cycle < previous_cycle_) {
+    csv_.fail(k_, fmt::format("cycle {} after cycle {}: rows must be in cycle order", target.cycle, previous_cycle_));
+  }
+  previous_cycle_ = target.cycle;
+  target.sensor = header_.sensor_index(csv_.text(s_));
+  if (target.sensor < 0) csv_.fail(s_, fmt::format("sensor '{}' is not listed in recording.json", csv_.text(s_)));
+  if (id_ >= 0) {
+    const long long track_id = csv_.integer(id_);
+    if (track_id < 0 || track_id > 1'000'000'000) csv_.fail(id_, "track id out of range");
+    target.id = static_cast<int>(track_id);
+  }
+  target.range_m = number_within(csv_, r_, kMaxRange_m, "m");
+  if (target.range_m < 0.0) csv_.fail(r_, "range must not be negative");
+  target.azimuth_rad = csv_.number(az_);
+  if (std::abs(target.azimuth_rad) > 3.15) csv_.fail(az_, "azimuth beyond ±π: is it in degrees?");
+  target.range_rate_mps = number_within(csv_, rr_, kMaxRangeRate_mps, "m/s");
+  target.amplitude_db = number_within(csv_, amp_, kMaxLevel_db, "dB");
+  if (rcs_ >= 0) target.rcs_dbsm = number_within(csv_, rcs_, kMaxLevel_db, "dBsm");
+  if (snr_ >= 0) target.snr_db = number_within(csv_, snr_, kMaxLevel_db, "dB");
+  if (el_ >= 0) {
+    target.elevation_rad = csv_.number(el_);
+    if (std::abs(target.elevation_rad) > 1.58) csv_.fail(el_, "elevation beyond ±π/2: is it in degrees?");
+  }
+  pending_ = target;
+  return true;
+}
+
+void TargetRowReader::read_cycle(int cycle, double t_s, std::vector<RecordedTarget>& out) {
+  if (!pending_ && !at_end_) read_row();
+  while (pending_ && pending_->cycle == cycle) {
+    if (std::abs(pending_->t_s - t_s) > kTimeTolerance_s) {
+      csv_.fail(t_, fmt::format("time {} s differs from cycle {}'s time {} s in ego.csv", pending_->t_s, cycle, t_s));
+    }
+    out.push_back(*pending_);
+    read_row();
+  }
+}
+
+void TargetRowReader::finish() {
+  if (!pending_ && !at_end_) read_row();
+  if (pending_) csv_.fail(k_, fmt::format("cycle {} was not read: cycles must be asked for in order", pending_->cycle));
+}
+
+RecordingStream::RecordingStream(const fs::path& dir)
+    : header_([&] {
+        Recording header = read_recording_header(dir);
+        header.checksum = recording_checksum(dir);
+        header.streamed_cycles = count_data_rows(dir / "ego.csv");
+        return header;
+      }()),
+      ego_(dir / "ego.csv", header_.cycle_time_s),
+      boxes_(dir / "objects.csv", header_.objects),
+      targets_(dir / "targets.csv", header_, header_.cycle_count()) {}
+
+}  // namespace rcsim

@@ -1,0 +1,100 @@
+#pragma once
+// A recording read row by row (schemas/recording.md), in memory bounded whatever its length:
+// recording.json at once; ego.csv one row per cycle; objects.csv in time order; targets.csv one
+// cycle at a time. Every row gets the checks read_recording gives it (read_recording is built on
+// this), and every complaint names the file, the line and the column.
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "io/csv_reader.hpp"
+#include "io/recording.hpp"
+
+namespace rcsim {
+
+// ego.csv's (or an ego log's) rows; with cycle_time_s > 0, one row per sensor cycle.
+class EgoRowReader {
+ public:
+  EgoRowReader(const std::filesystem::path& path, double cycle_time_s);
+  bool next(EgoSample& sample);  // false after the last row (a file with no rows is refused)
+
+ private:
+  // Counts, over the row pairs where the vehicle turns (|yaw rate| >= 0.05 rad/s), those whose
+  // yaw changed 20 to 100 times faster than the yaw rate says (180/π = 57.3: a yaw in degrees
+  // beside a yaw rate in rad/s). Mostly so, once 5 such pairs are in: the yaw is in degrees.
+  struct DegreeYawCheck {
+    int turning = 0, degree_like = 0;
+    bool add(const EgoSample& previous, const EgoSample& row);
+  };
+  CsvReader csv_;
+  double cycle_time_s_;
+  int t_, x_, y_, yaw_, v_, w_;
+  DegreeYawCheck degree_check_;
+  std::optional<EgoSample> previous_;
+};
+
+// objects.csv's rows: rows in time order, per object strictly increasing, every listed object
+// with at least one row (checked by finish()).
+class BoxRowReader {
+ public:
+  BoxRowReader(const std::filesystem::path& path, const std::vector<RecordingObject>& objects);
+  bool next(std::size_t& object, AnnotatedBox& box);
+  void finish() const;
+
+ private:
+  CsvReader csv_;
+  const std::vector<RecordingObject>& objects_;
+  std::unordered_map<std::string, std::size_t> index_of_;
+  int t_, id_, x_, y_, yaw_, v_;
+  std::vector<AnnotatedBox> last_;  // per object: its last row (line 0: none yet)
+  double last_t_s_ = -std::numeric_limits<double>::infinity();
+  int last_line_ = 0;
+};
+
+// targets.csv's rows, one cycle at a time, cycles in order.
+class TargetRowReader {
+ public:
+  TargetRowReader(const std::filesystem::path& path, const Recording& header, int cycle_count);
+  // Appends the rows of `cycle` (recorded at ego time t_s) to `out`; cycles asked for in order.
+  void read_cycle(int cycle, double t_s, std::vector<RecordedTarget>& out);
+  void finish();  // refuses rows left over (cycles beyond the ego log)
+
+ private:
+  bool read_row();  // into pending_; false at the end
+  CsvReader csv_;
+  const Recording& header_;
+  int cycle_count_;
+  int t_, k_, s_, id_, r_, az_, rr_, amp_, rcs_, snr_, el_;
+  std::optional<RecordedTarget> pending_;
+  bool at_end_ = false;
+  int previous_cycle_ = 0;
+};
+
+// The whole recording as a stream: the header and checksum first (one pass over the files in a
+// fixed buffer, counting the cycles), then the rows.
+class RecordingStream {
+ public:
+  explicit RecordingStream(const std::filesystem::path& dir);
+  // The header: name, sensors, objects, checksum, and cycle_count() (no rows).
+  const Recording& header() const { return header_; }
+  EgoRowReader& ego() { return ego_; }
+  BoxRowReader& boxes() { return boxes_; }
+  TargetRowReader& targets() { return targets_; }
+
+ private:
+  Recording header_;
+  EgoRowReader ego_;
+  BoxRowReader boxes_;
+  TargetRowReader targets_;
+};
+
+// Reads recording.json alone (no rows, checksum 0).
+Recording read_recording_header(const std::filesystem::path& dir);
+
+// FNV-1a 64 over the four files (schemas/recording.md), read in a fixed buffer.
+std::uint64_t recording_checksum(const std::filesystem::path& dir);
+
+}  // namespace rcsim
