@@ -43,6 +43,7 @@ ImportedObject import_object(const Recording& rec, std::size_t index, double t0_
   out.width_m = object.width_m;
 
   std::vector<double> t_s, x_m, y_m, yaw_rad, speed_mps;
+  std::vector<char> gap_after(boxes.size(), 0);  // absent from the scene until the next box
   // Present over the annotated spans, widened by half a cycle so that a cycle whose time carries
   // rounding still sees the object at both ends.
   const double half_cycle_s = 0.5 * rec.cycle_time_s;
@@ -56,6 +57,7 @@ ImportedObject import_object(const Recording& rec, std::size_t index, double t0_
                                        "scene in between",
                                        boxes_file(rec), boxes[i - 1].line, b.line, object.id, gap_s));
         out.presence.back().until_s = boxes[i - 1].t_s - t0_s + half_cycle_s;
+        gap_after[i - 1] = 1;
         out.presence.push_back({b.t_s - t0_s - half_cycle_s, 0.0});
       } else if (gap_s > 1.5 * rec.cycle_time_s) {
         warnings.push_back(fmt::format("{}: lines {} and {}: object '{}' not annotated for {:.3f} s; interpolated",
@@ -83,6 +85,7 @@ ImportedObject import_object(const Recording& rec, std::size_t index, double t0_
     s.yaw_rad = yaw_fit[i].value;
     s.speed_mps = speed_fit[i].value;
     s.yaw_rate_radps = yaw_fit[i].slope_per_s;
+    s.gap_after = gap_after[i] != 0;
     out.trajectory.push_back(s);
   }
   out.presence.back().until_s = t_s.back() + half_cycle_s;

@@ -3,20 +3,40 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "common/angles.hpp"
 
 namespace rcsim {
 
+Trajectory::Node Trajectory::node_of(const TrajectorySample& s) const {
+  double yaw_rad = s.yaw_rad;
+  if (!nodes_.empty()) yaw_rad = nodes_.back().yaw_rad + angle_difference_rad(s.yaw_rad, nodes_.back().yaw_rad);
+  return {s.t_s,     Vec2(s.x_m, s.y_m), yaw_rad, s.speed_mps, s.yaw_rate_radps.value_or(0.0),
+          s.speed_mps * Vec2(std::cos(yaw_rad), std::sin(yaw_rad)), s.gap_after};
+}
+
+void Trajectory::append(const TrajectorySample& sample) {
+  if (!sample.yaw_rate_radps) throw std::invalid_argument("Trajectory::append: a sample needs its yaw rate");
+  if (!nodes_.empty() && !(sample.t_s > nodes_.back().t_s)) {
+    throw std::invalid_argument("Trajectory::append: times must increase");
+  }
+  nodes_.push_back(node_of(sample));
+}
+
+void Trajectory::drop_before(double t_s) {
+  const auto it = std::upper_bound(nodes_.begin(), nodes_.end(), t_s,
+                                   [](double t, const Node& node) { return t < node.t_s; });
+  if (it == nodes_.begin()) return;
+  const auto forgettable = static_cast<std::size_t>(it - 1 - nodes_.begin());  // keep the one at or before t_s
+  if (forgettable > 0 && 2 * forgettable >= nodes_.size()) {
+    nodes_.erase(nodes_.begin(), nodes_.begin() + static_cast<std::ptrdiff_t>(forgettable));
+  }
+}
+
 Trajectory::Trajectory(const std::vector<TrajectorySample>& samples) {
   nodes_.reserve(samples.size());
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const auto& s = samples[i];
-    double yaw_rad = s.yaw_rad;
-    if (i > 0) yaw_rad = nodes_.back().yaw_rad + angle_difference_rad(s.yaw_rad, nodes_.back().yaw_rad);
-    nodes_.push_back({s.t_s, Vec2(s.x_m, s.y_m), yaw_rad, s.speed_mps, 0.0,
-                      s.speed_mps * Vec2(std::cos(yaw_rad), std::sin(yaw_rad))});
-  }
+  for (const auto& s : samples) nodes_.push_back(node_of(s));
   // Yaw rates not given are the (central, at the ends one-sided) differences of the unwrapped yaw.
   const std::size_t n = nodes_.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -50,12 +70,14 @@ BodyState Trajectory::extrapolate(const Node& node, double dt_s) const {
 }
 
 BodyState Trajectory::state_at(double t_s) const {
+  if (nodes_.empty()) return {};
   if (nodes_.size() == 1 || t_s <= nodes_.front().t_s) return extrapolate(nodes_.front(), t_s - nodes_.front().t_s);
   if (t_s >= nodes_.back().t_s) return extrapolate(nodes_.back(), t_s - nodes_.back().t_s);
   const auto it = std::upper_bound(nodes_.begin(), nodes_.end(), t_s,
                                    [](double t, const Node& node) { return t < node.t_s; });
   const Node& a = *(it - 1);
   const Node& b = *it;
+  if (a.gap_after) return t_s - a.t_s <= b.t_s - t_s ? extrapolate(a, t_s - a.t_s) : extrapolate(b, t_s - b.t_s);
   const double h = b.t_s - a.t_s;
   const double s = (t_s - a.t_s) / h;
   const double s2 = s * s;
@@ -76,6 +98,7 @@ BodyState Trajectory::state_at(double t_s) const {
 
 Eigen::AlignedBox2d Trajectory::position_bounds(double t0_s, double t1_s) const {
   Eigen::AlignedBox2d box;  // empty
+  if (nodes_.empty()) return box;
   // Extrapolation from a node over dt in [dt0, dt1]: the path has length |speed| |dt| at most.
   const auto add_extrapolated = [&](const Node& node, double dt0_s, double dt1_s) {
     const double reach_m = std::abs(node.speed_mps) * std::max(std::abs(dt0_s), std::abs(dt1_s));
@@ -101,6 +124,12 @@ Eigen::AlignedBox2d Trajectory::position_bounds(double t0_s, double t1_s) const 
     const Node& a = *it;
     const Node& b = *(it + 1);
     if (b.t_s < t0_s) continue;
+    if (a.gap_after) {  // each end's constant turn over its part of [t0, t1]
+      const double from_s = std::max(t0_s, a.t_s), until_s = std::min(t1_s, b.t_s);
+      add_extrapolated(a, from_s - a.t_s, until_s - a.t_s);
+      add_extrapolated(b, from_s - b.t_s, until_s - b.t_s);
+      continue;
+    }
     const double h_s = b.t_s - a.t_s;
     const std::array<Vec2, 4> control = {a.p_WB_W, a.p_WB_W + (h_s / 3.0) * a.v_W, b.p_WB_W - (h_s / 3.0) * b.v_W, b.p_WB_W};
     const auto blossom = [&](double s1, double s2, double s3) {
