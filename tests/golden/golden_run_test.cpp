@@ -8,13 +8,18 @@
 //              detections, tracks;
 //   synth    : `rcsim synth SCENE --seed 7` (the signal-level reference): its ego.csv, objects.csv
 //              and targets.csv, for the documented examples (docs/examples);
-//   replay   : every table of the report `rcsim replay REC --seed 7` writes, rows ordered by
-//              primary key, reals printed with 17 significant digits; the columns that name the
-//              machine or the moment (times, directories, version) are left out.
+//   replay   : the logical content of the report `rcsim replay REC --seed 7` writes, as its
+//              readers see it and independent of how it is stored: the run-level tables rows
+//              ordered by primary key, the cycles, targets and annotated boxes through the
+//              store's row reader (replay/store/run_rows.hpp); reals printed with 17 significant
+//              digits, the targets' reals at the float32 precision they are stored at; the
+//              columns that name the machine or the moment (times, directories, version) are
+//              left out.
 #include <gtest/gtest.h>
 
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
@@ -26,6 +31,7 @@
 
 #include "cli/run_rcsim.hpp"
 #include "io/recording.hpp"
+#include "replay/store/run_rows.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim {
@@ -92,41 +98,97 @@ bool is_circumstantial(const std::string& column) {
   return kColumns.count(column) > 0;
 }
 
-// The report's contents as text: every table, its deterministic columns, rows by primary key.
+// The run-level tables whose rows are hashed as stored, with their deterministic columns.
+const std::vector<std::string> kRunTables{"run_sensors", "run_objects", "merge_pairs", "latencies",
+                                          "distribution_distances", "summaries", "object_figures", "object_ranges"};
+// The columns of `runs` that describe the recording and the replay (not the machine, the moment or
+// the storage).
+constexpr const char* kRunColumns = "run_id, recording_name, recording_checksum, recording_source, cycle_time_s, cycles, seed, level";
+
+std::string real(double value) { return fmt::format("{:.17g}", value); }
+std::string real32(double value) { return real(static_cast<double>(static_cast<float>(value))); }
+std::string optional_real(double value) { return std::isnan(value) ? "NULL" : real32(value); }
+
+// The rows of a query as text, one line per row.
+std::string dump_rows(SQLite::Database& db, const std::string& select) {
+  std::string text;
+  SQLite::Statement rows(db, select);
+  while (rows.executeStep()) {
+    for (int c = 0; c < rows.getColumnCount(); ++c) {
+      const auto value = rows.getColumn(c);
+      if (c) text += ',';
+      if (value.isNull()) text += "NULL";
+      else if (value.isInteger()) text += std::to_string(value.getInt64());
+      else if (value.isFloat()) text += real(value.getDouble());
+      else text += value.getString();
+    }
+    text += '\n';
+  }
+  return text;
+}
+
+// A table's deterministic columns, rows by primary key.
+std::string dump_table(SQLite::Database& db, const std::string& table) {
+  std::vector<std::string> columns;
+  std::vector<std::pair<int, std::string>> key;
+  SQLite::Statement info(db, "PRAGMA table_info(" + table + ")");
+  while (info.executeStep()) {
+    const std::string name = info.getColumn(1).getString();
+    if (const int pk = info.getColumn(5).getInt(); pk > 0) key.emplace_back(pk, name);
+    if (!is_circumstantial(name)) columns.push_back(name);
+  }
+  std::sort(key.begin(), key.end());
+  std::string select = "SELECT ";
+  for (std::size_t i = 0; i < columns.size(); ++i) select += (i ? ", " : "") + columns[i];
+  select += " FROM " + table;
+  for (std::size_t i = 0; i < key.size(); ++i) select += (i ? ", " : " ORDER BY ") + key[i].second;
+  return "== " + table + "\n" + dump_rows(db, select);
+}
+
+// The cycles, targets and boxes of one run, through the store's row reader.
+std::string dump_run_rows(SQLite::Database& db, std::int64_t run_id) {
+  std::string text = fmt::format("== cycles of run {}\n", run_id);
+  replay::for_each_cycle(db, run_id, {}, [&](const replay::StoredCycle& c) {
+    text += fmt::format("{},{},{},", c.cycle, c.sensor, real(c.t_s));
+    text += c.X_WS ? fmt::format("{},{},{}", real(c.X_WS->x_m), real(c.X_WS->y_m), real(c.X_WS->yaw_rad)) : "NULL";
+    text += fmt::format(",{},{},{},{},{},{},{},{},{},{},{}", c.n_recorded, c.n_simulated, c.n_assigned, real(c.gospa_m),
+                        real(c.gospa_localisation_mp), real(c.gospa_missed_mp), real(c.gospa_false_mp), real(c.ospa_m),
+                        c.merge_recorded, c.merge_simulated, c.merge_matched);
+    if (c.classes) {
+      const auto& k = *c.classes;
+      text += fmt::format(",{},{},{},{},{},{}\n", k.n_object_recorded, k.n_object_simulated, k.n_background_recorded,
+                          k.n_background_simulated, real(k.gospa_object_m), real(k.ospa_object_m));
+    } else {
+      text += ",NULL\n";
+    }
+  });
+  text += fmt::format("== targets of run {}\n", run_id);
+  replay::for_each_target(db, run_id, {}, [&](const replay::StoredTarget& t) {
+    text += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},", t.cycle, t.sensor, t.simulated ? "simulated" : "recorded",
+                        t.idx, t.track_id, real32(t.range_m), real32(t.azimuth_rad), real32(t.range_rate_mps),
+                        real32(t.amplitude_db), t.object, t.match_idx, t.merge_artefact ? 1 : 0,
+                        t.target_class ? std::string(metrics::target_class_name(*t.target_class)) : "NULL");
+    text += t.p_OT_O ? fmt::format("{},{}", real32(t.p_OT_O->x()), real32(t.p_OT_O->y())) : "NULL";
+    text += fmt::format(",{},{},{}\n", optional_real(t.rcs_dbsm), optional_real(t.snr_db), optional_real(t.elevation_rad));
+  });
+  text += fmt::format("== object states of run {}\n", run_id);
+  std::vector<replay::StoredObjectState> states;
+  replay::for_each_object_state(db, run_id, {}, [&](const replay::StoredObjectState& s) { states.push_back(s); });
+  std::sort(states.begin(), states.end(),
+            [](const auto& a, const auto& b) { return std::pair(a.cycle, a.object) < std::pair(b.cycle, b.object); });
+  for (const auto& s : states) {
+    text += fmt::format("{},{},{},{},{}\n", s.cycle, s.object, real(s.X_WO.x_m), real(s.X_WO.y_m), real(s.X_WO.yaw_rad));
+  }
+  return text;
+}
+
+// The report's logical content as text.
 std::string dump_report(const fs::path& db_path) {
   SQLite::Database db(db_path.string(), SQLite::OPEN_READONLY);
-  std::vector<std::string> tables;
-  SQLite::Statement list(db, "SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name");
-  while (list.executeStep()) tables.push_back(list.getColumn(0).getString());
-  std::string text;
-  for (const auto& table : tables) {
-    std::vector<std::string> columns;
-    std::vector<std::pair<int, std::string>> key;
-    SQLite::Statement info(db, "PRAGMA table_info(" + table + ")");
-    while (info.executeStep()) {
-      const std::string name = info.getColumn(1).getString();
-      if (const int pk = info.getColumn(5).getInt(); pk > 0) key.emplace_back(pk, name);
-      if (!is_circumstantial(name)) columns.push_back(name);
-    }
-    std::sort(key.begin(), key.end());
-    std::string select = "SELECT ";
-    for (std::size_t i = 0; i < columns.size(); ++i) select += (i ? ", " : "") + columns[i];
-    select += " FROM " + table;
-    for (std::size_t i = 0; i < key.size(); ++i) select += (i ? ", " : " ORDER BY ") + key[i].second;
-    text += "== " + table + "\n";
-    SQLite::Statement rows(db, select);
-    while (rows.executeStep()) {
-      for (int c = 0; c < rows.getColumnCount(); ++c) {
-        const auto value = rows.getColumn(c);
-        if (c) text += ',';
-        if (value.isNull()) text += "NULL";
-        else if (value.isInteger()) text += std::to_string(value.getInt64());
-        else if (value.isFloat()) text += fmt::format("{:.17g}", value.getDouble());
-        else text += value.getString();
-      }
-      text += '\n';
-    }
-  }
+  std::string text = "== runs\n" + dump_rows(db, std::string("SELECT ") + kRunColumns + " FROM runs ORDER BY run_id");
+  for (const auto& table : kRunTables) text += dump_table(db, table);
+  SQLite::Statement runs(db, "SELECT run_id FROM runs ORDER BY run_id");
+  while (runs.executeStep()) text += dump_run_rows(db, runs.getColumn(0).getInt64());
   return text;
 }
 

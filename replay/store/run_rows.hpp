@@ -1,0 +1,75 @@
+#pragma once
+// The per-cycle rows of a run in the report database (schemas/report-database.md) as a reader
+// sees them, whatever their storage: one row per cycle and sensor, every recorded and simulated
+// target, the annotated boxes per cycle. Every reader of these rows (the report's figures, the
+// golden run, tests) goes through here, never through SQL on the tables that hold them.
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <optional>
+
+#include "common/pose2.hpp"
+#include "metrics/target_class.hpp"
+
+namespace rcsim::replay {
+
+// The cycles first..last, both included.
+struct CycleSpan {
+  int first = 0;
+  int last = std::numeric_limits<int>::max();
+  bool contains(int cycle) const { return cycle >= first && cycle <= last; }
+};
+
+// One cycle and sensor: the comparison of its recorded and simulated target lists.
+struct StoredCycle {
+  int cycle = 0, sensor = 0;
+  double t_s = 0.0;           // recording time
+  std::optional<Pose2> X_WS;  // sensor pose in the world
+  int n_recorded = 0, n_simulated = 0, n_assigned = 0;
+  double gospa_m = 0.0, gospa_localisation_mp = 0.0, gospa_missed_mp = 0.0, gospa_false_mp = 0.0, ospa_m = 0.0;
+  int merge_recorded = 0, merge_simulated = 0, merge_matched = 0;
+  // The real-drive figures (schema v3); absent in runs stored before.
+  struct Classes {
+    int n_object_recorded = 0, n_object_simulated = 0, n_background_recorded = 0, n_background_simulated = 0;
+    double gospa_object_m = 0.0, ospa_object_m = 0.0;  // on the object targets only
+  };
+  std::optional<Classes> classes;
+};
+
+// One recorded or simulated target of a cycle and sensor.
+struct StoredTarget {
+  int cycle = 0, sensor = 0;
+  bool simulated = false;
+  int idx = 0;        // position in its list of that cycle, sensor and origin
+  int track_id = -1;  // -1: the recording has no ids
+  double range_m = 0.0, azimuth_rad = 0.0, range_rate_mps = 0.0, amplitude_db = 0.0;
+  int object = -1;     // the annotated object it belongs to, -1: none
+  int match_idx = -1;  // idx of the GOSPA-assigned target of the other origin, -1: none
+  bool merge_artefact = false;
+  std::optional<metrics::TargetClass> target_class;  // absent in runs stored before schema v3
+  std::optional<Vec2> p_OT_O;                        // offset in the object's frame (object >= 0, v3)
+  // The recording's optional columns; NaN where absent.
+  double rcs_dbsm = std::numeric_limits<double>::quiet_NaN(), snr_db = std::numeric_limits<double>::quiet_NaN(),
+         elevation_rad = std::numeric_limits<double>::quiet_NaN();
+
+  Vec2 p_ST_S() const;  // Cartesian, sensor frame: range (cos, sin)(azimuth)
+};
+
+// One annotated (smoothed) box in one cycle, world frame.
+struct StoredObjectState {
+  int cycle = 0, object = 0;
+  Pose2 X_WO;
+};
+
+// The rows of `run_id` within `span`, in cycle order; per cycle by sensor, then recorded before
+// simulated and by idx (targets) or by object (boxes).
+void for_each_cycle(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
+                    const std::function<void(const StoredCycle&)>& visit);
+void for_each_target(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
+                     const std::function<void(const StoredTarget&)>& visit);
+void for_each_object_state(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
+                           const std::function<void(const StoredObjectState&)>& visit);
+
+}  // namespace rcsim::replay
