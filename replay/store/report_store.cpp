@@ -164,7 +164,7 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
   return db;
 }
 
-ReportWriter::ReportWriter(SQLite::Database& db) : db_(db) {}
+ReportWriter::ReportWriter(SQLite::Database& db, StoreLevel store) : db_(db), store_(store) {}
 
 ReportWriter::~ReportWriter() = default;  // an uncommitted transaction rolls back
 
@@ -287,8 +287,10 @@ void ReportWriter::add_cycle(const CycleComparison& c) {
   s.bind(24, c.gospa_object.ospa_m);
   s.exec();
   s.reset();
-  insert_targets(c, "recorded", c.recorded);
-  insert_targets(c, "simulated", c.simulated);
+  if (store_ == StoreLevel::full) {
+    insert_targets(c, "recorded", c.recorded);
+    insert_targets(c, "simulated", c.simulated);
+  }
   for (const auto& [a, b] : c.merge_pairs) {
     SQLite::Statement& m = *insert_merge_pair_;
     m.bind(1, run_id_);
@@ -299,7 +301,7 @@ void ReportWriter::add_cycle(const CycleComparison& c) {
     m.exec();
     m.reset();
   }
-  if (c.sensor == 0) {  // the boxes are the same for every sensor of a cycle
+  if (c.sensor == 0 && store_ == StoreLevel::full) {  // the boxes are the same for every sensor of a cycle
     SQLite::Statement& o = *insert_object_state_;
     for (const ObjectInCycle& object : c.objects) {
       o.bind(1, run_id_);

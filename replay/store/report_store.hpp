@@ -11,6 +11,7 @@
 #include <string>
 
 #include "replay/run/replay_run.hpp"
+#include "replay/store/run_rows.hpp"
 
 namespace rcsim::replay {
 
@@ -26,7 +27,7 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
 // Stores one replay run as it streams in.
 class ReportWriter final : public ReplaySink {
  public:
-  explicit ReportWriter(SQLite::Database& db);
+  explicit ReportWriter(SQLite::Database& db, StoreLevel store = StoreLevel::full);
   ~ReportWriter() override;
 
   void begin_run(const Recording& recording, const ImportedScene& scene, const Scene& simulated_scene,
@@ -44,6 +45,7 @@ class ReportWriter final : public ReplaySink {
   void insert_summary(const ReplaySummary& summary);
 
   SQLite::Database& db_;
+  StoreLevel store_;
   std::optional<SQLite::Transaction> transaction_;
   std::int64_t run_id_ = 0;
   std::unique_ptr<SQLite::Statement> insert_cycle_, insert_target_, insert_object_state_, insert_merge_pair_;

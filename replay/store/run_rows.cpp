@@ -1,6 +1,7 @@
 #include "replay/store/run_rows.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 namespace rcsim::replay {
@@ -20,6 +21,14 @@ double or_nan(const SQLite::Column& column) {
 }
 
 }  // namespace
+
+std::string_view store_level_name(StoreLevel level) { return level == StoreLevel::full ? "full" : "summary"; }
+
+StoreLevel store_level_from_name(std::string_view name) {
+  if (name == "full") return StoreLevel::full;
+  if (name == "summary") return StoreLevel::summary;
+  throw std::invalid_argument("unknown store level '" + std::string(name) + "' (full, summary)");
+}
 
 Vec2 StoredTarget::p_ST_S() const { return {range_m * std::cos(azimuth_rad), range_m * std::sin(azimuth_rad)}; }
 

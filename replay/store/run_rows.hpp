@@ -9,11 +9,18 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <string_view>
 
 #include "common/pose2.hpp"
 #include "metrics/target_class.hpp"
 
 namespace rcsim::replay {
+
+// What a run keeps (`rcsim replay --store`): full keeps every target, the annotated boxes and the
+// sensor poses; summary the per-cycle figures and everything per run, object and sensor.
+enum class StoreLevel { full, summary };
+std::string_view store_level_name(StoreLevel level);           // "full", "summary"
+StoreLevel store_level_from_name(std::string_view name);        // throws std::invalid_argument
 
 // The cycles first..last, both included.
 struct CycleSpan {

@@ -28,6 +28,7 @@ struct ReplayArgs {
   double stationary_gate_mps = 0.5;
   ImportArgs import;
   std::string calibration;
+  std::string store = "full";  // what the report keeps (schemas/report-database.md)
 };
 
 const replay::QuantityDistance* find_distance(const replay::ReplaySummary& s, const std::string& quantity) {
@@ -176,7 +177,7 @@ void run_replay(const ReplayArgs& args) {
   options.association_gate_m = args.gate_m;
   options.stationary_gate_mps = args.stationary_gate_mps;
   const auto db = replay::open_report_database(args.db_path, true);
-  replay::ReportWriter writer(*db);
+  replay::ReportWriter writer(*db, replay::store_level_from_name(args.store));
   const char* kill_after = std::getenv("RCSIM_TEST_KILL_AFTER_CYCLES");
   KillAfterCycles killer(writer, kill_after ? std::atol(kill_after) : 0);
   PrintImportWarnings sink(kill_after ? static_cast<replay::ReplaySink&>(killer) : writer);
@@ -218,6 +219,11 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--stationary-gate-mps", args->stationary_gate_mps,
                   "stationary background: |range rate - that of a stationary point| at most this (m/s)")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--store", args->store,
+                  "what the report keeps: full (every target, the annotated boxes, the sensor poses) or summary (the "
+                  "per-cycle, per-object and per-run figures, no targets)")
+      ->check(CLI::IsMember({"full", "summary"}))
       ->capture_default_str();
   add_import_options(*cmd, args->import);
   add_calibration_option(*cmd, args->calibration);
