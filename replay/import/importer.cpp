@@ -53,15 +53,12 @@ ImportedObject import_object(const Recording& rec, std::size_t index, double t0_
     if (i > 0) {
       const double gap_s = b.t_s - boxes[i - 1].t_s;
       if (gap_s > options.max_gap_s) {
-        warnings.push_back(fmt::format("{}: lines {} and {}: object '{}' not annotated for {:.3f} s; absent from the "
-                                       "scene in between",
-                                       boxes_file(rec), boxes[i - 1].line, b.line, object.id, gap_s));
+        warnings.push_back(annotation_gap_warning(boxes_file(rec), boxes[i - 1].line, b.line, object.id, gap_s, true));
         out.presence.back().until_s = boxes[i - 1].t_s - t0_s + half_cycle_s;
         gap_after[i - 1] = 1;
         out.presence.push_back({b.t_s - t0_s - half_cycle_s, 0.0});
       } else if (gap_s > 1.5 * rec.cycle_time_s) {
-        warnings.push_back(fmt::format("{}: lines {} and {}: object '{}' not annotated for {:.3f} s; interpolated",
-                                       boxes_file(rec), boxes[i - 1].line, b.line, object.id, gap_s));
+        warnings.push_back(annotation_gap_warning(boxes_file(rec), boxes[i - 1].line, b.line, object.id, gap_s, false));
       }
     }
     t_s.push_back(b.t_s - t0_s);
@@ -94,13 +91,19 @@ ImportedObject import_object(const Recording& rec, std::size_t index, double t0_
 
 }  // namespace
 
-ImportedScene import_recording(const Recording& rec, const ModelLibrary& library, const ImportOptions& options) {
+std::string annotation_gap_warning(const std::string& file, int line_before, int line_after, const std::string& object,
+                                   double gap_s, bool absent) {
+  return fmt::format("{}: lines {} and {}: object '{}' not annotated for {:.3f} s; {}", file, line_before, line_after,
+                     object, gap_s, absent ? "absent from the scene in between" : "interpolated");
+}
+
+ImportedScene import_header(const Recording& rec, double time_offset_s, const ModelLibrary& library,
+                            const ImportOptions& options) {
   ImportedScene out;
   out.name = rec.name;
   out.description = rec.description.empty() ? "imported from recording " + rec.name
                                             : "imported from recording " + rec.name + ": " + rec.description;
-  out.time_offset_s = rec.ego.front().t_s;
-  out.duration_s = rec.ego.back().t_s - out.time_offset_s;
+  out.time_offset_s = time_offset_s;
   out.cycle_time_s = rec.cycle_time_s;
   out.effects = options.effects;
   if (const auto declared = rec.source.find("effects");
@@ -108,7 +111,6 @@ ImportedScene import_recording(const Recording& rec, const ModelLibrary& library
     const auto flag = [&](const char* name) { return declared->contains(name) && declared->at(name) == true; };
     out.effects = {flag("clutter"), flag("multibounce"), flag("occlusion")};
   }
-  out.ego = ego_trajectory(rec, out.time_offset_s);
   out.sensors = rec.sensors;
   if (!options.sensor_type_override.empty()) {
     for (auto& sensor : out.sensors) sensor.type = options.sensor_type_override;
@@ -123,7 +125,22 @@ ImportedScene import_recording(const Recording& rec, const ModelLibrary& library
                        fmt::format("unknown class '{}' of object '{}' (the object library has: {})",
                                    object.object_class, object.id, known));
     }
-    out.objects.push_back(import_object(rec, i, out.time_offset_s, options, out.warnings));
+    ImportedObject imported;
+    imported.id = object.id;
+    imported.model = object.object_class;
+    imported.length_m = object.length_m;
+    imported.width_m = object.width_m;
+    out.objects.push_back(std::move(imported));
+  }
+  return out;
+}
+
+ImportedScene import_recording(const Recording& rec, const ModelLibrary& library, const ImportOptions& options) {
+  ImportedScene out = import_header(rec, rec.ego.front().t_s, library, options);
+  out.duration_s = rec.ego.back().t_s - out.time_offset_s;
+  out.ego = ego_trajectory(rec, out.time_offset_s);
+  for (std::size_t i = 0; i < rec.objects.size(); ++i) {
+    out.objects[i] = import_object(rec, i, out.time_offset_s, options, out.warnings);
   }
   return out;
 }

@@ -50,15 +50,26 @@ struct ImportedScene {
   std::vector<RecordingSensor> sensors;
   std::vector<ImportedObject> objects;
   std::vector<std::string> warnings;  // things a person should know (bridged annotation gaps)
+  long long warnings_not_kept = 0;    // a streaming import keeps the first kMaxWarnings and counts the rest
+  static constexpr std::size_t kMaxWarnings = 100;
   std::shared_ptr<const Calibration> calibration;  // used by build_scene; null: none
 };
 
 ImportedScene import_recording(const Recording& recording, const ModelLibrary& library, const ImportOptions& options);
 
+// What an import knows from recording.json alone: names, effects, sensors, calibration and the
+// objects' models and sizes (no trajectories, no presence); refuses unknown classes.
+ImportedScene import_header(const Recording& recording, double time_offset_s, const ModelLibrary& library,
+                            const ImportOptions& options);
+
 // The scene the simulation runs, built without a detour through JSON (an hour-long recording has
 // hundreds of thousands of samples). Sensor types resolve relative to the recording directory;
 // the imported scene's calibration, if any, replaces sensors and models of the same name.
 Scene build_scene(const ImportedScene& imported, const ModelLibrary& library, const std::string& base_dir);
+
+// The warning for a hole in an object's annotation: bridged (interpolated) or not (absent).
+std::string annotation_gap_warning(const std::string& file, int line_before, int line_after, const std::string& object,
+                                   double gap_s, bool absent);
 
 // Writes the imported scene as an `rcsim-scene` file, atomically.
 void write_scene_file(const std::string& path, const ImportedScene& imported);

@@ -8,6 +8,7 @@
 #include "common/angles.hpp"
 #include "common/cpu_time.hpp"
 #include "metrics/sensor_view.hpp"
+#include "replay/import/streaming_import.hpp"
 #include "replay/run/latency_episodes.hpp"
 #include "replay/run/object_figures.hpp"
 #include "replay/run/run_accumulators.hpp"
@@ -149,7 +150,7 @@ void merge_pairs_of(const std::vector<metrics::MergeCell>& cells, CycleCompariso
 // One sensor's comparison in one cycle: its boxes, the detectability episodes, both target
 // lists, their matching and merge artefacts; then into the figures and the sink.
 void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, double t_scene_s, const BodyState& ego,
-                          const std::vector<BodyState>& object_states, std::span<const RecordedTarget> recorded,
+                          const std::vector<BodyState>& object_states, const std::vector<RecordedTarget>& recorded,
                           SimulatedSource& source, CycleBuffers& buffers, CycleComparison& cycle,
                           LatencyEpisodes& latency, RunAccumulators& acc, ObjectFigures& objects, ReplaySink& sink) {
   const SensorConfig& config = run.scene.sensors[s].config;
@@ -184,7 +185,49 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
   sink.add_cycle(cycle);
 }
 
+// A recording in memory, cycle by cycle.
+class RecordingInMemory final : public RecordedCycles {
+ public:
+  explicit RecordingInMemory(const Recording& rec) : rec_(rec) {}
+  bool next(int& cycle, double& t_rec_s, std::vector<RecordedTarget>& targets) override {
+    if (k_ >= rec_.cycle_count()) return false;
+    cycle = k_;
+    t_rec_s = rec_.ego[static_cast<std::size_t>(k_)].t_s;
+    targets.clear();
+    while (cursor_ < rec_.targets.size() && rec_.targets[cursor_].cycle == k_) targets.push_back(rec_.targets[cursor_++]);
+    ++k_;
+    return true;
+  }
+
+ private:
+  const Recording& rec_;
+  int k_ = 0;
+  std::size_t cursor_ = 0;  // into rec.targets, which are in cycle order
+};
+
+// A recording read as the replay goes.
+class RecordingStreamed final : public RecordedCycles {
+ public:
+  explicit RecordingStreamed(StreamingImport& input) : input_(input) {}
+  bool next(int& cycle, double& t_rec_s, std::vector<RecordedTarget>& targets) override {
+    return input_.next_cycle(cycle, t_rec_s, targets);
+  }
+  std::optional<std::pair<double, double>> take_moved_window() override { return input_.take_moved_window(); }
+
+ private:
+  StreamingImport& input_;
+};
+
 }  // namespace
+
+ReplaySummary replay_recording_dir(const std::filesystem::path& dir, const ReplayOptions& options, ReplaySink& sink) {
+  const ModelLibrary library = ModelLibrary::builtin();
+  StreamingImport input(dir, library, options.import);  // read => smooth, as the replay goes
+  RecordingStreamed cycles(input);
+  ModelSource source(input.scene(), model_options(options.seed, options.fidelity));  // => simulate
+  // => compare => store, cycle by cycle
+  return compare_cycles(input.recording(), input.imported(), input.scene(), cycles, source, options, sink);
+}
 
 ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& options, ReplaySink& sink) {
   const ModelLibrary library = ModelLibrary::builtin();
@@ -196,6 +239,13 @@ ReplaySummary replay_recording(const Recording& rec, const ReplayOptions& option
 
 ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& imported, const Scene& scene,
                                      SimulatedSource& source, const ReplayOptions& options, ReplaySink& sink) {
+  RecordingInMemory cycles(rec);
+  return compare_cycles(rec, imported, scene, cycles, source, options, sink);
+}
+
+ReplaySummary compare_cycles(const Recording& rec, const ImportedScene& imported, const Scene& scene,
+                             RecordedCycles& cycles, SimulatedSource& source, const ReplayOptions& options,
+                             ReplaySink& sink) {
   const auto wall_start = std::chrono::steady_clock::now();
   sink.begin_run(rec, imported, scene, options);
   const std::size_t n_sensors = scene.sensors.size(), n_objects = scene.objects.size();
@@ -205,13 +255,18 @@ ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& 
   RunAccumulators acc;
   ObjectFigures objects(n_sensors, n_objects, options.object_range_bin_m);
   double simulate_cpu_s = 0.0;
-  std::size_t cursor = 0;  // into rec.targets, which are in cycle order
   CycleComparison cycle;
   CycleBuffers buffers;
   std::vector<BodyState> object_states(n_objects);
-  for (int k = 0; k < rec.cycle_count(); ++k) {
+  std::vector<RecordedTarget> recorded;
+  int k = 0;
+  double t_rec_s = 0.0;
+  while (cycles.next(k, t_rec_s, recorded)) {
     // read the cycle => simulate => per sensor: boxes, detectability, match, figures, store
-    const double t_rec_s = rec.ego[k].t_s;
+    if (const auto window = cycles.take_moved_window()) {
+      source.cull_within(window->first, window->second);
+      geometry.cull_within(window->first, window->second);
+    }
     const double t_scene_s = t_rec_s - imported.time_offset_s;
     const double cpu_start_s = thread_cpu_s();
     source.run_at(t_scene_s);
@@ -222,16 +277,12 @@ ReplaySummary compare_with_recording(const Recording& rec, const ImportedScene& 
     for (std::size_t o = 0; o < n_objects; ++o) {
       if (scene.objects[o].present_at(t_scene_s)) object_states[o] = scene.objects[o].trajectory.state_at(t_scene_s);
     }
-    std::size_t cycle_end = cursor;
-    while (cycle_end < rec.targets.size() && rec.targets[cycle_end].cycle == k) ++cycle_end;
-    const std::span<const RecordedTarget> recorded(rec.targets.data() + cursor, cycle_end - cursor);
     cycle.cycle = k;
     cycle.t_s = t_rec_s;
     for (std::size_t s = 0; s < n_sensors; ++s) {
       compare_sensor_cycle(run, s, t_rec_s, t_scene_s, ego, object_states, recorded, source, buffers, cycle, latency,
                            acc, objects, sink);
     }
-    cursor = cycle_end;
   }
 
   ReplaySummary summary;

@@ -4,6 +4,9 @@
 // Results stream into a ReplaySink (the SQLite report store) so that an hour-long recording
 // never has to be held in memory twice.
 #include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <utility>
 #include <limits>
 #include <string>
 #include <vector>
@@ -149,16 +152,40 @@ class SimulatedSource {
   virtual ~SimulatedSource() = default;
   // Runs every sensor at scene time t (times increasing).
   virtual void run_at(double t_scene_s) = 0;
+  // The scene's trajectories now hold scene times [t0_s, t1_s] in full (a streaming replay).
+  virtual void cull_within(double /*t0_s*/, double /*t1_s*/) {}
   // The target list one sensor reported in the last run_at, appended to `out`.
   virtual void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const = 0;
 };
 
-// rcsim replay: the reflection-center model (options.fidelity) against the recording.
+// The recorded side of a replay, cycle by cycle: a recording in memory, or one read as the replay
+// goes (streaming_import.hpp), whose scene's trajectories then cover a moving window.
+class RecordedCycles {
+ public:
+  virtual ~RecordedCycles() = default;
+  // The next cycle's index, recording time and targets (replacing `targets`); false at the end.
+  virtual bool next(int& cycle, double& t_rec_s, std::vector<RecordedTarget>& targets) = 0;
+  // The scene-time window the trajectories now hold in full, when it has moved.
+  virtual std::optional<std::pair<double, double>> take_moved_window() { return std::nullopt; }
+};
+
+// rcsim replay: the reflection-center model (options.fidelity) against the recording in
+// directory `dir`, read, smoothed, simulated, compared and stored cycle by cycle in bounded
+// memory: the stored figures are those of replay_recording on the recording read whole.
+ReplaySummary replay_recording_dir(const std::filesystem::path& dir, const ReplayOptions& options, ReplaySink& sink);
+
+// The same on a recording in memory (calibration, tests: recordings cut by sensor or cycles).
 ReplaySummary replay_recording(const Recording& recording, const ReplayOptions& options, ReplaySink& sink);
 
 // The comparison itself, for any source; `scene` is build_scene(imported); summary.simulate_cpu_s
 // is the CPU time spent in source.run_at.
 ReplaySummary compare_with_recording(const Recording& recording, const ImportedScene& imported, const Scene& scene,
                                      SimulatedSource& source, const ReplayOptions& options, ReplaySink& sink);
+
+// The comparison over any recorded side: `recording` is the header (name, sensors, checksum,
+// cycle count), `cycles` gives the rows.
+ReplaySummary compare_cycles(const Recording& recording, const ImportedScene& imported, const Scene& scene,
+                             RecordedCycles& cycles, SimulatedSource& source, const ReplayOptions& options,
+                             ReplaySink& sink);
 
 }  // namespace rcsim::replay

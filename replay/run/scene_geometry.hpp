@@ -23,6 +23,7 @@ class SceneGeometry {
 
   // Every sensor at scene time t (times increasing).
   void run_at(double t_scene_s);
+  void cull_within(double t0_s, double t1_s) { simulation_.cull_within(t0_s, t1_s); }
   // detectable[object] = 1 for every object with a reflector detectable by eq. (1) now.
   void mark_detectable(std::size_t sensor, std::vector<char>& detectable) const;
   // The cells of that sensor holding echoes of two objects, one entry per pair of objects.

@@ -35,6 +35,7 @@ class ModelSource final : public SimulatedSource {
  public:
   ModelSource(const Scene& scene, const SimulationOptions& options) : simulation_(scene, options) {}
   void run_at(double t_scene_s) override { simulation_.run_at(t_scene_s); }
+  void cull_within(double t0_s, double t1_s) override { simulation_.cull_within(t0_s, t1_s); }
   void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const override;
 
  private:

@@ -200,7 +200,8 @@ void TargetRowReader::finish() {
 }
 
 RecordingStream::RecordingStream(const fs::path& dir)
-    : header_([&] {
+    : dir_(dir),
+      header_([&] {
         Recording header = read_recording_header(dir);
         header.checksum = recording_checksum(dir);
         header.streamed_cycles = count_data_rows(dir / "ego.csv");

@@ -83,8 +83,10 @@ class RecordingStream {
   EgoRowReader& ego() { return ego_; }
   BoxRowReader& boxes() { return boxes_; }
   TargetRowReader& targets() { return targets_; }
+  std::string boxes_path() const { return (dir_ / "objects.csv").string(); }
 
  private:
+  std::filesystem::path dir_;
   Recording header_;
   EgoRowReader ego_;
   BoxRowReader boxes_;

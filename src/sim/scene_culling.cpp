@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rcsim {
 namespace {
@@ -19,16 +20,21 @@ bool present_within(const SceneObject& object, double t0_s, double t1_s) {
 
 }  // namespace
 
-SceneCulling::SceneCulling(const Scene& scene, std::span<const double> reflection_radius_m) {
-  const int cycles = scene.cycle_count();
-  if (cycles <= 0 || scene.sensors.empty() || reflection_radius_m.size() != scene.objects.size()) return;
+SceneCulling::SceneCulling(const Scene& scene, std::span<const double> reflection_radius_m)
+    : SceneCulling(scene, reflection_radius_m, scene.cycle_time_at(0),
+                   scene.cycle_count() > 0 ? scene.cycle_time_at(scene.cycle_count() - 1)
+                                           : -std::numeric_limits<double>::infinity()) {}
+
+SceneCulling::SceneCulling(const Scene& scene, std::span<const double> reflection_radius_m, double t0_s,
+                           double t1_s) {
+  if (!(t1_s >= t0_s) || scene.sensors.empty() || reflection_radius_m.size() != scene.objects.size()) return;
   // compute_ideal_targets visits an object only within max range + reflection radius of the
   // sensor, and lets it occlude within max range + radius + 1 mm (+ 1e-9 of the distance).
   double max_range_m = 0.0;
   for (const auto& s : scene.sensors) max_range_m = std::max(max_range_m, s.config.fov.max_range_m);
   if (!std::isfinite(max_range_m)) return;
-  t0_s_ = scene.cycle_time_at(0);
-  t1_s_ = scene.cycle_time_at(cycles - 1);
+  t0_s_ = t0_s;
+  t1_s_ = t1_s;
   const std::size_t per_slice = std::max<std::size_t>(scene.objects.size(), 1);
   const double span_s = t1_s_ - t0_s_;
   const double max_slices = static_cast<double>(std::max<std::size_t>(kMaxEntries / per_slice, 1));

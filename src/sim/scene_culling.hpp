@@ -21,6 +21,9 @@ class SceneCulling {
   // `reflection_radius_m`: per object, the circle about its origin holding every reflection
   // point (reflection_radius_m in culling.hpp).
   SceneCulling(const Scene& scene, std::span<const double> reflection_radius_m);
+  // The same over the scene times [t0_s, t1_s] only (a streaming replay, whose trajectories hold
+  // only a window of the drive); times outside it visit every present object.
+  SceneCulling(const Scene& scene, std::span<const double> reflection_radius_m, double t0_s, double t1_s);
 
   // Replaces `out` with the ascending indices of the objects present at t_s that may lie within
   // reach of a sensor at one of the positions p_WS_W. Outside the scene's cycle times (or culling

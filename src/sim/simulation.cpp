@@ -12,11 +12,16 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options) : s
     // Each sensor draws from its own stream of the seed: adding a sensor leaves the others' draws alone.
     states_.emplace_back(models_.back(), reflectors, scene.cycle_time_s, options.seed, i);
   }
-  if (options.culling && !models_.empty()) scene_culling_ = SceneCulling(scene, models_.front().culling.radius_m);
+  culling_ = options.culling && !models_.empty();
+  if (culling_) scene_culling_ = SceneCulling(scene, models_.front().culling.radius_m);
   p_WS_W_.resize(scene.sensors.size());
   snapshot_.visited_indices.reserve(scene.objects.size());
   snapshot_.visited.resize(scene.objects.size());
   snapshot_.objects.resize(scene.objects.size());
+}
+
+void Simulation::cull_within(double t0_s, double t1_s) {
+  if (culling_) scene_culling_ = SceneCulling(scene_, models_.front().culling.radius_m, t0_s, t1_s);
 }
 
 void Simulation::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }

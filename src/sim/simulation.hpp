@@ -11,6 +11,9 @@ namespace rcsim {
 class Simulation {
  public:
   Simulation(const Scene& scene, const SimulationOptions& options);
+  // Rebuilds the scene's broad phase over scene times [t0_s, t1_s] (a streaming replay, whose
+  // trajectories hold a window of the drive, calls it as the window moves); output unchanged.
+  void cull_within(double t0_s, double t1_s);
 
   const Scene& scene() const { return scene_; }
   int cycle_count() const { return scene_.cycle_count(); }
@@ -34,6 +37,7 @@ class Simulation {
   std::vector<SensorModel> models_;
   std::vector<SensorCycleState> states_;
   SceneCulling scene_culling_;
+  bool culling_ = false;
   std::vector<Vec2> p_WS_W_;  // per sensor, this cycle
   SceneSnapshot snapshot_;
 };
