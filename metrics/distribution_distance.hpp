@@ -15,6 +15,9 @@ struct DistributionDistance {
   double wasserstein1 = 0.0;
   double kolmogorov_smirnov = 0.0;
   int n_recorded = 0, n_simulated = 0;
+  // Zero when computed from the samples; otherwise how far the approximation (sample_summary.hpp)
+  // may be from the exact figure, at most.
+  double wasserstein1_bound = 0.0, kolmogorov_smirnov_bound = 0.0;
 };
 
 // Takes the samples by value: they are sorted.

@@ -40,23 +40,23 @@ void RunAccumulators::add_cycle(const CycleComparison& cycle, long long merge_re
     const auto& list = origin == 0 ? cycle.recorded : cycle.simulated;
     int background = 0;
     for (const auto& t : list) {
-      range_m_[origin].push_back(static_cast<float>(t.range_m));
-      azimuth_rad_[origin].push_back(static_cast<float>(t.azimuth_rad));
-      rate_mps_[origin].push_back(static_cast<float>(t.range_rate_mps));
-      amplitude_db_[origin].push_back(static_cast<float>(t.amplitude_db));
+      range_m_[origin].add(static_cast<float>(t.range_m));
+      azimuth_rad_[origin].add(static_cast<float>(t.azimuth_rad));
+      rate_mps_[origin].add(static_cast<float>(t.range_rate_mps));
+      amplitude_db_[origin].add(static_cast<float>(t.amplitude_db));
       switch (t.target_class) {
         case metrics::TargetClass::object: ++classes_.object[origin]; break;
         case metrics::TargetClass::other: ++classes_.other[origin]; break;
         case metrics::TargetClass::stationary_background:
           ++classes_.background[origin];
           ++background;
-          background_range_m_[origin].push_back(static_cast<float>(t.range_m));
-          background_azimuth_rad_[origin].push_back(static_cast<float>(t.azimuth_rad));
+          background_range_m_[origin].add(static_cast<float>(t.range_m));
+          background_azimuth_rad_[origin].add(static_cast<float>(t.azimuth_rad));
           break;
       }
     }
-    count_[origin].push_back(static_cast<float>(list.size()));
-    background_count_[origin].push_back(static_cast<float>(background));
+    count_[origin].add(static_cast<float>(list.size()));
+    background_count_[origin].add(static_cast<float>(background));
   }
 }
 
@@ -86,8 +86,8 @@ void RunAccumulators::finish(ReplaySummary& summary) {
   summary.residual_object_range_rms_m = std::sqrt(object_range_sq_m2_ / m_object);
   summary.residual_object_azimuth_rms_rad = std::sqrt(object_azimuth_sq_rad2_ / m_object);
 
-  const auto distance = [](const std::vector<float>& a, const std::vector<float>& b) {
-    return metrics::distribution_distance(std::vector<double>(a.begin(), a.end()), std::vector<double>(b.begin(), b.end()));
+  const auto distance = [](const metrics::SampleSummary& a, const metrics::SampleSummary& b) {
+    return metrics::distribution_distance(a, b);
   };
   summary.distances.push_back({"range", "m", distance(range_m_[0], range_m_[1])});
   summary.distances.push_back({"azimuth", "rad", distance(azimuth_rad_[0], azimuth_rad_[1])});

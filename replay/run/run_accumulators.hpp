@@ -1,10 +1,11 @@
 #pragma once
 // The run's figures, accumulated cycle by cycle and sensor by sensor (ReplaySummary): target
 // counts, GOSPA and its parts, residuals of the assigned pairs, merge artefacts, and the samples
-// of the per-target quantities for the distribution distances; the targets of each class, GOSPA
+// of the per-target quantities for the distribution distances (bounded: metrics/sample_summary.hpp); the targets of each class, GOSPA
 // on the object targets, and the background's samples (range, azimuth, targets per cycle).
 #include <vector>
 
+#include "metrics/sample_summary.hpp"
 #include "replay/run/replay_run.hpp"
 
 namespace rcsim::replay {
@@ -27,9 +28,19 @@ class RunAccumulators {
   double range_sq_m2_ = 0.0, azimuth_sq_rad2_ = 0.0, rate_sq_m2ps2_ = 0.0, amplitude_sum_db_ = 0.0;
   double object_range_sq_m2_ = 0.0, object_azimuth_sq_rad2_ = 0.0;
   long long object_pairs_ = 0;
-  // Samples per origin: [0] recorded, [1] simulated (float: half the memory of an hour-long run).
-  std::vector<float> range_m_[2], azimuth_rad_[2], rate_mps_[2], amplitude_db_[2], count_[2];
-  std::vector<float> background_range_m_[2], background_azimuth_rad_[2], background_count_[2];
+  // Samples per origin: [0] recorded, [1] simulated; exact up to SampleSummary::kExactCapacity
+  // each, beyond in bins of these widths (the resolution of the distances of longer runs).
+  static constexpr double kRangeBin_m = 0.01, kAzimuthBin_rad = 1e-4, kRateBin_mps = 0.01, kAmplitudeBin_db = 0.01,
+                          kCountBin = 1.0;
+  using Samples = metrics::SampleSummary;
+  Samples range_m_[2] = {Samples(kRangeBin_m), Samples(kRangeBin_m)};
+  Samples azimuth_rad_[2] = {Samples(kAzimuthBin_rad), Samples(kAzimuthBin_rad)};
+  Samples rate_mps_[2] = {Samples(kRateBin_mps), Samples(kRateBin_mps)};
+  Samples amplitude_db_[2] = {Samples(kAmplitudeBin_db), Samples(kAmplitudeBin_db)};
+  Samples count_[2] = {Samples(kCountBin), Samples(kCountBin)};
+  Samples background_range_m_[2] = {Samples(kRangeBin_m), Samples(kRangeBin_m)};
+  Samples background_azimuth_rad_[2] = {Samples(kAzimuthBin_rad), Samples(kAzimuthBin_rad)};
+  Samples background_count_[2] = {Samples(kCountBin), Samples(kCountBin)};
 };
 
 }  // namespace rcsim::replay
