@@ -36,6 +36,12 @@ int count_data_rows(const fs::path& path) {
   return std::max(rows, 0);
 }
 
+std::unordered_map<std::string, std::size_t> index_by_id(const std::vector<RecordingObject>& objects) {
+  std::unordered_map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < objects.size(); ++i) index.emplace(objects[i].id, i);
+  return index;
+}
+
 }  // namespace
 
 bool EgoRowReader::DegreeYawCheck::add(const EgoSample& previous, const EgoSample& row) {
@@ -86,18 +92,28 @@ bool EgoRowReader::next(EgoSample& s) {
 BoxRowReader::BoxRowReader(const fs::path& path, const std::vector<RecordingObject>& objects)
     : csv_(path.string(), {"t_s", "object", "x_m", "y_m", "yaw_rad", "speed_mps"}),
       objects_(objects),
+      index_of_(index_by_id(objects)),
       t_(csv_.column("t_s")),
       id_(csv_.column("object")),
       x_(csv_.column("x_m")),
       y_(csv_.column("y_m")),
       yaw_(csv_.column("yaw_rad")),
       v_(csv_.column("speed_mps")),
-      last_(objects.size()) {
-  for (std::size_t i = 0; i < objects.size(); ++i) index_of_.emplace(objects[i].id, i);
-}
+      last_(objects.size()),
+      ahead_([this](Row& row) { return read_row(row); }) {}
 
 bool BoxRowReader::next(std::size_t& object, AnnotatedBox& box) {
+  Row row;
+  if (!ahead_.next(row)) return false;
+  object = row.object;
+  box = row.box;
+  return true;
+}
+
+bool BoxRowReader::read_row(Row& row) {
   if (!csv_.next()) return false;
+  std::size_t& object = row.object;
+  AnnotatedBox& box = row.box;
   const std::string& object_id = csv_.text(id_);
   const auto found = index_of_.find(object_id);
   if (found == index_of_.end()) csv_.fail(id_, fmt::format("object '{}' is not listed in recording.json", object_id));
@@ -141,15 +157,14 @@ TargetRowReader::TargetRowReader(const fs::path& path, const Recording& header, 
       amp_(csv_.column("amplitude_db")),
       rcs_(csv_.column("rcs_dbsm")),  // optional, like id and elevation
       snr_(csv_.column("snr_db")),
-      el_(csv_.column("elevation_rad")) {}
+      el_(csv_.column("elevation_rad")),
+      ahead_([this](Row& row) { return read_row(row); }) {}
 
-bool TargetRowReader::read_row() {
-  pending_.reset();
-  if (at_end_ || !csv_.next()) {
-    at_end_ = true;
-    return false;
-  }
-  RecordedTarget target;
+bool TargetRowReader::read_row(Row& row) {
+  if (!csv_.next()) return false;
+  RecordedTarget& target = row.target;
+  target = {};
+  row.line = csv_.line();
   target.t_s = csv_.number(t_);
   const long long cycle = csv_.integer(k_);
   if (cycle < 0 || cycle >= cycle_count_) {
@@ -179,24 +194,38 @@ bool TargetRowReader::read_row() {
     target.elevation_rad = csv_.number(el_);
     if (std::abs(target.elevation_rad) > 1.58) csv_.fail(el_, "elevation beyond ±π/2: is it in degrees?");
   }
-  pending_ = target;
   return true;
 }
 
+bool TargetRowReader::next_pending() {
+  if (pending_) return true;
+  if (at_end_) return false;
+  Row row;
+  if (ahead_.next(row)) {
+    pending_ = std::move(row);
+  } else {
+    at_end_ = true;
+  }
+  return pending_.has_value();
+}
+
 void TargetRowReader::read_cycle(int cycle, double t_s, std::vector<RecordedTarget>& out) {
-  if (!pending_ && !at_end_) read_row();
-  while (pending_ && pending_->cycle == cycle) {
-    if (std::abs(pending_->t_s - t_s) > kTimeTolerance_s) {
-      csv_.fail(t_, fmt::format("time {} s differs from cycle {}'s time {} s in ego.csv", pending_->t_s, cycle, t_s));
+  while (next_pending() && pending_->target.cycle == cycle) {
+    if (std::abs(pending_->target.t_s - t_s) > kTimeTolerance_s) {
+      throw InputError(csv_.path(), fmt::format("line {}, column 't_s'", pending_->line),
+                       fmt::format("time {} s differs from cycle {}'s time {} s in ego.csv", pending_->target.t_s,
+                                   cycle, t_s));
     }
-    out.push_back(*pending_);
-    read_row();
+    out.push_back(pending_->target);
+    pending_.reset();
   }
 }
 
 void TargetRowReader::finish() {
-  if (!pending_ && !at_end_) read_row();
-  if (pending_) csv_.fail(k_, fmt::format("cycle {} was not read: cycles must be asked for in order", pending_->cycle));
+  if (next_pending()) {
+    throw InputError(csv_.path(), fmt::format("line {}, column 'cycle'", pending_->line),
+                     fmt::format("cycle {} was not read: cycles must be asked for in order", pending_->target.cycle));
+  }
 }
 
 RecordingStream::RecordingStream(const fs::path& dir)

@@ -5,12 +5,14 @@
 // this), and every complaint names the file, the line and the column.
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "io/csv_reader.hpp"
+#include "io/read_ahead.hpp"
 #include "io/recording.hpp"
 
 namespace rcsim {
@@ -37,7 +39,8 @@ class EgoRowReader {
 };
 
 // objects.csv's rows: rows in time order, per object strictly increasing, every listed object
-// with at least one row (checked by finish()).
+// with at least one row (checked by finish(), after the last row). Parsed and checked ahead on a
+// thread of their own (read_ahead.hpp).
 class BoxRowReader {
  public:
   BoxRowReader(const std::filesystem::path& path, const std::vector<RecordingObject>& objects);
@@ -45,6 +48,11 @@ class BoxRowReader {
   void finish() const;
 
  private:
+  struct Row {
+    std::size_t object = 0;
+    AnnotatedBox box;
+  };
+  bool read_row(Row& row);  // on the read-ahead thread
   CsvReader csv_;
   const std::vector<RecordingObject>& objects_;
   std::unordered_map<std::string, std::size_t> index_of_;
@@ -52,9 +60,11 @@ class BoxRowReader {
   std::vector<AnnotatedBox> last_;  // per object: its last row (line 0: none yet)
   double last_t_s_ = -std::numeric_limits<double>::infinity();
   int last_line_ = 0;
+  ReadAhead<Row> ahead_;  // last: its thread starts once the rest is built
 };
 
-// targets.csv's rows, one cycle at a time, cycles in order.
+// targets.csv's rows, one cycle at a time, cycles in order; parsed and checked ahead on a thread
+// of their own.
 class TargetRowReader {
  public:
   TargetRowReader(const std::filesystem::path& path, const Recording& header, int cycle_count);
@@ -63,14 +73,20 @@ class TargetRowReader {
   void finish();  // refuses rows left over (cycles beyond the ego log)
 
  private:
-  bool read_row();  // into pending_; false at the end
+  struct Row {
+    RecordedTarget target;
+    int line = 0;
+  };
+  bool read_row(Row& row);  // on the read-ahead thread
+  bool next_pending();
   CsvReader csv_;
   const Recording& header_;
   int cycle_count_;
   int t_, k_, s_, id_, r_, az_, rr_, amp_, rcs_, snr_, el_;
-  std::optional<RecordedTarget> pending_;
-  bool at_end_ = false;
   int previous_cycle_ = 0;
+  std::optional<Row> pending_;
+  bool at_end_ = false;
+  ReadAhead<Row> ahead_;  // last: its thread starts once the rest is built
 };
 
 // The whole recording as a stream: the header and checksum first (one pass over the files in a
