@@ -28,6 +28,8 @@ class HashingSink final : public ReplaySink {
     add(static_cast<double>(r.checksum));
     add(i.time_offset_s);
     add(static_cast<double>(s.objects.size()));
+    add(static_cast<double>(i.effects.clutter + 2 * i.effects.multibounce + 4 * i.effects.occlusion));
+    for (const SceneObject& o : s.objects) add(static_cast<double>(o.model.reflector_count()));
   }
   void add_cycle(const CycleComparison& c) override {
     ++cycles;
@@ -58,6 +60,23 @@ class HashingSink final : public ReplaySink {
                      s.latency_difference_mean_s, s.residual_range_rms_m, s.residual_azimuth_rms_rad,
                      s.residual_range_rate_rms_mps, s.residual_amplitude_mean_db}) {
       add(v);
+    }
+    for (int origin = 0; origin < 2; ++origin) {
+      for (long long v : {s.classes.object[origin], s.classes.background[origin], s.classes.other[origin]}) {
+        add(static_cast<double>(v));
+      }
+    }
+    for (long long v : {s.merge_artefacts_recorded, s.merge_artefacts_simulated, s.merge_artefacts_matched,
+                        s.object_pairs_matched, static_cast<long long>(s.latency_pairs),
+                        static_cast<long long>(s.latency_episodes)}) {
+      add(static_cast<double>(v));
+    }
+    for (const ObjectRangeRow& r : s.object_ranges) {
+      for (double v : {static_cast<double>(r.sensor), static_cast<double>(r.object), r.range_from_m,
+                       static_cast<double>(r.cycles_in_view), static_cast<double>(r.cycles_detected_recorded),
+                       static_cast<double>(r.cycles_detected_simulated)}) {
+        add(v);
+      }
     }
     for (const LatencyRow& l : s.latencies) {
       for (double v : {static_cast<double>(l.sensor), static_cast<double>(l.object), l.detectable_from_s,
