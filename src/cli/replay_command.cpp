@@ -9,6 +9,7 @@
 #include "cli/fidelity_option.hpp"
 #include "cli/replay_options.hpp"
 #include "io/recording.hpp"
+#include "io/recording_stream.hpp"
 #include "replay/run/replay_run.hpp"
 #include "replay/store/report_store.hpp"
 
@@ -150,24 +151,43 @@ class KillAfterCycles final : public replay::ReplaySink {
 };
 
 // Prints what the import noticed (bridged or split annotation gaps) to stderr, as rcsim import
-// does, before the cycles are compared.
+// does: the recording is read as the replay goes, so each warning as soon as it is found, the
+// first kMaxPrinted of them, then how many more there were.
 class PrintImportWarnings final : public replay::ReplaySink {
  public:
   explicit PrintImportWarnings(replay::ReplaySink& inner) : inner_(inner) {}
   void begin_run(const Recording& r, const replay::ImportedScene& i, const Scene& s,
                  const replay::ReplayOptions& o) override {
-    for (const auto& warning : i.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
+    imported_ = &i;
+    print_new();
     inner_.begin_run(r, i, s, o);
   }
-  void add_cycle(const replay::CycleComparison& c) override { inner_.add_cycle(c); }
-  void end_run(const replay::ReplaySummary& s) override { inner_.end_run(s); }
+  void add_cycle(const replay::CycleComparison& c) override {
+    if (imported_->warnings.size() > seen_) print_new();
+    inner_.add_cycle(c);
+  }
+  void end_run(const replay::ReplaySummary& s) override {
+    print_new();
+    const long long more = static_cast<long long>(seen_ - std::min(seen_, kMaxPrinted)) + imported_->warnings_not_kept;
+    if (more > 0) std::cerr << "rcsim: warning: " << more << " more warnings of this import not shown\n";
+    inner_.end_run(s);
+  }
 
  private:
+  static constexpr std::size_t kMaxPrinted = 20;
+  void print_new() {
+    for (; seen_ < imported_->warnings.size(); ++seen_) {
+      if (seen_ < kMaxPrinted) std::cerr << "rcsim: warning: " << imported_->warnings[seen_] << '\n';
+    }
+  }
   replay::ReplaySink& inner_;
+  const replay::ImportedScene* imported_ = nullptr;
+  std::size_t seen_ = 0;
 };
 
 void run_replay(const ReplayArgs& args) {
-  const Recording recording = read_recording(args.recording_dir);
+  // The header only: the rows are read as the replay goes (replay_recording_dir).
+  Recording recording = read_recording_header(args.recording_dir);
   replay::ReplayOptions options;
   options.seed = static_cast<std::uint64_t>(args.seed);
   options.fidelity = args.fidelity.empty() ? default_fidelity_for(recording) : fidelity_from_arg(args.fidelity);
@@ -181,7 +201,7 @@ void run_replay(const ReplayArgs& args) {
   const char* kill_after = std::getenv("RCSIM_TEST_KILL_AFTER_CYCLES");
   KillAfterCycles killer(writer, kill_after ? std::atol(kill_after) : 0);
   PrintImportWarnings sink(kill_after ? static_cast<replay::ReplaySink&>(killer) : writer);
-  const replay::ReplaySummary summary = replay::replay_recording(recording, options, sink);
+  const replay::ReplaySummary summary = replay::replay_recording_dir(args.recording_dir, options, sink);
   if (args.json) {
     std::cout << summary_json(writer.run_id(), recording, summary).dump(2) << '\n';
   } else {
