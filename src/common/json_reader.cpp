@@ -82,6 +82,21 @@ double JsonField::number(std::string_view key) const {
   return x;
 }
 
+double JsonField::number_within(std::string_view key, double min, double max, std::string_view unit) const {
+  const double x = number(key);
+  if (!(x >= min && x <= max)) {
+    fail(key, fmt::format("{} is beyond the limits [{}, {}]{}{} (schemas/limits.md)", x, min, max, unit.empty() ? "" : " ",
+                          unit));
+  }
+  return x;
+}
+
+double JsonField::angle_rad(std::string_view key, double max_rad) const {
+  const double x = number(key);
+  if (std::abs(x) > max_rad) fail(key, fmt::format("{} rad is beyond ±{} rad: is it in degrees?", x, max_rad));
+  return x;
+}
+
 std::optional<double> JsonField::optional_number(std::string_view key) const {
   if (!has(key)) return std::nullopt;
   return number(key);

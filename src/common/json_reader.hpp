@@ -30,6 +30,10 @@ class JsonField {
   std::optional<JsonField> optional_member(std::string_view key) const;
 
   double number(std::string_view key) const;  // required, finite
+  // Required, within [min, max] (schemas/limits.md); the unit names the bound in the message.
+  double number_within(std::string_view key, double min, double max, std::string_view unit) const;
+  // A required angle in radians within ±max_rad; beyond, the message asks whether it is in degrees.
+  double angle_rad(std::string_view key, double max_rad) const;
   std::optional<double> optional_number(std::string_view key) const;
   double number_or(std::string_view key, double fallback) const;
   std::string string(std::string_view key) const;

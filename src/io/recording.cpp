@@ -10,6 +10,7 @@
 #include <numbers>
 #include <unistd.h>
 
+#include "common/limits.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "common/text_file.hpp"
@@ -33,7 +34,7 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
   root.expect_only({"format", "version", "name", "description", "cycle_time_s", "sensors", "objects", "source"});
   rec.name = root.string("name");
   if (root.has("description")) rec.description = root.string("description");
-  rec.cycle_time_s = root.number("cycle_time_s");
+  rec.cycle_time_s = root.number_within("cycle_time_s", 0.0, limits::kMaxCycleTime_s, "s");
   require_positive(root, "cycle_time_s", rec.cycle_time_s);
   if (const auto source = root.optional_member("source")) {
     if (!source->json().is_object()) root.fail("source", "must be an object");
@@ -45,7 +46,11 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
     } else {
       s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad"});
     }
-    RecordingSensor sensor{s.string("id"), s.string("type"), s.number("x_m"), s.number("y_m"), s.number("yaw_rad")};
+    using namespace limits;
+    RecordingSensor sensor{s.string("id"), s.string("type"),
+                           s.number_within("x_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"),
+                           s.number_within("y_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"),
+                           s.angle_rad("yaw_rad", kMaxMountYaw_rad)};
     if (s.has("reports")) {
       const std::string reports = s.string("reports");
       if (reports == "detections") {
@@ -61,7 +66,8 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
   if (rec.sensors.empty()) root.fail("sensors", "a recording needs at least one sensor");
   for (const JsonField& o : root.array("objects")) {
     o.expect_only({"id", "class", "length_m", "width_m"});
-    RecordingObject object{o.string("id"), o.string("class"), o.number("length_m"), o.number("width_m")};
+    RecordingObject object{o.string("id"), o.string("class"), o.number_within("length_m", 0.0, limits::kMaxSize_m, "m"),
+                           o.number_within("width_m", 0.0, limits::kMaxSize_m, "m")};
     require_positive(o, "length_m", object.length_m);
     require_positive(o, "width_m", object.width_m);
     if (object.id.empty()) o.fail("id", "must not be empty");

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <numbers>
 
+#include "common/limits.hpp"
 #include "common/input_error.hpp"
 #include "common/text_file.hpp"
 
@@ -18,7 +19,7 @@ constexpr double kTimeTolerance_s = 2e-6;
 
 // Limits on a target's numbers (schemas/recording.md): beyond them a value is a unit or format
 // error, not a measurement (a range of 1e308 would be averaged into GOSPA).
-constexpr double kMaxRange_m = 10'000.0, kMaxRangeRate_mps = 1'000.0, kMaxLevel_db = 1'000.0;
+constexpr double kMaxRange_m = limits::kMaxRange_m, kMaxRangeRate_mps = 1'000.0, kMaxLevel_db = 1'000.0;
 
 double number_within(const CsvReader& csv, int column, double limit, const char* unit) {
   const double value = csv.number(column);
@@ -69,7 +70,10 @@ bool EgoRowReader::next(EgoSample& s) {
     if (!previous_) csv_.fail_line("the ego log has no rows");
     return false;
   }
-  s = {csv_.number(t_), csv_.number(x_), csv_.number(y_), csv_.number(yaw_), csv_.number(v_), csv_.number(w_)};
+  using namespace limits;
+  s = {number_within(csv_, t_, kMaxTime_s, "s"), number_within(csv_, x_, kMaxCoordinate_m, "m"),
+       number_within(csv_, y_, kMaxCoordinate_m, "m"), number_within(csv_, yaw_, kMaxUnwrappedYaw_rad, "rad"),
+       number_within(csv_, v_, kMaxSpeed_mps, "m/s"), number_within(csv_, w_, kMaxYawRate_radps, "rad/s")};
   if (previous_ && s.t_s <= previous_->t_s) {
     csv_.fail(t_, fmt::format("time {} s does not follow the previous row's {} s (times must increase)", s.t_s,
                               previous_->t_s));
@@ -118,7 +122,12 @@ bool BoxRowReader::read_row(Row& row) {
   const auto found = index_of_.find(object_id);
   if (found == index_of_.end()) csv_.fail(id_, fmt::format("object '{}' is not listed in recording.json", object_id));
   object = found->second;
-  box = {csv_.number(t_), csv_.number(x_), csv_.number(y_), csv_.number(yaw_), csv_.number(v_), csv_.line()};
+  using namespace limits;
+  box = {number_within(csv_, t_, kMaxTime_s, "s"), number_within(csv_, x_, kMaxCoordinate_m, "m"),
+         number_within(csv_, y_, kMaxCoordinate_m, "m"), csv_.number(yaw_), number_within(csv_, v_, kMaxSpeed_mps, "m/s"),
+         csv_.line()};
+  // Annotated headings are wrapped: beyond ±2π they are degrees (as a target's azimuth beyond ±π).
+  if (std::abs(box.yaw_rad) > kMaxYaw_rad) csv_.fail(yaw_, "yaw beyond ±2π: is it in degrees?");
   const AnnotatedBox& last = last_[object];
   if (last.line > 0 && box.t_s <= last.t_s) {
     csv_.fail(t_, fmt::format("time {} s of object '{}' does not follow its previous row's {} s (line {})", box.t_s,

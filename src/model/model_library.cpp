@@ -7,15 +7,16 @@
 
 #include "common/angles.hpp"
 #include "common/embedded_data.hpp"
+#include "common/limits.hpp"
 
 namespace rcsim {
 namespace {
 
 VisibilityFunction parse_visibility(const JsonField& field) {
   field.expect_only({"center_deg", "full_halfwidth_deg", "falloff_deg"});
-  const double center_deg = field.number("center_deg");
+  const double center_deg = field.number_within("center_deg", -360.0, 360.0, "deg");
   const double full_deg = field.number("full_halfwidth_deg");
-  const double falloff_deg = field.number("falloff_deg");
+  const double falloff_deg = field.number_within("falloff_deg", -360.0, 360.0, "deg");
   require_non_negative(field, "full_halfwidth_deg", full_deg);
   require_non_negative(field, "falloff_deg", falloff_deg);
   if (full_deg > 180.0) field.fail("full_halfwidth_deg", "must be at most 180");
@@ -31,8 +32,10 @@ PolylineTemplate parse_polyline_template(const JsonField& f) {
   t.face_ercs_per_m = f.number_or("face_ercs_per_m", 0.0);
   require_non_negative(f, "post_ercs", t.post_ercs);
   require_non_negative(f, "face_ercs_per_m", t.face_ercs_per_m);
-  if (t.post_ercs > 1e6) f.fail("post_ercs", "must be at most 1e6");
-  if (t.face_ercs_per_m > 1e6) f.fail("face_ercs_per_m", "must be at most 1e6");
+  if (t.post_ercs > limits::kMaxErcs) f.fail("post_ercs", fmt::format("must be at most {}", limits::kMaxErcs));
+  if (t.face_ercs_per_m > limits::kMaxErcs) {
+    f.fail("face_ercs_per_m", fmt::format("must be at most {} per m", limits::kMaxErcs));
+  }
   if (!(t.post_ercs > 0.0) && !(t.face_ercs_per_m > 0.0)) f.fail("needs post_ercs or face_ercs_per_m above 0");
   if (t.post_ercs > 0.0) t.post_visibility = parse_visibility(f.member("post_visibility"));
   return t;
@@ -47,8 +50,18 @@ ObjectModel parse_object_model(const JsonField& root) {
   ObjectModel model;
   model.name = root.string("name");
   model.description = root.has("description") ? root.string("description") : "";
-  model.length_m = root.number("length_m");
-  model.width_m = root.number("width_m");
+  model.length_m = root.number_within("length_m", 0.0, limits::kMaxSize_m, "m");
+  model.width_m = root.number_within("width_m", 0.0, limits::kMaxSize_m, "m");
+  // A model is a few reflection centres (paper II); thousands are a generated or broken file.
+  constexpr std::size_t kMaxReflectors = 10'000;
+  for (const char* key : {"point_reflectors", "plane_reflectors"}) {
+    if (root.has(key) && root.json().at(key).is_array() && root.json().at(key).size() > kMaxReflectors) {
+      root.fail(key, fmt::format("more than {} reflectors (schemas/limits.md)", kMaxReflectors));
+    }
+  }
+  const auto offset_m = [](const JsonField& f, std::string_view key) {
+    return f.number_within(key, -limits::kMaxSize_m, limits::kMaxSize_m, "m");
+  };
   require_positive(root, "length_m", model.length_m);
   require_positive(root, "width_m", model.width_m);
   if (root.has("point_reflectors")) {
@@ -56,8 +69,8 @@ ObjectModel parse_object_model(const JsonField& root) {
       p.expect_only({"name", "x_m", "y_m", "ercs", "visibility"});
       PointReflector point;
       point.name = p.string("name");
-      point.p_OR_O = {p.number("x_m"), p.number("y_m")};
-      point.ercs_max = p.number("ercs");
+      point.p_OR_O = {offset_m(p, "x_m"), offset_m(p, "y_m")};
+      point.ercs_max = p.number_within("ercs", 0.0, limits::kMaxErcs, "");
       require_positive(p, "ercs", point.ercs_max);
       point.visibility = parse_visibility(p.member("visibility"));
       model.points.push_back(std::move(point));
@@ -66,10 +79,10 @@ ObjectModel parse_object_model(const JsonField& root) {
   if (root.has("plane_reflectors")) {
     for (const auto& p : root.array("plane_reflectors")) {
       p.expect_only({"name", "from_x_m", "from_y_m", "to_x_m", "to_y_m", "sagitta_m", "ercs"});
-      const Vec2 from{p.number("from_x_m"), p.number("from_y_m")};
-      const Vec2 to{p.number("to_x_m"), p.number("to_y_m")};
-      const double sagitta_m = p.number("sagitta_m");
-      const double ercs = p.number("ercs");
+      const Vec2 from{offset_m(p, "from_x_m"), offset_m(p, "from_y_m")};
+      const Vec2 to{offset_m(p, "to_x_m"), offset_m(p, "to_y_m")};
+      const double sagitta_m = offset_m(p, "sagitta_m");
+      const double ercs = p.number_within("ercs", 0.0, limits::kMaxErcs, "");
       require_positive(p, "ercs", ercs);
       require_positive(p, "sagitta_m", sagitta_m);
       if ((to - from).norm() <= 0.0) p.fail("to_x_m", "chord has zero length (from and to coincide)");

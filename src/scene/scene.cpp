@@ -1,5 +1,7 @@
 #include "scene/scene.hpp"
 
+#include "common/limits.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -143,16 +145,21 @@ std::vector<TrajectorySample> parse_trajectory(const JsonField& owner, std::stri
   for (const auto& e : entries) {
     e.expect_only({"t_s", "x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps", "length_m", "width_m"});
     TrajectorySample s;
-    s.t_s = e.number("t_s");
-    s.x_m = e.number("x_m");
-    s.y_m = e.number("y_m");
-    s.yaw_rad = e.number("yaw_rad");
-    s.speed_mps = e.number("speed_mps");
-    s.yaw_rate_radps = e.optional_number("yaw_rate_radps");
-    s.length_m = e.optional_number("length_m");
-    s.width_m = e.optional_number("width_m");
-    if (s.length_m) require_positive(e, "length_m", *s.length_m);
-    if (s.width_m) require_positive(e, "width_m", *s.width_m);
+    using namespace limits;
+    s.t_s = e.number_within("t_s", -kMaxTime_s, kMaxTime_s, "s");
+    s.x_m = e.number_within("x_m", -kMaxCoordinate_m, kMaxCoordinate_m, "m");
+    s.y_m = e.number_within("y_m", -kMaxCoordinate_m, kMaxCoordinate_m, "m");
+    // The first heading is wrapped (±2π: beyond, degrees); later ones may be unwrapped.
+    s.yaw_rad = samples.empty() ? e.angle_rad("yaw_rad", kMaxYaw_rad) : e.angle_rad("yaw_rad", kMaxUnwrappedYaw_rad);
+    s.speed_mps = e.number_within("speed_mps", -kMaxSpeed_mps, kMaxSpeed_mps, "m/s");
+    if (e.has("yaw_rate_radps")) s.yaw_rate_radps = e.number_within("yaw_rate_radps", -kMaxYawRate_radps, kMaxYawRate_radps, "rad/s");
+    const auto size_m = [&e](const char* key) -> std::optional<double> {
+      if (!e.has(key)) return std::nullopt;
+      require_positive(e, key, e.number(key));
+      return e.number_within(key, 0.0, kMaxSize_m, "m");
+    };
+    s.length_m = size_m("length_m");
+    s.width_m = size_m("width_m");
     if (!samples.empty() && !(s.t_s > samples.back().t_s)) {
       e.fail("t_s", fmt::format("times must increase: {} follows {}", s.t_s, samples.back().t_s));
     }
@@ -173,7 +180,8 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
   if (root.has("description")) root.string("description");
   Scene scene;
   scene.source = root.file();
-  scene.duration_s = root.number("duration_s");
+  require_non_negative(root, "duration_s", root.number("duration_s"));
+  scene.duration_s = root.number_within("duration_s", 0.0, limits::kMaxTime_s, "s");
   require_non_negative(root, "duration_s", scene.duration_s);
 
   if (const auto effects = root.optional_member("effects")) {
@@ -195,11 +203,15 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
     sensor.id = s.string("id");
     if (!sensor_ids.insert(sensor.id).second) s.fail("id", "duplicate sensor id \"" + sensor.id + "\"");
     sensor.config = sensor_config_for(s, base_dir);
-    sensor.X_VS = {s.number("x_m"), s.number("y_m"), s.number("yaw_rad")};
+    sensor.X_VS = {s.number_within("x_m", -limits::kMaxMountOffset_m, limits::kMaxMountOffset_m, "m"),
+                   s.number_within("y_m", -limits::kMaxMountOffset_m, limits::kMaxMountOffset_m, "m"),
+                   s.angle_rad("yaw_rad", limits::kMaxMountYaw_rad)};
     scene.sensors.push_back(std::move(sensor));
   }
 
-  scene.cycle_time_s = root.number_or("cycle_time_s", scene.sensors.front().config.cycle_time_s);
+  scene.cycle_time_s = root.has("cycle_time_s")
+                           ? root.number_within("cycle_time_s", 0.0, limits::kMaxCycleTime_s, "s")
+                           : scene.sensors.front().config.cycle_time_s;
   require_positive(root, "cycle_time_s", scene.cycle_time_s);
   if (scene.duration_s / scene.cycle_time_s > 1e8) root.fail("duration_s", "more than 10^8 cycles");
 

@@ -7,26 +7,30 @@
 
 #include "common/angles.hpp"
 #include "common/embedded_data.hpp"
+#include "common/limits.hpp"
 
 namespace rcsim {
 namespace {
 
-double positive(const JsonField& f, std::string_view key) {
-  const double x = f.number(key);
+// No configuration value is near this (the largest, a carrier frequency, is about 1e11 Hz): 1e308
+// is a broken file, not a sensor (schemas/limits.md).
+constexpr double kMaxConfigValue = 1e12;
+
+double positive(const JsonField& f, std::string_view key, double max = kMaxConfigValue) {
+  const double x = f.number_within(key, 0.0, max, "");
   require_positive(f, key, x);
   return x;
 }
 
-double non_negative(const JsonField& f, std::string_view key) {
-  const double x = f.number(key);
-  require_non_negative(f, key, x);
-  return x;
+double non_negative(const JsonField& f, std::string_view key, double max = kMaxConfigValue) {
+  return f.number_within(key, 0.0, max, "");
 }
 
-int positive_int(const JsonField& f, std::string_view key) {
+int positive_int(const JsonField& f, std::string_view key, int max = limits::kMaxCount) {
   const double x = f.number(key);
-  if (!(x >= 1.0) || x != static_cast<double>(static_cast<int>(x))) {
-    f.fail(key, fmt::format("must be a whole number of at least 1, got {}", x));
+  // Checked as a double before the conversion, which would be undefined beyond INT_MAX.
+  if (!(x >= 1.0 && x <= max) || x != std::floor(x)) {
+    f.fail(key, fmt::format("must be a whole number from 1 to {} (schemas/limits.md), got {}", max, x));
   }
   return static_cast<int>(x);
 }
@@ -91,7 +95,7 @@ TrackerConfig parse_tracker(const JsonField& trk) {
   t.max_misses_tentative = positive_int(trk, "max_misses_tentative");
   t.max_misses_confirmed = positive_int(trk, "max_misses_confirmed");
   t.gate_chi2 = positive(trk, "gate_chi2");
-  t.max_tracks = positive_int(trk, "max_tracks");
+  t.max_tracks = positive_int(trk, "max_tracks", limits::kMaxTracks);
   t.process_accel_sigma_mps2 = positive(trk, "process_accel_sigma_mps2");
   t.process_azimuth_rate_sigma_radps = positive(trk, "process_azimuth_rate_sigma_radps");
   t.process_amplitude_sigma_db = positive(trk, "process_amplitude_sigma_db");
@@ -105,7 +109,7 @@ TrackerConfig parse_tracker(const JsonField& trk) {
 ClutterConfig parse_clutter(const JsonField& clutter) {
   clutter.expect_only({"false_detections_per_cycle", "amplitude_excess_mean_db"});
   ClutterConfig c;
-  c.false_detections_per_cycle = non_negative(clutter, "false_detections_per_cycle");
+  c.false_detections_per_cycle = non_negative(clutter, "false_detections_per_cycle", 10'000.0);
   if (c.false_detections_per_cycle > 100.0) clutter.fail("false_detections_per_cycle", "must be at most 100");
   c.amplitude_excess_mean_db = positive(clutter, "amplitude_excess_mean_db");
   return c;
@@ -115,7 +119,7 @@ MultibounceConfig parse_multibounce(const JsonField& mb) {
   mb.expect_only({"max_range_m", "max_order", "loss_per_bounce_db"});
   MultibounceConfig c;
   c.max_range_m = non_negative(mb, "max_range_m");
-  c.max_order = positive_int(mb, "max_order");
+  c.max_order = positive_int(mb, "max_order", 10);
   if (c.max_order > 8) mb.fail("max_order", "must be at most 8");
   c.loss_per_bounce_db = non_negative(mb, "loss_per_bounce_db");
   return c;
@@ -140,7 +144,7 @@ SensorConfig parse_sensor_config(const JsonField& root) {
     }
   }
   c.carrier_frequency_hz = positive(root, "carrier_frequency_hz");
-  c.cycle_time_s = positive(root, "cycle_time_s");
+  c.cycle_time_s = positive(root, "cycle_time_s", limits::kMaxCycleTime_s);
 
   const auto fov = root.member("field_of_view");
   fov.expect_only({"azimuth_half_deg", "min_range_m", "max_range_m"});
@@ -148,7 +152,7 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   if (half_deg >= 90.0) fov.fail("azimuth_half_deg", "must be below 90 (the antenna model covers the front half)");
   c.fov.azimuth_half_rad = deg_to_rad(half_deg);
   c.fov.min_range_m = non_negative(fov, "min_range_m");
-  c.fov.max_range_m = positive(fov, "max_range_m");
+  c.fov.max_range_m = positive(fov, "max_range_m", limits::kMaxRange_m);
   if (c.fov.max_range_m <= c.fov.min_range_m) fov.fail("max_range_m", "must exceed min_range_m");
 
   c.amplitude = parse_amplitude_law(root.member("amplitude"));
