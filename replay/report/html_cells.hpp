@@ -12,6 +12,15 @@
 
 namespace rcsim::replay::report {
 
+// Where figures need the targets, which a run stored with `rcsim replay --store summary` lacks;
+// `figures` is plural ("The residual histograms").
+inline std::string needs_full_store(const std::string& figures) {
+  return fmt::format(R"(<p class="hint needs-full-store">{} need the targets, which this run does not hold: it was )"
+                     R"(stored with <code>rcsim replay --store summary</code>. Replay it with <code>--store full</code> )"
+                     R"(to see them.</p>)",
+                     svg::escape(figures));
+}
+
 inline std::string num(double value, int decimals) { return svg::fixed(value, decimals); }
 
 inline std::string opt(const std::optional<double>& value, int decimals, const char* none = "never") {

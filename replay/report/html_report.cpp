@@ -6,6 +6,7 @@
 #include "common/atomic_file.hpp"
 #include "replay/report/speed_error_section.hpp"
 #include "replay/store/report_reader.hpp"
+#include "replay/report/html_cells.hpp"
 #include "replay/report/html_report_figures.hpp"
 #include "replay/report/html_report_tables.hpp"
 #include "replay/report/real_drive_sections.hpp"
@@ -49,6 +50,20 @@ nav ul { columns: 2; }
 tr.default td { background: #fff4e6; }
 )CSS";
 
+// The chosen cycles, each with the cycles before it faded.
+void write_birdseye_pictures(std::ostream& out, SQLite::Database& db, const report::RunData& run,
+                             const HtmlReportOptions& options) {
+  out << R"(<div class="figs">)";
+  const auto chosen_cycles = report::choose_cycles(report::read_cycle_highlights(db, run.info.run_id), run,
+                                                   static_cast<std::size_t>(std::max(0, options.pictures)));
+  for (const auto& chosen : chosen_cycles) {
+    const int first_cycle = std::max(0, chosen.cycle - std::max(0, options.trace_cycles));
+    out << svg::birdseye_svg(report::birdseye_of_cycle(
+        run, chosen, report::read_cycle_window(db, run.info.run_id, first_cycle, chosen.cycle)));
+  }
+  out << "</div>";
+}
+
 void write_run_section(std::ostream& out, SQLite::Database& db, const report::RunData& run,
                        const HtmlReportOptions& options, int max_points) {
   const report::RunInfo& i = run.info;
@@ -66,32 +81,34 @@ void write_run_section(std::ostream& out, SQLite::Database& db, const report::Ru
          "automatically: the largest GOSPA, the most merge artefacts, the first recorded target, the middle of the "
          "run, the first simulated target, the largest difference in target counts, then the last cycle and the "
          "quarters.</p>";
-  out << R"(<div class="figs">)";
-  const auto chosen_cycles = report::choose_cycles(report::read_cycle_highlights(db, i.run_id), run,
-                                                   static_cast<std::size_t>(std::max(0, options.pictures)));
-  for (const auto& chosen : chosen_cycles) {
-    const int first_cycle = std::max(0, chosen.cycle - std::max(0, options.trace_cycles));
-    out << svg::birdseye_svg(
-        report::birdseye_of_cycle(run, chosen, report::read_cycle_window(db, i.run_id, first_cycle, chosen.cycle)));
+  if (!i.has_targets()) {
+    out << report::needs_full_store("The bird's-eye pictures");
+  } else {
+    write_birdseye_pictures(out, db, run, options);
   }
-  out << "</div>";
 
   out << fmt::format(R"(<h3 id="run-{}-series">Time series</h3>)", i.run_id);
+  if (!i.has_targets()) out << report::needs_full_store("The plots of the nearest target's range and lateral position");
   out << R"(<div class="figs">)";
   const int stride = report::series_stride(run, max_points);
-  for (const auto& plot : report::time_series(run, stride, report::read_nearest_targets(db, i.run_id, stride),
-                                              report::read_cycle_buckets(db, i.run_id, stride))) {
+  const auto nearest = i.has_targets() ? report::read_nearest_targets(db, i.run_id, stride)
+                                       : std::vector<report::NearestTargetRow>{};
+  for (const auto& plot : report::time_series(run, stride, nearest, report::read_cycle_buckets(db, i.run_id, stride))) {
     out << svg::plot_svg(plot);
   }
   out << "</div>";
 
   out << fmt::format(R"(<h3 id="run-{}-residuals">Residuals of assigned pairs</h3>)", i.run_id);
-  out << R"(<div class="figs">)";
-  report::ResidualHistograms histograms(
-      report::read_residual_sample_stats(db, i.run_id, report::residual_sample_stride(run)), options.histogram_bins);
-  report::for_each_residual(db, i.run_id, [&](const report::Residuals& r) { histograms.add(r); });
-  for (const auto& h : histograms.specs()) out << svg::histogram_svg(h);
-  out << "</div>";
+  if (!i.has_targets()) {
+    out << report::needs_full_store("The residual histograms");
+  } else {
+    out << R"(<div class="figs">)";
+    report::ResidualHistograms histograms(
+        report::read_residual_sample_stats(db, i.run_id, report::residual_sample_stride(run)), options.histogram_bins);
+    report::for_each_residual(db, i.run_id, [&](const report::Residuals& r) { histograms.add(r); });
+    for (const auto& h : histograms.specs()) out << svg::histogram_svg(h);
+    out << "</div>";
+  }
 
   out << fmt::format(R"(<h3 id="run-{}-objects">Annotated objects</h3>)", i.run_id)
       << report::object_section(db, run, options.object_pictures);

@@ -184,10 +184,12 @@ std::vector<svg::PlotSpec> time_series(const RunData& run, int stride, const std
       s[1].label = "simulated", s[1].colour = svg::kSimulatedColour, s[1].dots = dots, s[1].dashed = !dots;
       return std::vector<svg::PlotSeries>{std::move(s[0]), std::move(s[1])};
     };
-    plots.push_back({"Nearest target range, sensor " + name, "t / s", "range / m", dots_note, 600, 250, false,
-                     pair(p.range, true)});
-    plots.push_back({"Nearest target lateral position, sensor " + name, "t / s", "y / m (vehicle frame)",
-                     dots_note, 600, 250, false, pair(p.lateral, true)});
+    if (run.info.has_targets()) {  // a summary run has no targets (html_report.cpp says so)
+      plots.push_back({"Nearest target range, sensor " + name, "t / s", "range / m", dots_note, 600, 250, false,
+                       pair(p.range, true)});
+      plots.push_back({"Nearest target lateral position, sensor " + name, "t / s", "y / m (vehicle frame)",
+                       dots_note, 600, 250, false, pair(p.lateral, true)});
+    }
     plots.push_back({"Targets per cycle, sensor " + name, "t / s", "targets", mean_note, 600, 250, true,
                      pair(p.count, false)});
     std::vector<svg::PlotSeries> gospa;

@@ -26,6 +26,7 @@ std::string run_information_table(const RunData& run) {
   out += kv("level", "compared level", i.level, "", true);
   out += kv("rcsim_version", "rcsim version", i.rcsim_version, "", true);
   out += kv("created", "stored", i.created_utc, "UTC", true);
+  out += kv("store", "store level", i.store, "rcsim replay --store", true);
   return out + "</table>";
 }
 

@@ -146,7 +146,8 @@ std::string object_section(SQLite::Database& db, const RunData& run, int max_pic
   out += R"(<div class="cols"><div class="scroll">)" + object_detection_table(run) + "</div><div>" + detection_rate_plot(run) +
          "</div></div>";
   out += "<h4>Targets in each object's own frame, all cycles and sensors (paper Fig. 3)</h4>";
-  out += object_frame_pictures(db, run, max_pictures);
+  out += run.info.has_targets() ? object_frame_pictures(db, run, max_pictures)
+                                : needs_full_store("The pictures of the targets in each object's frame");
   return out;
 }
 
@@ -170,6 +171,7 @@ std::string background_section(SQLite::Database& db, const RunData& run) {
     max_range_m = std::max(max_range_m, s.max_range_m);
     half_rad = std::max(half_rad, s.azimuth_half_rad);
   }
+  if (!run.info.has_targets()) return out + needs_full_store("The background's range and azimuth histograms");
   constexpr int kBins = 30;
   out += R"(<div class="figs">)";
   out += background_plot(read_background_histogram(db, run.info.run_id, BackgroundQuantity::range, 0.0,

@@ -1,8 +1,9 @@
 #pragma once
-// What the report's pictures read from the report database (schemas/report-database.md), with
-// bounded queries into plain structs: the cycles worth picturing, a window of cycles for a
-// bird's-eye picture, time series thinned to every stride-th cycle, and the matched pairs'
-// residuals (summarised in SQL, then streamed, never loaded whole).
+// What the report's pictures read from the report database (schemas/report-database.md), block
+// by block through run_rows.hpp into plain structs: the cycles worth picturing, a window of
+// cycles for a bird's-eye picture, time series thinned to every stride-th cycle, and the matched
+// pairs' residuals (summarised, then streamed, never loaded whole). A summary run (RunInfo::store)
+// has no targets and no boxes: what is read from them comes back empty.
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <array>

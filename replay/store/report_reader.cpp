@@ -2,15 +2,14 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <map>
+#include <tuple>
 
-#include "replay/store/sql_column.hpp"
 #include "common/input_error.hpp"
+#include "replay/store/run_rows.hpp"
+#include "replay/store/sql_column.hpp"
 
 namespace rcsim::replay::report {
-
-namespace {
-
-}  // namespace
 
 std::string RunData::sensor_label(int sensor) const {
   for (const auto& s : sensors) {
@@ -57,7 +56,7 @@ namespace {
 void read_info(SQLite::Database& db, std::int64_t run_id, RunData& run) {
   SQLite::Statement q(db,
                       "SELECT recording_name, recording_dir, recording_checksum, recording_source, cycle_time_s, "
-                      "cycles, seed, level, parameters, rcsim_version, created_utc FROM runs WHERE run_id = ?");
+                      "cycles, seed, level, parameters, rcsim_version, created_utc, store FROM runs WHERE run_id = ?");
   q.bind(1, run_id);
   if (!q.executeStep()) throw std::runtime_error(fmt::format("run {} vanished from the database", run_id));
   RunInfo& i = run.info;
@@ -73,6 +72,7 @@ void read_info(SQLite::Database& db, std::int64_t run_id, RunData& run) {
   i.parameters = q.getColumn(8).getString();
   i.rcsim_version = q.getColumn(9).getString();
   i.created_utc = q.getColumn(10).getString();
+  i.store = q.getColumn(11).getString();
 }
 
 void read_summary(SQLite::Database& db, std::int64_t run_id, RunData& run) {
@@ -182,41 +182,61 @@ void read_latencies(SQLite::Database& db, std::int64_t run_id, RunData& run) {
   }
 }
 
+// Each pair of objects sharing a cell, over the cycles it was listed in, with those cycles' times
+// and artefact counts.
 void read_merge_pairs(SQLite::Database& db, std::int64_t run_id, RunData& run) {
-  SQLite::Statement q(db,
-                      "SELECT m.sensor, m.object_a, m.object_b, count(*), min(c.t_s), max(c.t_s), "
-                      "sum(c.merge_recorded), sum(c.merge_simulated), sum(c.merge_matched) "
-                      "FROM merge_pairs m JOIN cycles c "
-                      "ON c.run_id = m.run_id AND c.cycle = m.cycle AND c.sensor = m.sensor "
-                      "WHERE m.run_id = ? GROUP BY m.sensor, m.object_a, m.object_b "
-                      "ORDER BY m.object_a, m.object_b, m.sensor");
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> pairs_of_cycle;  // (cycle, sensor) -> pairs
+  SQLite::Statement q(db, "SELECT cycle, sensor, object_a, object_b FROM merge_pairs WHERE run_id = ?");
   q.bind(1, run_id);
   while (q.executeStep()) {
-    run.merge_pairs.push_back({q.getColumn(0).getInt(), q.getColumn(1).getInt(), q.getColumn(2).getInt(),
-                               q.getColumn(3).getInt64(), q.getColumn(4).getDouble(), q.getColumn(5).getDouble(),
-                               q.getColumn(6).getInt64(), q.getColumn(7).getInt64(), q.getColumn(8).getInt64()});
+    pairs_of_cycle[{q.getColumn(0).getInt(), q.getColumn(1).getInt()}].emplace_back(q.getColumn(2).getInt(),
+                                                                                  q.getColumn(3).getInt());
   }
+  if (pairs_of_cycle.empty()) return;
+  std::map<std::tuple<int, int, int>, MergePairRow> rows;  // (object_a, object_b, sensor)
+  for_each_cycle(db, run_id, {pairs_of_cycle.begin()->first.first, pairs_of_cycle.rbegin()->first.first},
+                 [&](const StoredCycle& c) {
+                   const auto it = pairs_of_cycle.find({c.cycle, c.sensor});
+                   if (it == pairs_of_cycle.end()) return;
+                   for (const auto& [a, b] : it->second) {
+                     auto [row, added] = rows.try_emplace({a, b, c.sensor});
+                     MergePairRow& r = row->second;
+                     if (added) r = {c.sensor, a, b, 0, c.t_s, c.t_s, 0, 0, 0};
+                     ++r.cycles;
+                     r.first_t_s = std::min(r.first_t_s, c.t_s);
+                     r.last_t_s = std::max(r.last_t_s, c.t_s);
+                     r.recorded += c.merge_recorded;
+                     r.simulated += c.merge_simulated;
+                     r.matched += c.merge_matched;
+                   }
+                 });
+  for (const auto& [key, row] : rows) run.merge_pairs.push_back(row);
 }
 
 void read_sensor_totals(SQLite::Database& db, std::int64_t run_id, RunData& run) {
-  SQLite::Statement q(db,
-                      "SELECT sensor, count(*), sum(n_recorded), sum(n_simulated), sum(n_assigned), avg(gospa_m), "
-                      "max(gospa_m), avg(ospa_m), sum(merge_recorded), sum(merge_simulated), sum(merge_matched) "
-                      "FROM cycles WHERE run_id = ? GROUP BY sensor ORDER BY sensor");
-  q.bind(1, run_id);
-  while (q.executeStep()) {
-    SensorTotals t;
-    t.sensor = q.getColumn(0).getInt();
-    t.cycles = q.getColumn(1).getInt64();
-    t.recorded = q.getColumn(2).getInt64();
-    t.simulated = q.getColumn(3).getInt64();
-    t.assigned = q.getColumn(4).getInt64();
-    t.gospa_mean_m = q.getColumn(5).getDouble();
-    t.gospa_max_m = q.getColumn(6).getDouble();
-    t.ospa_mean_m = q.getColumn(7).getDouble();
-    t.merge_recorded = q.getColumn(8).getInt64();
-    t.merge_simulated = q.getColumn(9).getInt64();
-    t.merge_matched = q.getColumn(10).getInt64();
+  std::map<int, SensorTotals> totals;
+  std::map<int, double> gospa_sum, ospa_sum;
+  for_each_cycle(db, run_id, {}, [&](const StoredCycle& c) {
+    auto [it, added] = totals.try_emplace(c.sensor);
+    SensorTotals& t = it->second;
+    if (added) {
+      t.sensor = c.sensor;
+      t.gospa_max_m = c.gospa_m;
+    }
+    ++t.cycles;
+    t.recorded += c.n_recorded;
+    t.simulated += c.n_simulated;
+    t.assigned += c.n_assigned;
+    gospa_sum[c.sensor] += c.gospa_m;
+    ospa_sum[c.sensor] += c.ospa_m;
+    t.gospa_max_m = std::max(t.gospa_max_m, c.gospa_m);
+    t.merge_recorded += c.merge_recorded;
+    t.merge_simulated += c.merge_simulated;
+    t.merge_matched += c.merge_matched;
+  });
+  for (auto& [sensor, t] : totals) {
+    t.gospa_mean_m = gospa_sum[sensor] / static_cast<double>(t.cycles);
+    t.ospa_mean_m = ospa_sum[sensor] / static_cast<double>(t.cycles);
     run.sensor_totals.push_back(t);
   }
 }

@@ -1,7 +1,8 @@
 #pragma once
-// What the HTML report reads from a report database (`rcsim-report` v3,
-// schemas/report-database.md): the per-run tables, each read with one query and SQL aggregates,
-// never the per-target rows of a whole run. Text fields are returned as stored (unescaped).
+// What the HTML report reads from a report database (`rcsim-report` v4,
+// schemas/report-database.md): the per-run tables, and aggregates over the run's cycles (read
+// block by block through run_rows.hpp), never the per-target rows of a whole run. Text fields
+// are returned as stored (unescaped).
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
@@ -20,6 +21,8 @@ struct RunInfo {
   int cycles = 0;
   std::int64_t seed = 0;
   std::string level, parameters, rcsim_version, created_utc;
+  std::string store = "full";  // full | summary (rcsim replay --store): a summary run has no targets
+  bool has_targets() const { return store == "full"; }
 };
 
 struct RunSummary {

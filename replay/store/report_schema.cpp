@@ -1,11 +1,14 @@
-// The report database schema (`rcsim-report` v3, schemas/report-database.md), applied by
-// report_store.cpp when it creates a database: the v2 tables, the bench tables, then the v3
-// additions. Opening a v1 database adds the bench tables and the v3 additions, a v2 database
-// the v3 additions, so that a migrated database has exactly the columns of a new one.
+// The report database schema (`rcsim-report` v4, schemas/report-database.md), applied by
+// report_store.cpp when it creates a database: the v1 tables, the bench tables (v2), the
+// real-drive additions (v3), then the v4 blocks, into which the rows of the v1 tables `cycles`,
+// `targets` and `object_states` are converted (report_migration.cpp) before those are dropped.
+// Opening a v1, v2 or v3 database applies the steps it lacks, so that a migrated database has
+// exactly the tables and columns of a new one.
 #include "replay/store/report_store.hpp"
 
 namespace rcsim::replay {
 
+// Version 1; `cycles`, `targets` and `object_states` live on only until the v4 conversion.
 extern const char* const kReportSchemaSql;
 const char* const kReportSchemaSql = R"SQL(
 CREATE TABLE IF NOT EXISTS runs (
@@ -214,6 +217,65 @@ CREATE TABLE IF NOT EXISTS object_ranges (
   cycles_detected_recorded INTEGER NOT NULL, cycles_detected_simulated INTEGER NOT NULL,
   PRIMARY KEY (run_id, sensor, object, range_from_m)
 ) STRICT;
+)SQL";
+
+// Added in version 4 (issue 19): the store level of a run, and the per-cycle rows packed into
+// blocks of consecutive cycles, one BLOB per column (replay/store/packed_columns.hpp: u, z varints,
+// f4 float32, x exact doubles against a prediction; a zero-length BLOB: every varint 0).
+extern const char* const kBlockSchemaSql;
+const char* const kBlockSchemaSql = R"SQL(
+ALTER TABLE runs ADD COLUMN store TEXT NOT NULL DEFAULT 'full' CHECK (store IN ('full', 'summary'));
+
+CREATE TABLE IF NOT EXISTS cycle_blocks (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  first_cycle INTEGER NOT NULL,
+  sensor INTEGER NOT NULL,
+  cycles INTEGER NOT NULL,               -- the block holds cycles first_cycle .. first_cycle + cycles - 1
+  half_cutoff_p REAL NOT NULL,           -- c^p / 2 of the run's GOSPA: predicts the missed and false parts
+  order_p REAL NOT NULL,                 -- p of the run's GOSPA: predicts GOSPA and OSPA (p = 1, 2)
+  t_s BLOB NOT NULL,                     -- x, linear prediction
+  sensor_x_m BLOB, sensor_y_m BLOB, sensor_yaw_rad BLOB,  -- x, linear prediction; NULL in a summary run
+  n_recorded BLOB NOT NULL, n_simulated BLOB NOT NULL, n_assigned BLOB NOT NULL,  -- u
+  gospa_m BLOB NOT NULL, gospa_localisation_mp BLOB NOT NULL, gospa_missed_mp BLOB NOT NULL,
+  gospa_false_mp BLOB NOT NULL, ospa_m BLOB NOT NULL,  -- x
+  merge_recorded BLOB NOT NULL, merge_simulated BLOB NOT NULL, merge_matched BLOB NOT NULL,  -- u
+  n_object_recorded BLOB, n_object_simulated BLOB, n_background_recorded BLOB, n_background_simulated BLOB,  -- u
+  gospa_object_m BLOB, ospa_object_m BLOB,  -- x; these six NULL in runs stored before v3
+  PRIMARY KEY (run_id, first_cycle, sensor)
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS target_blocks (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  first_cycle INTEGER NOT NULL,
+  sensor INTEGER NOT NULL,
+  cycles INTEGER NOT NULL,
+  n_recorded BLOB NOT NULL, n_simulated BLOB NOT NULL,  -- u, per cycle; then per target, cycle by cycle,
+  track_id BLOB NOT NULL,                -- recorded before simulated: z, -1 none
+  range_m BLOB NOT NULL, azimuth_rad BLOB NOT NULL, range_rate_mps BLOB NOT NULL, amplitude_db BLOB NOT NULL,  -- f4
+  object BLOB NOT NULL, match_idx BLOB NOT NULL,  -- z, -1 none
+  flags BLOB NOT NULL,                   -- u: class (0 object, 1 background, 2 other, 3 none: before v3) + 4 merge artefact
+  x_o_m BLOB NOT NULL, y_o_m BLOB NOT NULL,  -- f4, only the targets with an object and a class
+  rcs_dbsm BLOB, snr_db BLOB, elevation_rad BLOB,  -- f4, NaN where absent; NULL: absent in the whole block
+  PRIMARY KEY (run_id, first_cycle, sensor)
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS object_state_blocks (
+  run_id INTEGER NOT NULL REFERENCES runs(run_id) ON DELETE CASCADE,
+  first_cycle INTEGER NOT NULL,
+  cycles INTEGER NOT NULL,
+  n_objects BLOB NOT NULL,               -- u, per cycle; then per box, cycle by cycle:
+  object BLOB NOT NULL,                  -- u
+  x_m BLOB NOT NULL, y_m BLOB NOT NULL, yaw_rad BLOB NOT NULL,  -- x, linear prediction from the object's last two
+  PRIMARY KEY (run_id, first_cycle)
+) STRICT;
+)SQL";
+
+// After the conversion of their rows (report_migration.cpp).
+extern const char* const kDropRowTablesSql;
+const char* const kDropRowTablesSql = R"SQL(
+DROP TABLE targets;
+DROP TABLE object_states;
+DROP TABLE cycles;
 )SQL";
 
 }  // namespace rcsim::replay

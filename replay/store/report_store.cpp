@@ -18,6 +18,9 @@ namespace rcsim::replay {
 extern const char* const kReportSchemaSql;
 extern const char* const kBenchSchemaSql;
 extern const char* const kRealDriveSchemaSql;
+extern const char* const kBlockSchemaSql;
+extern const char* const kDropRowTablesSql;
+void convert_row_tables_to_blocks(SQLite::Database& db);  // report_migration.cpp
 
 namespace {
 
@@ -97,24 +100,42 @@ void bind_optional(SQLite::Statement& s, int index, double value) {
   }
 }
 
-void bind_if(SQLite::Statement& s, int index, double value, bool present) {
-  if (present) {
-    s.bind(index, value);
-  } else {
-    s.bind(index);
-  }
-}
-
 // The targets of one class in a list.
 int count_class(const std::vector<ComparedTarget>& list, metrics::TargetClass c) {
   return static_cast<int>(std::count_if(list.begin(), list.end(), [c](const auto& t) { return t.target_class == c; }));
 }
 
-void bind_index(SQLite::Statement& s, int index, int value) {
-  if (value < 0) {
-    s.bind(index);
-  } else {
-    s.bind(index, value);
+// The steps from `version` to the current one, as a new database takes them from version 1.
+void upgrade_from(SQLite::Database& db, int version) {
+  if (version < 2) db.exec(kBenchSchemaSql);
+  if (version < 3) db.exec(kRealDriveSchemaSql);
+  if (version < 4) {
+    db.exec(kBlockSchemaSql);
+    convert_row_tables_to_blocks(db);
+    db.exec(kDropRowTablesSql);
+  }
+}
+
+// A compared target as the store keeps it.
+void to_stored(const std::vector<ComparedTarget>& list, std::vector<StoredTarget>& out) {
+  out.resize(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const ComparedTarget& t = list[i];
+    StoredTarget& s = out[i];
+    s.idx = static_cast<int>(i);
+    s.track_id = std::max(-1, t.track_id);
+    s.range_m = t.range_m;
+    s.azimuth_rad = t.azimuth_rad;
+    s.range_rate_mps = t.range_rate_mps;
+    s.amplitude_db = t.amplitude_db;
+    s.object = std::max(-1, t.object);
+    s.match_idx = std::max(-1, t.match);
+    s.merge_artefact = t.merge_pair >= 0;
+    s.target_class = t.target_class;
+    s.p_OT_O = t.object >= 0 ? std::optional<Vec2>(t.p_OT_O) : std::nullopt;
+    s.rcs_dbsm = t.rcs_dbsm;
+    s.snr_db = t.snr_db;
+    s.elevation_rad = t.elevation_rad;
   }
 }
 
@@ -135,19 +156,23 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
       db->exec("PRAGMA journal_mode = WAL");  // persistent: readers never block the writer
       SQLite::Transaction transaction(*db);
       db->exec(kReportSchemaSql);
-      db->exec(kBenchSchemaSql);
-      db->exec(kRealDriveSchemaSql);
+      upgrade_from(*db, 1);
       db->exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
       db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
       transaction.commit();
     } else if (application_id != kReportApplicationId) {
       throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
                                              static_cast<std::uint32_t>(application_id), kReportApplicationId));
-    } else if (user_version == 1 || user_version == 2) {
-      // v1 -> v2: the bench tables; v2 -> v3: the real-drive columns and tables.
+    } else if (user_version >= 1 && user_version < kReportSchemaVersion) {
+      // v1 -> v2: the bench tables; v2 -> v3: the real-drive columns and tables; v3 -> v4: the blocks.
       SQLite::Transaction transaction(*db);
-      if (user_version == 1) db->exec(kBenchSchemaSql);
-      db->exec(kRealDriveSchemaSql);
+      try {
+        upgrade_from(*db, user_version);
+      } catch (const std::runtime_error& e) {
+        if (dynamic_cast<const SQLite::Exception*>(&e) != nullptr) throw;
+        throw InputError(path, "", fmt::format("cannot migrate report schema version {} to {}: {}", user_version,
+                                               kReportSchemaVersion, e.what()));
+      }
       db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
       transaction.commit();
     } else if (user_version != kReportSchemaVersion) {
@@ -173,8 +198,8 @@ void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported
   transaction_.emplace(db_);
   SQLite::Statement run(db_,
                         "INSERT INTO runs (recording_name, recording_dir, recording_checksum, recording_source, "
-                        "cycle_time_s, cycles, seed, level, parameters, rcsim_version, created_utc) "
-                        "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                        "cycle_time_s, cycles, seed, level, parameters, rcsim_version, created_utc, store) "
+                        "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   run.bind(1, rec.name);
   run.bind(2, std::filesystem::absolute(rec.dir).lexically_normal().string());
   run.bind(3, fmt::format("{:016x}", rec.checksum));
@@ -186,6 +211,7 @@ void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported
   run.bind(9, parameters_json(options, imported.effects).dump());  // the effects actually simulated
   run.bind(10, RCSIM_VERSION);
   run.bind(11, utc_now());
+  run.bind(12, std::string(store_level_name(store_)));
   run.exec();
   run_id_ = db_.getLastInsertRowid();
 
@@ -218,79 +244,37 @@ void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported
     object.exec();
     object.reset();
   }
-  insert_cycle_ = std::make_unique<SQLite::Statement>(
-      db_, "INSERT INTO cycles VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  insert_target_ = std::make_unique<SQLite::Statement>(
-      db_, "INSERT INTO targets VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  insert_object_state_ = std::make_unique<SQLite::Statement>(db_, "INSERT INTO object_states VALUES (?, ?, ?, ?, ?, ?)");
+  rows_ = std::make_unique<RunRowWriter>(db_, run_id_, store_, options.gospa.cutoff_m, options.gospa.order_p);
   insert_merge_pair_ = std::make_unique<SQLite::Statement>(db_, "INSERT INTO merge_pairs VALUES (?, ?, ?, ?, ?)");
 }
 
-void ReportWriter::insert_targets(const CycleComparison& c, const char* origin, const std::vector<ComparedTarget>& list) {
-  SQLite::Statement& s = *insert_target_;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const ComparedTarget& t = list[i];
-    s.bind(1, run_id_);
-    s.bind(2, c.cycle);
-    s.bind(3, c.sensor);
-    s.bind(4, origin);
-    s.bind(5, static_cast<int>(i));
-    bind_index(s, 6, t.track_id);
-    s.bind(7, t.range_m);
-    s.bind(8, t.azimuth_rad);
-    s.bind(9, t.range_rate_mps);
-    s.bind(10, t.amplitude_db);
-    s.bind(11, t.p_ST_S.x());
-    s.bind(12, t.p_ST_S.y());
-    bind_index(s, 13, t.object);
-    bind_index(s, 14, t.match);
-    s.bind(15, t.merge_pair >= 0 ? 1 : 0);
-    s.bind(16, std::string(metrics::target_class_name(t.target_class)));
-    bind_if(s, 17, t.p_OT_O.x(), t.object >= 0);
-    bind_if(s, 18, t.p_OT_O.y(), t.object >= 0);
-    bind_if(s, 19, t.rcs_dbsm, !std::isnan(t.rcs_dbsm));
-    bind_if(s, 20, t.snr_db, !std::isnan(t.snr_db));
-    bind_if(s, 21, t.elevation_rad, !std::isnan(t.elevation_rad));
-    s.exec();
-    s.reset();
-  }
-}
-
 void ReportWriter::add_cycle(const CycleComparison& c) {
-  SQLite::Statement& s = *insert_cycle_;
-  int merge_recorded = 0, merge_simulated = 0;
-  for (const auto& t : c.recorded) merge_recorded += t.merge_pair >= 0;
-  for (const auto& t : c.simulated) merge_simulated += t.merge_pair >= 0;
-  s.bind(1, run_id_);
-  s.bind(2, c.cycle);
-  s.bind(3, c.sensor);
-  s.bind(4, c.t_s);
-  s.bind(5, c.X_WS.x_m);
-  s.bind(6, c.X_WS.y_m);
-  s.bind(7, c.X_WS.yaw_rad);
-  s.bind(8, static_cast<int>(c.recorded.size()));
-  s.bind(9, static_cast<int>(c.simulated.size()));
-  s.bind(10, c.gospa.assigned);
-  s.bind(11, c.gospa.gospa_m);
-  s.bind(12, c.gospa.localisation_mp);
-  s.bind(13, c.gospa.missed_mp);
-  s.bind(14, c.gospa.false_mp);
-  s.bind(15, c.gospa.ospa_m);
-  s.bind(16, merge_recorded);
-  s.bind(17, merge_simulated);
-  s.bind(18, c.merge_matched);
-  s.bind(19, count_class(c.recorded, metrics::TargetClass::object));
-  s.bind(20, count_class(c.simulated, metrics::TargetClass::object));
-  s.bind(21, count_class(c.recorded, metrics::TargetClass::stationary_background));
-  s.bind(22, count_class(c.simulated, metrics::TargetClass::stationary_background));
-  s.bind(23, c.gospa_object.gospa_m);
-  s.bind(24, c.gospa_object.ospa_m);
-  s.exec();
-  s.reset();
+  StoredCycle row;
+  row.cycle = c.cycle;
+  row.sensor = c.sensor;
+  row.t_s = c.t_s;
+  row.X_WS = c.X_WS;
+  row.n_recorded = static_cast<int>(c.recorded.size());
+  row.n_simulated = static_cast<int>(c.simulated.size());
+  row.n_assigned = c.gospa.assigned;
+  row.gospa_m = c.gospa.gospa_m;
+  row.gospa_localisation_mp = c.gospa.localisation_mp;
+  row.gospa_missed_mp = c.gospa.missed_mp;
+  row.gospa_false_mp = c.gospa.false_mp;
+  row.ospa_m = c.gospa.ospa_m;
+  for (const auto& t : c.recorded) row.merge_recorded += t.merge_pair >= 0;
+  for (const auto& t : c.simulated) row.merge_simulated += t.merge_pair >= 0;
+  row.merge_matched = c.merge_matched;
+  row.classes = StoredCycle::Classes{count_class(c.recorded, metrics::TargetClass::object),
+                                     count_class(c.simulated, metrics::TargetClass::object),
+                                     count_class(c.recorded, metrics::TargetClass::stationary_background),
+                                     count_class(c.simulated, metrics::TargetClass::stationary_background),
+                                     c.gospa_object.gospa_m, c.gospa_object.ospa_m};
   if (store_ == StoreLevel::full) {
-    insert_targets(c, "recorded", c.recorded);
-    insert_targets(c, "simulated", c.simulated);
+    to_stored(c.recorded, recorded_);
+    to_stored(c.simulated, simulated_);
   }
+  rows_->add_cycle(row, recorded_, simulated_);
   for (const auto& [a, b] : c.merge_pairs) {
     SQLite::Statement& m = *insert_merge_pair_;
     m.bind(1, run_id_);
@@ -302,17 +286,11 @@ void ReportWriter::add_cycle(const CycleComparison& c) {
     m.reset();
   }
   if (c.sensor == 0 && store_ == StoreLevel::full) {  // the boxes are the same for every sensor of a cycle
-    SQLite::Statement& o = *insert_object_state_;
+    boxes_.clear();
     for (const ObjectInCycle& object : c.objects) {
-      o.bind(1, run_id_);
-      o.bind(2, c.cycle);
-      o.bind(3, object.object);
-      o.bind(4, object.x_m);
-      o.bind(5, object.y_m);
-      o.bind(6, object.yaw_rad);
-      o.exec();
-      o.reset();
+      boxes_.push_back({c.cycle, object.object, Pose2{object.x_m, object.y_m, object.yaw_rad}});
     }
+    rows_->add_object_states(c.cycle, boxes_);
   }
 }
 
@@ -416,13 +394,12 @@ void ReportWriter::insert_summary(const ReplaySummary& r) {
 
 // The run's closing tables, then COMMIT: the whole run or nothing.
 void ReportWriter::end_run(const ReplaySummary& r) {
+  rows_->finish();
   insert_latencies(r);
   insert_distances(r);
   insert_object_figures(r);
   insert_summary(r);
-  insert_cycle_.reset();
-  insert_target_.reset();
-  insert_object_state_.reset();
+  rows_.reset();
   insert_merge_pair_.reset();
   transaction_->commit();
   transaction_.reset();

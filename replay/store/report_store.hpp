@@ -1,5 +1,5 @@
 #pragma once
-// The SQLite report database (`rcsim-report` v3, schemas/report-database.md): many replay runs
+// The SQLite report database (`rcsim-report` v4, schemas/report-database.md): many replay runs
 // in one file. A run is written in one transaction, so a replay that fails or is killed midway
 // leaves the database and its earlier runs as they were. Every value is bound to a prepared
 // statement; no text is ever pasted into SQL.
@@ -16,12 +16,14 @@
 namespace rcsim::replay {
 
 inline constexpr std::int32_t kReportApplicationId = 0x52435352;  // "RCSR"
-// 2 added the bench tables, 3 the real-drive figures; 1 and 2 are migrated on opening.
-inline constexpr int kReportSchemaVersion = 3;
+// 2 added the bench tables, 3 the real-drive figures, 4 the blocks and the store level; 1 to 3
+// are migrated on opening.
+inline constexpr int kReportSchemaVersion = 4;
 
 // Opens (creating if needed) a report database; refuses a file that is not one, or one of
-// another schema version, naming the file. A version 1 or 2 database is migrated to version 3 in
-// one transaction (tables and columns are added; its runs are untouched, their new columns NULL).
+// another schema version, naming the file. A version 1, 2 or 3 database is migrated to version 4
+// in one transaction: tables and columns are added (the runs' new columns NULL, their store
+// `full`), and the rows of `cycles`, `targets` and `object_states` are converted into blocks.
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
 
 // Stores one replay run as it streams in.
@@ -38,7 +40,6 @@ class ReportWriter final : public ReplaySink {
   std::int64_t run_id() const { return run_id_; }
 
  private:
-  void insert_targets(const CycleComparison& cycle, const char* origin, const std::vector<ComparedTarget>& list);
   void insert_latencies(const ReplaySummary& summary);
   void insert_distances(const ReplaySummary& summary);
   void insert_object_figures(const ReplaySummary& summary);
@@ -48,7 +49,10 @@ class ReportWriter final : public ReplaySink {
   StoreLevel store_;
   std::optional<SQLite::Transaction> transaction_;
   std::int64_t run_id_ = 0;
-  std::unique_ptr<SQLite::Statement> insert_cycle_, insert_target_, insert_object_state_, insert_merge_pair_;
+  std::unique_ptr<RunRowWriter> rows_;
+  std::unique_ptr<SQLite::Statement> insert_merge_pair_;
+  std::vector<StoredTarget> recorded_, simulated_;  // reused, cycle by cycle
+  std::vector<StoredObjectState> boxes_;
 };
 
 }  // namespace rcsim::replay

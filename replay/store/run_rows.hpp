@@ -3,13 +3,20 @@
 // sees them, whatever their storage: one row per cycle and sensor, every recorded and simulated
 // target, the annotated boxes per cycle. Every reader of these rows (the report's figures, the
 // golden run, tests) goes through here, never through SQL on the tables that hold them.
+//
+// They are stored (schema v4) packed into blocks of up to kBlockCycles consecutive cycles per
+// sensor, one BLOB per column (packed_columns.hpp): the targets' reals as float32, every other
+// real exactly.
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "common/pose2.hpp"
 #include "metrics/target_class.hpp"
@@ -70,13 +77,65 @@ struct StoredObjectState {
   Pose2 X_WO;
 };
 
+// The targets of one cycle and sensor, each list by idx.
+struct StoredTargetList {
+  int cycle = 0, sensor = 0;
+  std::vector<StoredTarget> recorded, simulated;
+};
+
+inline constexpr int kBlockCycles = 256;
+
+// The store level a run was written with (runs.store); full for runs stored before v4.
+StoreLevel run_store_level(SQLite::Database& db, std::int64_t run_id);
+
 // The rows of `run_id` within `span`, in cycle order; per cycle by sensor, then recorded before
-// simulated and by idx (targets) or by object (boxes).
+// simulated and by idx (targets) or as stored, by object (boxes). A summary run has cycles but
+// neither targets nor boxes, and its cycles no sensor pose.
 void for_each_cycle(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
                     const std::function<void(const StoredCycle&)>& visit);
+void for_each_target_list(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
+                          const std::function<void(const StoredTargetList&)>& visit);
 void for_each_target(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
                      const std::function<void(const StoredTarget&)>& visit);
 void for_each_object_state(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
                            const std::function<void(const StoredObjectState&)>& visit);
+
+// Writes the per-cycle rows of one run, which the caller has inserted into `runs`, into their
+// blocks, inside the caller's transaction. A sensor's cycles come in increasing order (a gap
+// starts a new block); the other sensors' may interleave. A summary writer keeps the cycles
+// without their sensor poses, and no targets or boxes. `cutoff_m` and `order_p` are the run's
+// GOSPA parameters: they only make the stored figures smaller, never different.
+class RunRowWriter {
+ public:
+  RunRowWriter(SQLite::Database& db, std::int64_t run_id, StoreLevel store, double cutoff_m, double order_p);
+  ~RunRowWriter();
+  RunRowWriter(const RunRowWriter&) = delete;
+  RunRowWriter& operator=(const RunRowWriter&) = delete;
+
+  // One cycle and sensor with its targets; in a full run the cycle needs its sensor pose.
+  void add_cycle(const StoredCycle& cycle, const std::vector<StoredTarget>& recorded,
+                 const std::vector<StoredTarget>& simulated);
+  // The boxes of one cycle (every cycle, also when there is none); ignored in a summary run.
+  void add_object_states(int cycle, const std::vector<StoredObjectState>& states);
+  // Stores the blocks still open; call once, after the last cycle.
+  void finish();
+
+ private:
+  struct SensorBlock {
+    std::vector<StoredCycle> cycles;
+    std::vector<StoredTargetList> targets;
+  };
+  void flush(int sensor, SensorBlock& block);
+  void flush_object_states();
+
+  SQLite::Database& db_;
+  std::int64_t run_id_;
+  StoreLevel store_;
+  double half_cutoff_p_, order_p_;
+  std::map<int, SensorBlock> open_;
+  std::vector<std::vector<StoredObjectState>> object_cycles_;
+  int object_first_cycle_ = 0;
+  std::unique_ptr<SQLite::Statement> insert_cycles_, insert_targets_, insert_objects_;
+};
 
 }  // namespace rcsim::replay

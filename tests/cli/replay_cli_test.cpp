@@ -6,13 +6,17 @@
 #include <csignal>
 #include <fcntl.h>
 #include <filesystem>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <tuple>
 #include <unistd.h>
 
 #include "scratch_dir.hpp"
 #include "cli/run_rcsim.hpp"
 #include "replay/replay_fixtures.hpp"
+#include "replay/store/report_store.hpp"
+#include "replay/store/run_rows.hpp"
 
 namespace rcsim {
 namespace {
@@ -97,18 +101,18 @@ TEST_F(ReplayCli, RunsAccumulateAndTheSameSeedRepeatsExactly) {
   SQLite::Database d(db);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 3);
   const auto targets_of = [&](int run) {
-    SQLite::Statement q(d, "SELECT group_concat(printf('%d,%d,%s,%d,%.6f,%.6f', cycle, sensor, origin, idx, range_m, "
-                           "azimuth_rad), ';') FROM (SELECT * FROM targets WHERE run_id = ? ORDER BY cycle, sensor, "
-                           "origin, idx)");
-    q.bind(1, run);
-    q.executeStep();
-    return q.getColumn(0).getString();
+    std::string text;
+    replay::for_each_target(d, run, {}, [&](const replay::StoredTarget& t) {
+      text += fmt::format("{},{},{},{},{:.6f},{:.6f};", t.cycle, t.sensor, t.simulated ? "simulated" : "recorded", t.idx,
+                          t.range_m, t.azimuth_rad);
+    });
+    return text;
   };
   EXPECT_GT(targets_of(1).size(), 100u);
   EXPECT_EQ(targets_of(1), targets_of(2));
   EXPECT_NE(targets_of(1), targets_of(3));
   EXPECT_EQ(d.execAndGet("PRAGMA application_id").getInt(), 0x52435352);
-  EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), 3);
+  EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), replay::kReportSchemaVersion);
 }
 
 TEST_F(ReplayCli, AnotherSensorConfigurationIsStoredWithItsRun) {
@@ -186,11 +190,86 @@ TEST_F(ReplayCli, ReplayKilledMidwayLeavesEarlierRunsComplete) {
   EXPECT_EQ(d.execAndGet("PRAGMA integrity_check").getString(), "ok");
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 2);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM summaries").getInt(), 2);
-  EXPECT_EQ(d.execAndGet("SELECT count(DISTINCT run_id) FROM targets").getInt(), 2);
-  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM cycles WHERE run_id = 3").getInt(), 0);
+  EXPECT_EQ(d.execAndGet("SELECT count(DISTINCT run_id) FROM target_blocks").getInt(), 2);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM cycle_blocks WHERE run_id = 3").getInt(), 0);
   // And the database takes the next run.
   EXPECT_EQ(run_rcsim("replay " + small.string() + " --db " + db).exit_code, 0);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM summaries").getInt(), 3);
+}
+
+// --store summary keeps the per-cycle figures, bit for bit those of a full run, and every table per
+// run, object and sensor, but no targets, no boxes and no sensor poses; it says so in the run, and
+// its report renders, naming the figures that need --store full.
+TEST_F(ReplayCli, SummaryStoreKeepsTheFiguresAndNoTargets) {
+  const fs::path rec = recording(3.0);
+  const std::string db = (dir_ / "r.sqlite").string();
+  ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db + " --seed 3").exit_code, 0);
+  ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db + " --seed 3 --store summary").exit_code, 0);
+  const auto bad = run_rcsim("replay " + rec.string() + " --db " + db + " --store some");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--store"), std::string::npos) << bad.output;
+
+  SQLite::Database d(db);
+  EXPECT_EQ(replay::run_store_level(d, 1), replay::StoreLevel::full);
+  EXPECT_EQ(replay::run_store_level(d, 2), replay::StoreLevel::summary);
+  EXPECT_EQ(d.execAndGet("SELECT store FROM runs WHERE run_id = 2").getString(), "summary");
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM target_blocks WHERE run_id = 2").getInt(), 0);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM object_state_blocks WHERE run_id = 2").getInt(), 0);
+  EXPECT_GT(d.execAndGet("SELECT count(*) FROM target_blocks WHERE run_id = 1").getInt(), 0);
+  int targets = 0;
+  replay::for_each_target(d, 2, {}, [&](const replay::StoredTarget&) { ++targets; });
+  EXPECT_EQ(targets, 0);
+
+  // The cycles of both runs, poses aside, and the run-level tables, identical.
+  const auto cycles_of = [&](int run) {
+    std::vector<replay::StoredCycle> rows;
+    replay::for_each_cycle(d, run, {}, [&](const replay::StoredCycle& c) { rows.push_back(c); });
+    return rows;
+  };
+  const auto full = cycles_of(1), summary = cycles_of(2);
+  ASSERT_EQ(full.size(), 2u * 76u);
+  ASSERT_EQ(summary.size(), full.size());
+  for (std::size_t i = 0; i < full.size(); ++i) {
+    const auto &f = full[i], &s = summary[i];
+    EXPECT_TRUE(f.X_WS.has_value());
+    EXPECT_FALSE(s.X_WS.has_value());
+    EXPECT_EQ(std::tuple(f.cycle, f.sensor, f.n_recorded, f.n_simulated, f.n_assigned, f.merge_recorded),
+              std::tuple(s.cycle, s.sensor, s.n_recorded, s.n_simulated, s.n_assigned, s.merge_recorded));
+    // Bit for bit: EXPECT_EQ on doubles compares exactly.
+    EXPECT_EQ(std::tuple(f.t_s, f.gospa_m, f.gospa_localisation_mp, f.gospa_missed_mp, f.gospa_false_mp, f.ospa_m),
+              std::tuple(s.t_s, s.gospa_m, s.gospa_localisation_mp, s.gospa_missed_mp, s.gospa_false_mp, s.ospa_m));
+    ASSERT_TRUE(f.classes && s.classes);
+    EXPECT_EQ(f.classes->gospa_object_m, s.classes->gospa_object_m);
+    EXPECT_EQ(f.classes->n_object_recorded, s.classes->n_object_recorded);
+  }
+  for (const char* table : {"summaries", "latencies", "distribution_distances", "object_figures", "object_ranges",
+                            "merge_pairs", "run_sensors", "run_objects"}) {
+    // Every column but the run id and the times of the replay.
+    const std::string columns = fmt::format(
+        "SELECT group_concat(name) FROM pragma_table_info('{}') WHERE name NOT IN ('run_id', 'simulate_cpu_s', "
+        "'total_wall_s')",
+        table);
+    const std::string list = d.execAndGet(columns).getString();
+    const auto rows = [&](int run) {
+      return d.execAndGet(fmt::format("SELECT count(*) || ':' || coalesce(group_concat(r, ';'), '') FROM (SELECT "
+                                      "printf('%s', json_array({})) AS r FROM {} WHERE run_id = {} ORDER BY 1)",
+                                      list, table, run))
+          .getString();
+    };
+    EXPECT_EQ(rows(1), rows(2)) << table;
+  }
+
+  const fs::path html = dir_ / "r.html";
+  const auto report = run_rcsim("report " + db + " -o " + html.string() + " --run 2");
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  const std::string page = read_file(html);
+  EXPECT_NE(page.find("data-key=\"store\">summary<"), std::string::npos);
+  EXPECT_NE(page.find("The bird&#39;s-eye pictures need the targets"), std::string::npos);
+  EXPECT_NE(page.find("The residual histograms need the targets"), std::string::npos);
+  EXPECT_NE(page.find("Targets per cycle, sensor"), std::string::npos);  // from the cycles: still drawn
+  EXPECT_NE(page.find("GOSPA, sensor"), std::string::npos);
+  EXPECT_EQ(page.find("Nearest target range"), std::string::npos);
+  EXPECT_EQ(page.find("class=\"birdseye\""), std::string::npos);
 }
 
 }  // namespace

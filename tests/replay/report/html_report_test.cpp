@@ -185,39 +185,37 @@ TEST(HtmlReportLarge, LongRunsAreThinnedAndTheFileStaysSmall) {
     const auto db = open_report_database(path, true);
     SQLite::Transaction transaction(*db);
     db->exec("INSERT INTO runs VALUES (1, 'big', '/x', '0000000000000000', '{}', 0.04, 30000, 1, 'tracks', '{}', "
-             "'0', '2024-01-01T00:00:00Z')");
+             "'0', '2024-01-01T00:00:00Z', 'full')");
     db->exec("INSERT INTO run_sensors VALUES (1, 0, 's', 'srr24', 3.7, 0, 0, 1.0, 50, '{}')");
     db->exec("INSERT INTO run_objects VALUES (1, 0, 'car', 'passenger_car', 4.5, 1.8, 10)");
-    SQLite::Statement cycle(*db, "INSERT INTO cycles VALUES (1, ?, 0, ?, 3.7, 0, 0, 2, 2, 2, ?, 0.1, 0, 0, ?, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
-    SQLite::Statement target(*db, "INSERT INTO targets VALUES (1, ?, 0, ?, ?, NULL, ?, 0.1, -1, 20, ?, ?, 0, ?, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
-    SQLite::Statement state(*db, "INSERT INTO object_states VALUES (1, ?, 0, ?, 0, 3.14)");
+    RunRowWriter rows(*db, 1, StoreLevel::full, 2.0, 2.0);
     for (int k = 0; k < kCycles; ++k) {
       const double range_m = 10.0 + 5.0 * std::sin(k * 1e-3);
-      cycle.bind(1, k);
-      cycle.bind(2, 0.04 * k);
-      cycle.bind(3, 0.1 + 0.05 * std::sin(k * 0.01));
-      cycle.bind(4, 0.1);
-      cycle.exec();
-      cycle.reset();
+      StoredCycle c;
+      c.cycle = k;
+      c.t_s = 0.04 * k;
+      c.X_WS = Pose2{3.7, 0, 0};
+      c.n_recorded = c.n_simulated = c.n_assigned = 2;
+      c.gospa_m = 0.1 + 0.05 * std::sin(k * 0.01);
+      c.gospa_localisation_mp = 0.1;
+      c.ospa_m = 0.1;
+      std::vector<StoredTarget> lists[2];
       for (int origin = 0; origin < 2; ++origin) {
         for (int i = 0; i < 2; ++i) {
-          const double r = range_m + i + 0.05 * origin;
-          target.bind(1, k);
-          target.bind(2, origin == 0 ? "recorded" : "simulated");
-          target.bind(3, i);
-          target.bind(4, r);
-          target.bind(5, r * std::cos(0.1));
-          target.bind(6, r * std::sin(0.1));
-          target.bind(7, i);
-          target.exec();
-          target.reset();
+          StoredTarget t;
+          t.range_m = range_m + i + 0.05 * origin;
+          t.azimuth_rad = 0.1;
+          t.range_rate_mps = -1;
+          t.amplitude_db = 20;
+          t.object = 0;
+          t.match_idx = i;
+          lists[origin].push_back(t);
         }
       }
-      state.bind(1, k);
-      state.bind(2, range_m + 6.0);
-      state.exec();
-      state.reset();
+      rows.add_cycle(c, lists[0], lists[1]);
+      rows.add_object_states(k, {{k, 0, Pose2{range_m + 6.0, 0, 3.14}}});
     }
+    rows.finish();
     db->exec("INSERT INTO summaries VALUES (1, 30000, 60000, 60000, 60000, 0.1, 0.1, 0.01, 0, 0, 0, 0, 0, NULL, NULL, 0, "
              "0.05, 0, 0, 0, 1, 2, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL)");
     transaction.commit();

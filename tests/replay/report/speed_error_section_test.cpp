@@ -145,15 +145,17 @@ std::vector<Row> two_recordings(const std::string& second_name, bool with_refere
 void insert_minimal_run(SQLite::Database& db, int run_id) {
   SQLite::Statement run(db,
                         "INSERT INTO runs VALUES (?, 'minimal', '/x', '0000000000000000', '{}', 0.04, 1, 1, "
-                        "'tracks', '{}', '0', '2024-01-01T00:00:00Z')");
+                        "'tracks', '{}', '0', '2024-01-01T00:00:00Z', 'full')");
   run.bind(1, run_id);
   run.exec();
   SQLite::Statement sensor(db, "INSERT INTO run_sensors VALUES (?, 0, 's', 'srr24', 3.7, 0, 0, 1.0, 50, '{}')");
   sensor.bind(1, run_id);
   sensor.exec();
-  SQLite::Statement cycle(db, "INSERT INTO cycles VALUES (?, 0, 0, 0, 3.7, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
-  cycle.bind(1, run_id);
-  cycle.exec();
+  RunRowWriter rows(db, run_id, StoreLevel::full, 2.0, 2.0);
+  StoredCycle cycle;
+  cycle.X_WS = Pose2{3.7, 0, 0};
+  rows.add_cycle(cycle, {}, {});
+  rows.finish();
   SQLite::Statement summary(db,
                             "INSERT INTO summaries VALUES (?, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, NULL, NULL, 0, "
                             "0, 0, 0, 0, 1, 2, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL)");

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 
 #include "replay/import/aimotive_importer.hpp"
 #include "replay/run/replay_run.hpp"
@@ -66,18 +67,26 @@ TEST_F(RealDriveReplay, ClassesObjectFiguresAndOptionalColumnsOfTheSample) {
   EXPECT_LE(object_targets, k.object[0]);  // object targets of boxes out of view are not counted
 
   // The optional columns reach the report for the recorded targets only.
-  EXPECT_EQ(db->execAndGet("SELECT count(*) FROM targets WHERE origin = 'recorded' AND rcs_dbsm IS NOT NULL AND "
-                           "snr_db IS NOT NULL AND elevation_rad IS NOT NULL").getInt(), 3909);
-  EXPECT_EQ(db->execAndGet("SELECT count(*) FROM targets WHERE origin = 'simulated' AND rcs_dbsm IS NOT NULL").getInt(), 0);
-  // Object targets lie within the association gate of their box, in the object's frame.
-  SQLite::Statement q(*db, "SELECT t.x_o_m, t.y_o_m, o.length_m, o.width_m FROM targets t JOIN run_objects o "
-                           "ON o.run_id = t.run_id AND o.object = t.object WHERE t.target_class = 'object'");
-  int n = 0;
-  while (q.executeStep()) {
-    ++n;
-    EXPECT_LE(std::abs(q.getColumn(0).getDouble()), 0.5 * q.getColumn(2).getDouble() + options.association_gate_m);
-    EXPECT_LE(std::abs(q.getColumn(1).getDouble()), 0.5 * q.getColumn(3).getDouble() + options.association_gate_m);
+  std::map<int, std::pair<double, double>> size_m;  // object -> (length, width)
+  SQLite::Statement objects(*db, "SELECT object, length_m, width_m FROM run_objects WHERE run_id = ?");
+  objects.bind(1, writer.run_id());
+  while (objects.executeStep()) {
+    size_m[objects.getColumn(0).getInt()] = {objects.getColumn(1).getDouble(), objects.getColumn(2).getDouble()};
   }
+  int recorded_with_all = 0, simulated_with_rcs = 0, n = 0;
+  for_each_target(*db, writer.run_id(), {}, [&](const StoredTarget& t) {
+    recorded_with_all += !t.simulated && !std::isnan(t.rcs_dbsm) && !std::isnan(t.snr_db) && !std::isnan(t.elevation_rad);
+    simulated_with_rcs += t.simulated && !std::isnan(t.rcs_dbsm);
+    if (t.target_class != metrics::TargetClass::object) return;
+    ++n;
+    ASSERT_TRUE(t.p_OT_O.has_value());
+    EXPECT_LE(std::abs(t.p_OT_O->x()), 0.5 * size_m[t.object].first + options.association_gate_m);
+    EXPECT_LE(std::abs(t.p_OT_O->y()), 0.5 * size_m[t.object].second + options.association_gate_m);
+  });
+  // The optional columns reach the report for the recorded targets only.
+  EXPECT_EQ(recorded_with_all, 3909);
+  EXPECT_EQ(simulated_with_rcs, 0);
+  // Object targets lie within the association gate of their box, in the object's frame.
   EXPECT_EQ(n, k.object[0] + k.object[1]);
 }
 

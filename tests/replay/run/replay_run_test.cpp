@@ -51,14 +51,12 @@ TEST_F(ReplayRun, ModelAgainstItselfWithTheSameSeedAgreesToFileRounding) {
     EXPECT_LT(d.distance.kolmogorov_smirnov, 0.05) << d.quantity;
   }
 
-  SQLite::Statement count(*db, "SELECT count(*) FROM targets WHERE run_id = ? AND origin = 'recorded'");
-  count.bind(1, writer.run_id());
-  ASSERT_TRUE(count.executeStep());
-  EXPECT_EQ(count.getColumn(0).getInt64(), s.targets_recorded);
-  SQLite::Statement cycles(*db, "SELECT count(*) FROM cycles WHERE run_id = ?");
-  cycles.bind(1, writer.run_id());
-  ASSERT_TRUE(cycles.executeStep());
-  EXPECT_EQ(cycles.getColumn(0).getInt(), s.cycles * 2);
+  long long recorded = 0;
+  for_each_target(*db, writer.run_id(), {}, [&](const StoredTarget& t) { recorded += !t.simulated; });
+  EXPECT_EQ(recorded, s.targets_recorded);
+  int cycles = 0;
+  for_each_cycle(*db, writer.run_id(), {}, [&](const StoredCycle&) { ++cycles; });
+  EXPECT_EQ(cycles, s.cycles * 2);
 }
 
 TEST_F(ReplayRun, AnotherSeedDiffersButStaysClose) {
@@ -129,15 +127,17 @@ TEST_F(ReplayRun, TargetsAreClassedAndObjectFiguresAgreeWithItself) {
   EXPECT_EQ(s.classes.object[0], before.classes.object[0]);
   EXPECT_DOUBLE_EQ(s.gospa_object_mean_m, before.gospa_object_mean_m);  // the object subset is untouched
   EXPECT_GT(s.gospa_mean_m, before.gospa_mean_m);
-  SQLite::Statement added(*db, "SELECT target_class, rcs_dbsm, object, x_o_m FROM targets WHERE cycle = 10 AND "
-                               "sensor = 0 AND origin = 'recorded' AND range_m = 5.0 ORDER BY range_rate_mps");
-  ASSERT_TRUE(added.executeStep());
-  EXPECT_EQ(added.getColumn(0).getString(), "background");
-  EXPECT_DOUBLE_EQ(added.getColumn(1).getDouble(), 7.5);
-  EXPECT_TRUE(added.getColumn(2).isNull());
-  EXPECT_TRUE(added.getColumn(3).isNull());
-  ASSERT_TRUE(added.executeStep());
-  EXPECT_EQ(added.getColumn(0).getString(), "other");
+  std::vector<StoredTarget> added;  // by range rate
+  for_each_target(*db, writer.run_id(), {10, 10}, [&](const StoredTarget& t) {
+    if (t.sensor == 0 && !t.simulated && t.range_m == 5.0) added.push_back(t);
+  });
+  std::sort(added.begin(), added.end(), [](const auto& a, const auto& b) { return a.range_rate_mps < b.range_rate_mps; });
+  ASSERT_EQ(added.size(), 2u);
+  EXPECT_EQ(added[0].target_class, metrics::TargetClass::stationary_background);
+  EXPECT_DOUBLE_EQ(added[0].rcs_dbsm, 7.5);
+  EXPECT_EQ(added[0].object, -1);
+  EXPECT_FALSE(added[0].p_OT_O.has_value());
+  EXPECT_EQ(added[1].target_class, metrics::TargetClass::other);
 
   ASSERT_FALSE(s.objects.empty());
   for (const ObjectFigureRow& o : s.objects) {
@@ -147,13 +147,20 @@ TEST_F(ReplayRun, TargetsAreClassedAndObjectFiguresAgreeWithItself) {
   }
   // Offsets in the object frame: within the box grown by the association gate.
   const double gate_m = options.association_gate_m;
-  SQLite::Statement offsets(*db, "SELECT max(abs(x_o_m)), max(abs(y_o_m)), count(*) FROM targets "
-                                 "WHERE target_class = 'object'");
-  ASSERT_TRUE(offsets.executeStep());
-  EXPECT_GT(offsets.getColumn(2).getInt(), 100);
-  EXPECT_LE(offsets.getColumn(0).getDouble(), 0.5 * rec.objects[0].length_m + gate_m);
-  EXPECT_LE(offsets.getColumn(1).getDouble(), 0.5 * rec.objects[0].width_m + gate_m);
-  EXPECT_EQ(db->execAndGet("SELECT count(*) FROM targets WHERE origin = 'simulated' AND rcs_dbsm IS NOT NULL").getInt(), 0);
+  double max_x_m = 0.0, max_y_m = 0.0;
+  int object_targets = 0, simulated_with_rcs = 0;
+  for_each_target(*db, writer.run_id(), {}, [&](const StoredTarget& t) {
+    simulated_with_rcs += t.simulated && !std::isnan(t.rcs_dbsm);
+    if (t.target_class != metrics::TargetClass::object) return;
+    ++object_targets;
+    ASSERT_TRUE(t.p_OT_O.has_value());
+    max_x_m = std::max(max_x_m, std::abs(t.p_OT_O->x()));
+    max_y_m = std::max(max_y_m, std::abs(t.p_OT_O->y()));
+  });
+  EXPECT_GT(object_targets, 100);
+  EXPECT_LE(max_x_m, 0.5 * rec.objects[0].length_m + gate_m);
+  EXPECT_LE(max_y_m, 0.5 * rec.objects[0].width_m + gate_m);
+  EXPECT_EQ(simulated_with_rcs, 0);
 }
 
 // Latency cases computed by hand on a model-made recording replayed with its own seed: both sides

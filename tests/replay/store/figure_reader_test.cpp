@@ -8,10 +8,48 @@
 
 #include "common/angles.hpp"
 #include "replay/store/report_store.hpp"
+#include "replay/store/run_rows.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::replay::report {
 namespace {
+
+using replay::RunRowWriter;
+using replay::StoredCycle;
+using replay::StoredObjectState;
+using replay::StoredTarget;
+using replay::StoreLevel;
+
+
+// A cycle row of sensor 0 without the real-drive figures.
+StoredCycle cycle_row(int cycle, double t_s, Pose2 X_WS, int n_recorded, int n_simulated, int n_assigned,
+                      double gospa_m, int merge_recorded, int merge_simulated, int merge_matched) {
+  StoredCycle c;
+  c.cycle = cycle;
+  c.t_s = t_s;
+  c.X_WS = X_WS;
+  c.n_recorded = n_recorded;
+  c.n_simulated = n_simulated;
+  c.n_assigned = n_assigned;
+  c.gospa_m = c.ospa_m = gospa_m;
+  c.merge_recorded = merge_recorded;
+  c.merge_simulated = merge_simulated;
+  c.merge_matched = merge_matched;
+  return c;
+}
+
+StoredTarget target(double range_m, double azimuth_rad, double range_rate_mps, double amplitude_db, int object,
+                    int match_idx, bool merge_artefact) {
+  StoredTarget t;
+  t.range_m = range_m;
+  t.azimuth_rad = azimuth_rad;
+  t.range_rate_mps = range_rate_mps;
+  t.amplitude_db = amplitude_db;
+  t.object = object;
+  t.match_idx = match_idx;
+  t.merge_artefact = merge_artefact;
+  return t;
+}
 
 class FigureReader : public rcsim::testing::ScratchDirTest {
  protected:
@@ -19,20 +57,26 @@ class FigureReader : public rcsim::testing::ScratchDirTest {
   void SetUp() override {
     ScratchDirTest::SetUp();
     db_ = open_report_database((dir_ / "f.sqlite").string(), true);
-    db_->exec("INSERT INTO runs VALUES (1, 'r', '/r', '0', '{}', 0.1, 4, 0, 'tracks', '{}', 'v', 't')");
-    // cycle, sensor, t, pose, n_rec, n_sim, n_assigned, gospa, parts, ospa, merges
-    const char* cycles[] = {"(1, 0, 0, 0.0, 1, 0, 0, 1, 1, 1, 0.5, 0, 0, 0, 0.5, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)",
-                            "(1, 1, 0, 0.1, 1, 0, 0, 0, 2, 0, 1.5, 0, 0, 0, 1.5, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)",
-                            "(1, 2, 0, 0.2, 1, 0, 0, 3, 1, 1, 2.5, 0, 0, 0, 2.5, 2, 1, 1, NULL, NULL, NULL, NULL, NULL, NULL)",
-                            "(1, 3, 0, 0.3, 2, 0, 1.5707963267948966, 1, 1, 1, 0.0, 0, 0, 0, 0.0, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)"};
-    for (const char* row : cycles) db_->exec(std::string("INSERT INTO cycles VALUES ") + row);
-    // Cycle 3: a recorded target at (1, 0) in the sensor frame matched to a simulated one 0.2 m farther
-    // and 2*pi - 0.1 rad round in azimuth (a wrap), and a merge pair with its object states.
-    db_->exec("INSERT INTO targets VALUES (1, 3, 0, 'recorded', 0, NULL, 1.0, 0.05, -1.0, 3.0, 1.0, 0.0, 0, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
-    db_->exec("INSERT INTO targets VALUES (1, 3, 0, 'simulated', 0, 7, 1.2, 6.233185307179586, -1.5, 1.0, 1.1, 0.2, 0, 0, 1, NULL, NULL, NULL, NULL, NULL, NULL)");
-    db_->exec("INSERT INTO targets VALUES (1, 1, 0, 'recorded', 0, NULL, 4.0, 0.0, 0.0, 0.0, 4.0, 0.0, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL)");
+    db_->exec("INSERT INTO runs (run_id, recording_name, recording_dir, recording_checksum, recording_source, "
+              "cycle_time_s, cycles, seed, level, parameters, rcsim_version, created_utc) "
+              "VALUES (1, 'r', '/r', '0', '{}', 0.1, 4, 0, 'tracks', '{}', 'v', 't')");
+    RunRowWriter rows(*db_, 1, StoreLevel::full, 2.0, 2.0);
+    const Pose2 ahead{1, 0, 0};
+    // cycle, t, pose, n_rec, n_sim, n_assigned, gospa (= OSPA), merges
+    rows.add_cycle(cycle_row(0, 0.0, ahead, 1, 1, 1, 0.5, 0, 0, 0), {}, {});
+    // Cycle 1: a recorded target 4 m ahead, alone.
+    rows.add_cycle(cycle_row(1, 0.1, ahead, 2, 0, 0, 1.5, 0, 0, 0), {target(4.0, 0.0, 0.0, 0.0, -1, -1, false)}, {});
+    rows.add_cycle(cycle_row(2, 0.2, ahead, 3, 1, 1, 2.5, 2, 1, 1), {}, {});
+    // Cycle 3: a recorded target at (1, 0) in the sensor frame matched to a simulated one 0.2 m
+    // farther and 2*pi - 0.1 rad round in azimuth (a wrap), and a merge pair with its object state.
+    rows.add_cycle(cycle_row(3, 0.3, Pose2{2, 0, 1.5707963267948966}, 1, 1, 1, 0.0, 0, 0, 0),
+                   {target(1.0, 0.05, -1.0, 3.0, 0, 0, false)}, {target(1.2, 6.233185307179586, -1.5, 1.0, 0, 0, true)});
+    for (int cycle = 0; cycle < 4; ++cycle) {
+      rows.add_object_states(cycle, cycle == 3 ? std::vector<StoredObjectState>{{3, 0, Pose2{5.0, 1.0, 0.5}}}
+                                               : std::vector<StoredObjectState>{});
+    }
+    rows.finish();
     db_->exec("INSERT INTO merge_pairs VALUES (1, 3, 0, 0, 1)");
-    db_->exec("INSERT INTO object_states VALUES (1, 3, 0, 5.0, 1.0, 0.5)");
   }
   std::unique_ptr<SQLite::Database> db_;
 };
@@ -83,14 +127,15 @@ TEST_F(FigureReader, ResidualsOfAssignedPairsWithTheAzimuthWrapped) {
   std::vector<Residuals> seen;
   EXPECT_EQ(for_each_residual(*db_, 1, [&](const Residuals& r) { seen.push_back(r); }), 1);
   ASSERT_EQ(seen.size(), 1u);
-  EXPECT_NEAR(seen[0][0], 0.2, 1e-12);
-  EXPECT_NEAR(seen[0][1], 6.233185307179586 - 0.05 - 2 * kPi, 1e-12);  // -0.1, not 6.18
-  EXPECT_NEAR(seen[0][2], -0.5, 1e-12);
-  EXPECT_NEAR(seen[0][3], -2.0, 1e-12);
+  // The targets' reals are stored as float32: about 7 significant digits.
+  EXPECT_NEAR(seen[0][0], 0.2, 1e-6);
+  EXPECT_NEAR(seen[0][1], 6.233185307179586 - 0.05 - 2 * kPi, 1e-6);  // -0.1, not 6.18
+  EXPECT_NEAR(seen[0][2], -0.5, 1e-6);
+  EXPECT_NEAR(seen[0][3], -2.0, 1e-6);
   const ResidualSampleStats stats = read_residual_sample_stats(*db_, 1, 1);
   EXPECT_EQ(stats.count, 1);
-  EXPECT_NEAR(stats.mean[0], 0.2, 1e-12);
-  EXPECT_NEAR(stats.mean_square[3], 4.0, 1e-12);
+  EXPECT_NEAR(stats.mean[0], 0.2, 1e-6);
+  EXPECT_NEAR(stats.mean_square[3], 4.0, 1e-6);
 }
 
 }  // namespace
