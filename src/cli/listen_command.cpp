@@ -74,7 +74,17 @@ void run_listen(const ListenArgs& args) {
   if (!args.output.empty() && args.output != "-") file.emplace(args.output);
   std::ostream& out = file ? file->stream() : std::cout;
   stream::Listener listener(options, out, std::cerr);
-  const stream::ListenSummary summary = listener.run();
+  stream::ListenSummary summary;
+  try {
+    summary = listener.run();
+  } catch (...) {
+    // An error must not lose the capture: what was received before it is kept.
+    if (file) {
+      file->commit();
+      std::cerr << "rcsim listen: the target lists received before the error are kept in " << args.output << '\n';
+    }
+    throw;
+  }
   if (file) file->commit();
   std::cerr << summary.line() << std::endl;
 }
@@ -95,7 +105,7 @@ void add_listen_command(CLI::App& app) {
       ->check(CLI::IsMember({"simulated", "recorded"}))
       ->capture_default_str();
   cmd->add_option("--format", args->format, "csv | jsonl")->check(CLI::IsMember({"csv", "jsonl"}))->capture_default_str();
-  cmd->add_option("-o,--output", args->output, "Output file (written atomically at the end); stdout if omitted");
+  cmd->add_option("-o,--output", args->output, "Output file (written atomically at the end, or when an error ends the capture); stdout if omitted");
   cmd->add_option("--truth-output", args->truth_output, "Write the ground truth (ego and object boxes) to this CSV file");
   cmd->add_option("--pcap", args->pcap, "Write every datagram received to this pcap file (for Wireshark/tshark)");
   cmd->add_option("--idle-timeout-s", args->idle_timeout_s, "End after this long without a datagram (0: never)")

@@ -55,6 +55,9 @@ constexpr std::size_t kFlushBytes = 1 << 16;
 constexpr int kReceiveBufferBytes = 8 << 20;
 constexpr auto kResubscribePeriod = std::chrono::milliseconds(500);
 constexpr int kSubscribeAttempts = 20;
+// Keepalives a subscribed listener sends without any reply before it takes the streamer for gone
+// (crashed or killed) and ends with an error, keeping what it received.
+constexpr int kUnansweredKeepalives = 5;
 
 struct Source {
   SequenceTracker sequence;
@@ -101,6 +104,7 @@ struct Listener::Impl {
   std::uint64_t control_sequence = 0;
   bool subscribed = false, stopping = false;
   int subscribe_attempts = 0;
+  int unanswered_keepalives = 0;
   std::string failure;
   Clock::time_point last_datagram = Clock::now();
 };
@@ -240,6 +244,7 @@ void Listener::Impl::handle_reply(std::span<const std::uint8_t> payload) {
     return;
   }
   ++summary.replies;
+  unanswered_keepalives = 0;
   if (reply.request_type == MessageType::subscribe) {
     if (reply.result == ReplyResult::ok) {
       if (!subscribed) log << "rcsim listen: subscribed at " << to_string(*control) << '\n';
@@ -284,7 +289,15 @@ void Listener::Impl::subscribe_tick() {
 
 void Listener::Impl::keepalive_tick() {
   if (stopping) return;
-  if (subscribed) send_control(MessageType::keepalive);
+  if (subscribed) {
+    if (unanswered_keepalives++ >= kUnansweredKeepalives) {
+      failure = fmt::format("the streamer at {} stopped answering: {} keepalives unanswered", to_string(*control),
+                            kUnansweredKeepalives);
+      finish();
+      return;
+    }
+    send_control(MessageType::keepalive);
+  }
   keepalive_timer.expires_after(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.keepalive_s)));
   keepalive_timer.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) keepalive_tick();
@@ -339,10 +352,18 @@ ListenSummary Listener::run() {
       s.finish();
     });
   }
-  s.io.run();
-  s.flush_output();
-  if (s.pcap) s.pcap->flush();
-  if (s.truth) s.truth->flush();
+  const auto flush_all = [&s] {
+    s.flush_output();
+    if (s.pcap) s.pcap->flush();
+    if (s.truth) s.truth->flush();
+  };
+  try {
+    s.io.run();
+  } catch (...) {
+    flush_all();  // what was received before the error stays written
+    throw;
+  }
+  flush_all();
   for (auto& [endpoint, source] : s.sources) {
     source.reassembler.flush();
     s.summary.lost += source.sequence.lost();

@@ -2,6 +2,10 @@
 // byte-identical to what `rcsim simulate -o` writes; SIGTERM stops cleanly; bad input refused.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+
+#include <algorithm>
+#include <thread>
 
 #include "stream_test_support.hpp"
 
@@ -87,6 +91,32 @@ TEST_F(ListenCli, BadArgumentsAreRefusedWithAMessage) {
   std::tie(code, err) = run({kBinary, "stream", kScene, "--to", "nohost.invalid:5000"});
   EXPECT_NE(code, 0);
   EXPECT_NE(err.find("nohost.invalid"), std::string::npos) << err;
+}
+
+// Issue 21: an error must never lose a capture. The streamer is killed mid-stream; the listener
+// subscribed to it hears no answer to its keepalives, ends with that error, and keeps every
+// target list received before it in its output file (5 keepalives at 1 s unanswered).
+TEST_F(ListenCli, AnErrorKeepsTheCaptureReceivedBeforeIt) {
+  testing::Child streamer = testing::spawn({kBinary, "stream", kScene, "--control", "127.0.0.1:0", "--speed", "1"},
+                                           dir_ / "stream.out", dir_ / "stream.err");
+  const std::string stream_log = testing::wait_for_text(dir_ / "stream.err", "control port ");
+  const std::string control = stream_log.substr(stream_log.find("control port ") + 13);
+  const fs::path out = dir_ / "capture.csv", log = dir_ / "listen.err";
+  testing::Child listener = testing::spawn(
+      {kBinary, "listen", "--subscribe", "127.0.0.1:" + control.substr(0, control.find_first_not_of("0123456789")), "-o",
+       out.string()},
+      dir_ / "listen.out", log);
+  std::this_thread::sleep_for(1500ms);  // about 37 of the scene's 101 cycles at real time
+  ::kill(streamer.pid, SIGKILL);
+  EXPECT_EQ(streamer.wait(), 128 + SIGKILL);
+  EXPECT_EQ(listener.wait(30s), 1) << testing::read_file(log);
+  const std::string listen_log = testing::read_file(log);
+  EXPECT_NE(listen_log.find("the target lists received before the error are kept in " + out.string()), std::string::npos)
+      << listen_log;
+  EXPECT_NE(listen_log.find("stopped answering: 5 keepalives unanswered"), std::string::npos) << listen_log;
+  const std::string capture = testing::read_file(out);
+  const auto rows = std::count(capture.begin(), capture.end(), '\n');
+  EXPECT_GT(rows, 20) << capture;  // header and the rows of the cycles streamed before the kill
 }
 
 }  // namespace
