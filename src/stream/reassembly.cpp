@@ -12,22 +12,42 @@ Arrival SequenceTracker::observe(std::uint64_t sequence) {
     // Remember at most kWindow missing numbers; anything older is lost for good.
     const std::uint64_t tracked = std::min(gap, kWindow);
     given_up_ += gap - tracked;
-    for (std::uint64_t s = sequence - tracked; s < sequence; ++s) missing_.insert(s);
-    while (missing_.size() > kWindow) {
-      missing_.erase(missing_.begin());
-      ++given_up_;
+    if (tracked > 0) {
+      missing_.emplace(sequence - tracked, sequence);
+      missing_count_ += tracked;
+      give_up_beyond_window();
     }
     next_ = sequence + 1;
     ++received_;
     return gap == 0 ? Arrival::in_order : Arrival::after_gap;
   }
-  if (missing_.erase(sequence) == 1) {
+  // The range holding `sequence`, if any: split around it.
+  auto it = missing_.upper_bound(sequence);
+  if (it != missing_.begin() && sequence < (--it)->second) {
+    const auto [from, end] = *it;
+    missing_.erase(it);
+    if (from < sequence) missing_.emplace(from, sequence);
+    if (sequence + 1 < end) missing_.emplace(sequence + 1, end);
+    --missing_count_;
     ++received_;
     ++reordered_;
     return Arrival::late;
   }
   ++duplicates_;
   return Arrival::duplicate;
+}
+
+void SequenceTracker::give_up_beyond_window() {
+  while (missing_count_ > kWindow) {
+    const auto oldest = missing_.begin();
+    const auto [from, end] = *oldest;
+    const std::uint64_t excess = missing_count_ - kWindow;
+    missing_.erase(oldest);
+    if (end - from > excess) missing_.emplace(from + excess, end);  // the range's newer part stays
+    const std::uint64_t dropped = std::min(end - from, excess);
+    given_up_ += dropped;
+    missing_count_ -= dropped;
+  }
 }
 
 Reassembler::Result Reassembler::add(const Header& header, std::span<const std::uint8_t> payload) {
@@ -37,8 +57,8 @@ Reassembler::Result Reassembler::add(const Header& header, std::span<const std::
     single.first_header = header;
     single.have_first = true;
     single.type = header.type;
-    single.fragments.emplace_back(std::vector<std::uint8_t>(payload.begin(), payload.end()));
-    single.received = 1;
+    single.fragment_count = 1;
+    single.fragments.emplace(0, std::vector<std::uint8_t>(payload.begin(), payload.end()));
     expire(header.message_number);
     return assemble(single);
   }
@@ -46,35 +66,46 @@ Reassembler::Result Reassembler::add(const Header& header, std::span<const std::
   auto [it, inserted] = partial_.try_emplace(header.message_number);
   Partial& p = it->second;
   if (inserted) {
-    p.fragments.resize(header.fragment_count);
+    p.fragment_count = header.fragment_count;
     p.type = header.type;
   }
-  if (p.type != header.type || p.fragments.size() != header.fragment_count) {
-    partial_.erase(it);
+  if (p.type != header.type || p.fragment_count != header.fragment_count) {
+    drop(it);
     result.status = Status::malformed;
     result.error = DecodeError::bad_fragment;
     return result;
   }
-  auto& slot = p.fragments[header.fragment_index];
-  if (slot) {
+  if (p.fragments.count(header.fragment_index) != 0) {
     result.status = Status::duplicate_fragment;
     return result;
   }
-  slot.emplace(payload.begin(), payload.end());
-  ++p.received;
+  const std::size_t bytes = payload.size() + kFragmentOverheadBytes;
+  make_room(bytes, header.message_number);
+  if (pending_bytes_ + bytes > kMaxPendingBytes) {
+    // This message alone outgrows every partial message's room: no sensor sends one so large.
+    drop(it);
+    ++incomplete_;
+    result.status = Status::malformed;
+    result.error = DecodeError::bad_length;
+    return result;
+  }
+  p.fragments.emplace(header.fragment_index, std::vector<std::uint8_t>(payload.begin(), payload.end()));
+  p.bytes += bytes;
+  pending_bytes_ += bytes;
   if (header.fragment_index == 0) {
     p.first_header = header;
     p.have_first = true;
   }
-  if (p.received < p.fragments.size()) return result;
-  Partial done = std::move(p);
+  if (p.fragments.size() < p.fragment_count) return result;
+  const Partial done = std::move(p);
+  pending_bytes_ -= done.bytes;
   partial_.erase(it);
   result = assemble(done);
   if (result.status == Status::complete) ++fragmented_completed_;
   return result;
 }
 
-Reassembler::Result Reassembler::assemble(Partial& partial) {
+Reassembler::Result Reassembler::assemble(const Partial& partial) {
   Result result;
   result.status = Status::malformed;
   const bool targets = partial.type != MessageType::ground_truth;
@@ -82,8 +113,7 @@ Reassembler::Result Reassembler::assemble(Partial& partial) {
   GroundTruthMessage truth;
   std::uint32_t total = 0;
   std::size_t next_index = 0;
-  for (std::size_t f = 0; f < partial.fragments.size(); ++f) {
-    const auto& bytes = *partial.fragments[f];
+  for (const auto& [f, bytes] : partial.fragments) {
     std::uint32_t first = 0, fragment_total = 0;
     std::size_t items = 0;
     bool agrees = true;
@@ -98,7 +128,7 @@ Reassembler::Result Reassembler::assemble(Partial& partial) {
         list = std::move(fragment.message);
         // The claimed total is not trusted beyond what the fragments can hold (a hostile header may
         // claim 2^32 targets): at most a full datagram of targets per fragment.
-        const std::size_t most = partial.fragments.size() * (kMaxDatagramBytes / kTargetBytes);
+        const std::size_t most = std::size_t{partial.fragment_count} * (kMaxDatagramBytes / kTargetBytes);
         list.targets.reserve(std::min<std::size_t>(fragment_total, most));
       } else {
         const TargetListMessage& m = fragment.message;
@@ -145,11 +175,32 @@ void Reassembler::expire(std::uint32_t newest) {
   if (!newest_ || static_cast<std::int32_t>(newest - *newest_) > 0) newest_ = newest;
   for (auto it = partial_.begin(); it != partial_.end();) {
     if (static_cast<std::uint32_t>(*newest_ - it->first) > kMaxAge && static_cast<std::int32_t>(*newest_ - it->first) > 0) {
-      it = partial_.erase(it);
-      ++incomplete_;
+      give_up(it++);
     } else {
       ++it;
     }
+  }
+}
+
+void Reassembler::drop(std::map<std::uint32_t, Partial>::iterator it) {
+  pending_bytes_ -= it->second.bytes;
+  partial_.erase(it);
+}
+
+void Reassembler::give_up(std::map<std::uint32_t, Partial>::iterator it) {
+  drop(it);
+  ++incomplete_;
+}
+
+void Reassembler::make_room(std::size_t more, std::uint32_t keep) {
+  while (pending_bytes_ + more > kMaxPendingBytes) {
+    // The oldest: the furthest behind the newest message number, modulo 2^32.
+    auto oldest = partial_.end();
+    for (auto it = partial_.begin(); it != partial_.end(); ++it) {
+      if (it->first != keep && (oldest == partial_.end() || *newest_ - it->first > *newest_ - oldest->first)) oldest = it;
+    }
+    if (oldest == partial_.end()) return;  // only `keep` left
+    give_up(oldest);
   }
 }
 
@@ -157,6 +208,7 @@ std::uint64_t Reassembler::flush() {
   const std::uint64_t n = partial_.size();
   incomplete_ += n;
   partial_.clear();
+  pending_bytes_ = 0;
   return n;
 }
 

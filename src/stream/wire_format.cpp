@@ -78,6 +78,37 @@ void check_id(const std::string& id, const char* what) {
   if (id.empty() || id.size() > 255) throw std::invalid_argument(std::string(what) + " must have 1 to 255 bytes: '" + id + "'");
 }
 
+// Well-formed UTF-8 (Unicode 15, table 3-7: no overlong forms, no surrogates, at most U+10FFFF):
+// an id is printed into JSON Lines, whose writer refuses anything else.
+bool is_utf8(std::string_view text) {
+  const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+  const auto* end = p + text.size();
+  const auto in = [](unsigned char c, unsigned char lo, unsigned char hi) { return c >= lo && c <= hi; };
+  while (p < end) {
+    const unsigned char c = *p;
+    std::size_t n = 0;
+    unsigned char lo = 0x80, hi = 0xBF;  // the range of the second byte
+    if (c <= 0x7F) {
+      ++p;
+      continue;
+    }
+    if (in(c, 0xC2, 0xDF)) n = 1;
+    else if (c == 0xE0) n = 2, lo = 0xA0;
+    else if (in(c, 0xE1, 0xEC) || in(c, 0xEE, 0xEF)) n = 2;
+    else if (c == 0xED) n = 2, hi = 0x9F;
+    else if (c == 0xF0) n = 3, lo = 0x90;
+    else if (in(c, 0xF1, 0xF3)) n = 3;
+    else if (c == 0xF4) n = 3, hi = 0x8F;
+    else return false;
+    if (static_cast<std::size_t>(end - p) <= n || !in(p[1], lo, hi)) return false;
+    for (std::size_t i = 2; i <= n; ++i) {
+      if (!in(p[i], 0x80, 0xBF)) return false;
+    }
+    p += n + 1;
+  }
+  return true;
+}
+
 bool finite(std::initializer_list<double> values) {
   return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
 }
@@ -349,6 +380,7 @@ DecodeError decode_target_list(std::span<const std::uint8_t> payload, TargetList
   if (static_cast<std::uint64_t>(out.first_index) + n > out.total_count) return DecodeError::bad_value;
   m.level = static_cast<ListLevel>(level);
   m.sensor_id = r.text(id_length);
+  if (!is_utf8(m.sensor_id)) return DecodeError::bad_value;
   m.targets.resize(n);
   for (WireTarget& t : m.targets) {
     t.id = r.i32();
@@ -383,7 +415,8 @@ DecodeError decode_ground_truth(std::span<const std::uint8_t> payload, GroundTru
     const std::size_t id_length = r.u8();
     o.object_id = r.text(id_length);
     if (!r.ok()) return DecodeError::bad_length;
-    if (id_length == 0 || !finite({o.pose.x_m, o.pose.y_m, o.pose.yaw_rad, o.pose.speed_mps, o.length_m, o.width_m})) {
+    if (id_length == 0 || !is_utf8(o.object_id) ||
+        !finite({o.pose.x_m, o.pose.y_m, o.pose.yaw_rad, o.pose.speed_mps, o.length_m, o.width_m})) {
       return DecodeError::bad_value;
     }
   }

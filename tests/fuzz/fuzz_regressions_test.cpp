@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,7 @@ const fs::path kRegressions = fs::path(RCSIM_SOURCE_DIR) / "tests" / "fuzz" / "r
 struct RegressionInput {
   std::string harness, file;
 };
+void PrintTo(const RegressionInput& input, std::ostream* out) { *out << input.harness << "/" << input.file; }
 
 std::vector<RegressionInput> regression_inputs() {
   std::vector<RegressionInput> inputs;

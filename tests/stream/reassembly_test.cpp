@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <random>
+#include <set>
 
 namespace rcsim::stream {
 namespace {
@@ -78,6 +80,50 @@ TEST(WireSequence, AHostileJumpDoesNotGrowMemoryWithoutBound) {
   EXPECT_EQ(t.lost(), (std::uint64_t{1} << 40) - 1);  // all counted lost, only kWindow remembered
   EXPECT_EQ(t.observe((std::uint64_t{1} << 40) - 1), Arrival::late);
   EXPECT_EQ(t.observe(5), Arrival::duplicate);  // too old to tell: not a late arrival
+}
+
+// The tracker against the plain model it replaces (a set of the newest kWindow missing numbers)
+// over random gaps, reorderings, duplicates and jumps beyond the window.
+TEST(WireSequence, MissingRangesCountAsTheSetOfMissingNumbersWould) {
+  std::mt19937_64 rng(21);
+  SequenceTracker t(std::uint64_t{0});
+  std::set<std::uint64_t> missing;
+  std::uint64_t next = 0, given_up = 0;
+  for (int i = 0; i < 10000; ++i) {
+    std::uint64_t s = next + rng() % 4;  // in order or a small gap
+    const auto kind = rng() % 100;
+    if (kind < 30 && next > 0) {
+      s = next - 1 - rng() % std::min<std::uint64_t>(next, 3 * SequenceTracker::kWindow / 2);  // late, duplicate or too old
+    } else if (kind == 99) {
+      s = next + SequenceTracker::kWindow / 2 + rng() % (2 * SequenceTracker::kWindow);  // a jump, maybe beyond the window
+    }
+    Arrival expected;
+    if (s >= next) {
+      const std::uint64_t gap = s - next, tracked = std::min(gap, SequenceTracker::kWindow);
+      given_up += gap - tracked;
+      for (std::uint64_t m = s - tracked; m < s; ++m) missing.insert(m);
+      while (missing.size() > SequenceTracker::kWindow) {
+        missing.erase(missing.begin());
+        ++given_up;
+      }
+      next = s + 1;
+      expected = gap == 0 ? Arrival::in_order : Arrival::after_gap;
+    } else {
+      expected = missing.erase(s) == 1 ? Arrival::late : Arrival::duplicate;
+    }
+    ASSERT_EQ(t.observe(s), expected) << "datagram " << i << ", sequence " << s;
+    ASSERT_EQ(t.lost(), given_up + missing.size()) << "datagram " << i;
+  }
+}
+
+TEST(WireSequence, HostileJumpsCostARangeEachNotOneEntryPerNumber) {
+  // Each jump left 2^16 numbers missing; as a set that was 8 ms a datagram (Release), so a flood
+  // of them stalled the listener. Fuzzing (tests/fuzz, udp_datagram) made it show.
+  SequenceTracker t(std::uint64_t{0});
+  std::uint64_t s = 0;
+  for (int i = 0; i < 100000; ++i, s += 70000) t.observe(s);
+  EXPECT_EQ(t.lost(), s - 70000 + 1 - 100000);
+  EXPECT_EQ(t.received(), 100000u);
 }
 
 TEST(WireSequence, LossOverALongLossyStreamIsCountedExactly) {
@@ -186,6 +232,65 @@ TEST(WireReassembly, AHugeClaimedTotalIsMalformedNotAnAllocation) {
     EXPECT_EQ(last.status, Reassembler::Status::malformed) << n;
     EXPECT_FALSE(last.message);
   }
+}
+
+TEST(WireReassembly, AClaimedFragmentCountIsNoAllocation) {
+  // 1100 datagrams of 35 bytes, each the first of a message claiming 65535 fragments, held 2 GB
+  // of empty fragment slots (found by fuzzing: tests/fuzz/regressions/udp_datagram/). Now each
+  // partial message holds what it received.
+  Reassembler reassembler;
+  const Bytes payload(3, 0);
+  for (std::uint32_t n = 0; n < 1100; ++n) {
+    Header h;
+    h.message_number = n;
+    h.fragment_count = 0xFFFF;
+    EXPECT_EQ(reassembler.add(h, payload).status, Reassembler::Status::pending);
+  }
+  EXPECT_EQ(reassembler.pending(), Reassembler::kMaxAge + 1);
+  EXPECT_EQ(reassembler.pending_bytes(), (Reassembler::kMaxAge + 1) * (3 + Reassembler::kFragmentOverheadBytes));
+  EXPECT_EQ(reassembler.incomplete(), 1100u - (Reassembler::kMaxAge + 1));
+}
+
+TEST(WireReassembly, PartialMessagesHoldAtMostTheirByteBudget) {
+  Reassembler reassembler;
+  const Bytes full(kMaxDatagramBytes - kHeaderBytes, 0);
+  // Full fragments of 1000 messages that never complete: the oldest are given up.
+  for (std::uint32_t n = 0; n < 1000; ++n) {
+    for (std::uint16_t f = 0; f < 20; ++f) {
+      Header h;
+      h.message_number = n;
+      h.fragment_index = f;
+      h.fragment_count = 0xFFFF;
+      reassembler.add(h, full);
+      ASSERT_LE(reassembler.pending_bytes(), Reassembler::kMaxPendingBytes);
+    }
+  }
+  EXPECT_GT(reassembler.incomplete(), 400u);
+  EXPECT_LT(reassembler.pending(), 600u);
+  // One message that alone outgrows the budget is malformed, not held.
+  Reassembler one;
+  Reassembler::Result last;
+  for (std::uint16_t f = 0; f < 0xFFFE; ++f) {
+    Header h;
+    h.message_number = 7;
+    h.fragment_index = f;
+    h.fragment_count = 0xFFFF;
+    last = one.add(h, full);
+    if (last.status != Reassembler::Status::pending) break;
+  }
+  EXPECT_EQ(last.status, Reassembler::Status::malformed);
+  EXPECT_EQ(last.error, DecodeError::bad_length);
+  EXPECT_EQ(one.pending_bytes(), 0u);
+  // A real message of 100,000 targets (3.6 MB, 2565 fragments) still reassembles.
+  const auto datagrams = datagrams_of(many_targets(100000, 3), 0, 9);
+  Reassembler big;
+  std::optional<CompleteMessage> message;
+  for (const auto& d : datagrams) {
+    auto result = big.add(d.header, d.payload);
+    if (result.message) message = std::move(result.message);
+  }
+  ASSERT_TRUE(message);
+  EXPECT_EQ(std::get<TargetListMessage>(message->message).targets.size(), 100000u);
 }
 
 TEST(WireReassembly, GroundTruthFragmentsReassemble) {

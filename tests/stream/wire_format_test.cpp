@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace rcsim::stream {
 namespace {
@@ -204,6 +206,28 @@ TEST(WireFormat, RefusalsNameTheirReason) {
   payload = encode_target_list(make_list(2))[0];
   payload.pop_back();
   EXPECT_EQ(decode_target_list(payload, f), DecodeError::bad_length);
+}
+
+TEST(WireFormat, IdsMustBeWellFormedUtf8) {
+  // A sensor id of one byte 0xFF ended `rcsim listen --format jsonl` (the JSON writer threw on
+  // it); found with the fuzz harness's path (tests/fuzz/regressions/udp_datagram/).
+  TargetListFragment f;
+  const std::vector<std::string> good = {"front_left", "Radar vorne \xC3\xA4", "\xE9\x9B\xB7\xE8\xBE\xBE",
+                                        "\xF0\x9F\x9A\x97", "\xF4\x8F\xBF\xBF", std::string(1, '\0')};
+  const std::vector<std::string> bad = {"\xFF", "\xC0\xAF", "\xC3", "\xE2\x82", "\xED\xA0\x80", "\xF4\x90\x80\x80", "ok\x80",
+                                        "\xF5\x80\x80\x80", "\xE0\x80\xAF"};
+  for (const std::string& id : good) {
+    EXPECT_EQ(decode_target_list(encode_target_list(make_list(1, id))[0], f), DecodeError::none) << id;
+  }
+  for (const std::string& id : bad) {
+    EXPECT_EQ(decode_target_list(encode_target_list(make_list(1, id))[0], f), DecodeError::bad_value) << id;
+  }
+  GroundTruthMessage truth;
+  truth.objects.push_back({0, {1.0, 2.0, 0.0, 0.0}, 4.0, 2.0, "car\xFF"});
+  GroundTruthFragment g;
+  EXPECT_EQ(decode_ground_truth(encode_ground_truth(truth)[0], g), DecodeError::bad_value);
+  truth.objects[0].object_id = "car_\xC3\xA4";
+  EXPECT_EQ(decode_ground_truth(encode_ground_truth(truth)[0], g), DecodeError::none);
 }
 
 TEST(WireFormat, FuzzedControlDatagramsNeverCrashAndAreAllCounted) {
