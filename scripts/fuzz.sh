@@ -32,19 +32,8 @@ fi
 
 # ---- build ----
 if [ "${FUZZ_NO_BUILD:-0}" != "1" ]; then
-  packages=(clang libclang-rt-14-dev cmake ninja-build ccache libeigen3-dev libboost-dev libsqlite3-dev libcli11-dev
-            nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libsqlitecpp-dev)
-  missing=()
-  for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  if [ ${#missing[@]} -gt 0 ]; then
-    echo "== installing: ${missing[*]}"
-    sudo_cmd=()
-    [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-    "${sudo_cmd[@]}" apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-  fi
+  scripts/install-packages.sh clang libclang-rt-14-dev cmake ninja-build ccache libeigen3-dev libboost-dev \
+    libsqlite3-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libsqlitecpp-dev
   export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
   jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
   CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRCSIM_FUZZ=ON \
