@@ -270,6 +270,27 @@ CREATE TABLE IF NOT EXISTS object_state_blocks (
 ) STRICT;
 )SQL";
 
+// Added in version 5 (issue 20): campaigns. The campaign the runs belong to (at most one row) and
+// its pass/fail criteria (replay/campaign/criteria.hpp, schemas/campaign.md); the verdicts are
+// computed from these and the stored figures whenever they are needed, never stored.
+extern const char* const kCampaignSchemaSql;
+const char* const kCampaignSchemaSql = R"SQL(
+CREATE TABLE IF NOT EXISTS campaign (
+  name TEXT NOT NULL,
+  manifest TEXT NOT NULL                 -- JSON: the rcsim-campaign manifest as planned
+) STRICT;
+
+CREATE TABLE IF NOT EXISTS criteria (
+  criterion INTEGER PRIMARY KEY,         -- 0, 1, ...: the order of the criteria document
+  figure TEXT NOT NULL,                  -- a figure of schemas/campaign.md (gospa_mean_m, ...)
+  scope TEXT NOT NULL CHECK (scope IN ('recording', 'campaign')),
+  statistic TEXT NOT NULL CHECK (statistic IN ('value', 'mean', 'median', 'p95', 'min', 'max')),  -- value: per recording
+  bound TEXT NOT NULL CHECK (bound IN ('max', 'min')),  -- max: passes if figure <= threshold; min: if >=
+  threshold REAL NOT NULL,
+  if_missing TEXT NOT NULL CHECK (if_missing IN ('fail', 'pass'))
+) STRICT;
+)SQL";
+
 // After the conversion of their rows (report_migration.cpp).
 extern const char* const kDropRowTablesSql;
 const char* const kDropRowTablesSql = R"SQL(

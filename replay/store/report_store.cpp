@@ -20,6 +20,7 @@ extern const char* const kBenchSchemaSql;
 extern const char* const kRealDriveSchemaSql;
 extern const char* const kBlockSchemaSql;
 extern const char* const kDropRowTablesSql;
+extern const char* const kCampaignSchemaSql;
 void convert_row_tables_to_blocks(SQLite::Database& db);  // report_migration.cpp
 
 namespace {
@@ -31,7 +32,9 @@ std::string sensor_configuration_text(const std::string& type, const std::filesy
   return read_text_file(base_dir / type);
 }
 
-nlohmann::ordered_json parameters_json(const ReplayOptions& options, const Effects& e) {
+}  // namespace
+
+nlohmann::ordered_json run_parameters_json(const ReplayOptions& options, const Effects& e) {
   return {
       {"fidelity",
        {{"level", std::string(fidelity_name(options.fidelity))}, {"documentation", "docs/fidelity.md"}}},
@@ -88,6 +91,8 @@ nlohmann::ordered_json parameters_json(const ReplayOptions& options, const Effec
         {"effects", {{"clutter", e.clutter}, {"multibounce", e.multibounce}, {"occlusion", e.occlusion}}}}}};
 }
 
+namespace {
+
 std::string utc_now() {
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(std::chrono::system_clock::now())));
 }
@@ -114,6 +119,7 @@ void upgrade_from(SQLite::Database& db, int version) {
     convert_row_tables_to_blocks(db);
     db.exec(kDropRowTablesSql);
   }
+  if (version < 5) db.exec(kCampaignSchemaSql);
 }
 
 // A compared target as the store keeps it.
@@ -164,7 +170,8 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
       throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
                                              static_cast<std::uint32_t>(application_id), kReportApplicationId));
     } else if (user_version >= 1 && user_version < kReportSchemaVersion) {
-      // v1 -> v2: the bench tables; v2 -> v3: the real-drive columns and tables; v3 -> v4: the blocks.
+      // v1 -> v2: the bench tables; v2 -> v3: the real-drive columns and tables; v3 -> v4: the blocks;
+      // v4 -> v5: the campaign and its criteria.
       SQLite::Transaction transaction(*db);
       try {
         upgrade_from(*db, user_version);
@@ -208,7 +215,7 @@ void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported
   run.bind(6, rec.cycle_count());
   run.bind(7, static_cast<std::int64_t>(options.seed));
   run.bind(8, "tracks");
-  run.bind(9, parameters_json(options, imported.effects).dump());  // the effects actually simulated
+  run.bind(9, run_parameters_json(options, imported.effects).dump());  // the effects actually simulated
   run.bind(10, RCSIM_VERSION);
   run.bind(11, utc_now());
   run.bind(12, std::string(store_level_name(store_)));

@@ -1,9 +1,11 @@
 #pragma once
-// The SQLite report database (`rcsim-report` v4, schemas/report-database.md): many replay runs
+// The SQLite report database (`rcsim-report` v5, schemas/report-database.md): many replay runs
 // in one file. A run is written in one transaction, so a replay that fails or is killed midway
 // leaves the database and its earlier runs as they were. Every value is bound to a prepared
 // statement; no text is ever pasted into SQL.
 #include <SQLiteCpp/SQLiteCpp.h>
+
+#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -16,15 +18,19 @@
 namespace rcsim::replay {
 
 inline constexpr std::int32_t kReportApplicationId = 0x52435352;  // "RCSR"
-// 2 added the bench tables, 3 the real-drive figures, 4 the blocks and the store level; 1 to 3
-// are migrated on opening.
-inline constexpr int kReportSchemaVersion = 4;
+// 2 added the bench tables, 3 the real-drive figures, 4 the blocks and the store level, 5 the
+// campaign and its criteria; 1 to 4 are migrated on opening.
+inline constexpr int kReportSchemaVersion = 5;
 
 // Opens (creating if needed) a report database; refuses a file that is not one, or one of
-// another schema version, naming the file. A version 1, 2 or 3 database is migrated to version 4
+// another schema version, naming the file. A version 1 to 4 database is migrated to version 5
 // in one transaction: tables and columns are added (the runs' new columns NULL, their store
 // `full`), and the rows of `cycles`, `targets` and `object_states` are converted into blocks.
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
+
+// The run's `parameters` (schemas/report-database.md): the metric and import parameters with their
+// sources, and the effects actually simulated.
+nlohmann::ordered_json run_parameters_json(const ReplayOptions& options, const Effects& effects);
 
 // Stores one replay run as it streams in.
 class ReportWriter final : public ReplaySink {

@@ -25,7 +25,8 @@ const std::map<std::string, std::string> kLayerOfDir{
     {"src/traffic", "traffic"}, {"replay/import", "replay_import"},
     {"replay/run", "replay_run"}, {"replay/evaluate", "replay_evaluate"},
     {"replay/calibrate", "replay_calibrate"}, {"replay/store", "replay_store"},
-    {"replay/report", "replay_report"}, {"src/stream", "stream"},
+    {"replay/campaign", "replay_campaign"}, {"replay/report", "replay_report"},
+    {"src/stream", "stream"},
     {"src/cli", "cli"}};
 
 const std::map<std::string, std::string> kLayerOfInclude{
@@ -33,7 +34,8 @@ const std::map<std::string, std::string> kLayerOfInclude{
     {"sensor", "world"},    {"metrics", "metrics"}, {"sim", "sim"},     {"synth", "synth"},
     {"traffic", "traffic"}, {"replay/import", "replay_import"},       {"replay/run", "replay_run"},
     {"replay/evaluate", "replay_evaluate"},     {"replay/calibrate", "replay_calibrate"},
-    {"replay/store", "replay_store"},           {"replay/report", "replay_report"},
+    {"replay/store", "replay_store"},           {"replay/campaign", "replay_campaign"},
+    {"replay/report", "replay_report"},
     {"stream", "stream"},   {"cli", "cli"}};
 
 // What each layer may use besides itself (the DEPS of rcsim_layer in CMakeLists.txt, closed).
@@ -51,13 +53,16 @@ const std::map<std::string, std::set<std::string>> kMayUse{
     {"replay_calibrate", {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run"}},
     {"replay_store",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate"}},
-    {"replay_report",
+    {"replay_campaign",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
       "replay_store"}},
+    {"replay_report",
+     {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
+      "replay_store", "replay_campaign"}},
     {"stream", {"common", "io", "world", "sim", "replay_import"}},
     {"cli",
      {"common", "io", "world", "metrics", "sim", "synth", "traffic", "replay_import", "replay_run", "replay_evaluate",
-      "replay_calibrate", "replay_store", "replay_report", "stream"}}};
+      "replay_calibrate", "replay_store", "replay_campaign", "replay_report", "stream"}}};
 
 std::string layer_of_include(const std::string& path) {
   // The longest prefix wins: "replay/run/x.hpp" before "replay".

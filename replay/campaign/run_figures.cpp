@@ -1,0 +1,199 @@
+#include "replay/campaign/run_figures.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <stdexcept>
+
+namespace rcsim::replay::campaign {
+
+namespace {
+
+// One run's row of summaries and the sums of its object_figures; NULL columns are NaN.
+struct RunRecord {
+  double gospa_mean, ospa_mean, gospa_object_mean, ospa_object_mean;
+  double targets_recorded, targets_simulated, targets_matched;
+  double latency_recorded_s, latency_simulated_s, latency_difference_mean_s, latency_pairs, latency_episodes,
+      latency_unconfirmed_recorded, latency_unconfirmed_simulated;
+  double merge_recorded, merge_simulated, merge_matched;
+  double residual_range_rms_m, residual_azimuth_rms_rad, residual_range_rate_rms_mps, residual_amplitude_mean_db;
+  double simulate_cpu_s, wall_s;
+  double in_view, detected_recorded, detected_simulated;
+};
+
+// The query's columns after run_id, recording_name, recording_dir, seed, cycles, cycle_time_s, in
+// the order of RunRecord.
+constexpr const char* kRunQuery = R"SQL(
+SELECT r.run_id, r.recording_name, r.recording_dir, r.seed, r.cycles, r.cycle_time_s,
+  s.gospa_mean, s.ospa_mean, s.gospa_object_mean, s.ospa_object_mean,
+  s.targets_recorded, s.targets_simulated, s.targets_matched,
+  s.latency_recorded_s, s.latency_simulated_s, s.latency_difference_mean_s, s.latency_pairs, s.latency_episodes,
+  s.latency_unconfirmed_recorded, s.latency_unconfirmed_simulated,
+  s.merge_artefacts_recorded, s.merge_artefacts_simulated, s.merge_artefacts_matched,
+  s.residual_range_rms_m, s.residual_azimuth_rms_rad, s.residual_range_rate_rms_mps, s.residual_amplitude_mean_db,
+  s.simulate_cpu_s, s.total_wall_s,
+  f.in_view, f.detected_recorded, f.detected_simulated
+FROM runs r JOIN summaries s USING (run_id)
+LEFT JOIN (SELECT run_id, sum(cycles_in_view) AS in_view, sum(cycles_detected_recorded) AS detected_recorded,
+                  sum(cycles_detected_simulated) AS detected_simulated
+           FROM object_figures GROUP BY run_id) f USING (run_id)
+ORDER BY r.run_id
+)SQL";
+constexpr int kFirstFigureColumn = 6;
+constexpr int kRecordColumns = static_cast<int>(sizeof(RunRecord) / sizeof(double));
+
+using Compute = std::function<double(const RunRecord&)>;
+
+// a / b, NaN (missing) where b is 0 or either is missing.
+double ratio(double a, double b) { return b > 0.0 ? a / b : std::nan(""); }
+
+struct CatalogueEntry {
+  FigureInfo info;
+  Compute compute;
+};
+
+const std::vector<CatalogueEntry>& catalogue() {
+  static const std::vector<CatalogueEntry> entries = {
+      {{"gospa_mean_m", "m", "GOSPA against the recording, mean over sensor cycles", Worse::higher},
+       [](const RunRecord& r) { return r.gospa_mean; }},
+      {{"ospa_mean_m", "m", "OSPA, mean over sensor cycles", Worse::higher}, [](const RunRecord& r) { return r.ospa_mean; }},
+      {{"gospa_object_mean_m", "m", "GOSPA on the targets of annotated objects only", Worse::higher},
+       [](const RunRecord& r) { return r.gospa_object_mean; }},
+      {{"ospa_object_mean_m", "m", "OSPA on the targets of annotated objects only", Worse::higher},
+       [](const RunRecord& r) { return r.ospa_object_mean; }},
+      {{"target_count_ratio", "1", "simulated / recorded targets (1: as many)", Worse::away_from_one},
+       [](const RunRecord& r) { return ratio(r.targets_simulated, r.targets_recorded); }},
+      {{"matched_fraction", "1", "recorded targets assigned a simulated one within the GOSPA cut-off", Worse::lower},
+       [](const RunRecord& r) { return ratio(r.targets_matched, r.targets_recorded); }},
+      {{"object_detection_rate_recorded", "1", "object-sensor cycles in view with a recorded object target", Worse::lower},
+       [](const RunRecord& r) { return ratio(r.detected_recorded, r.in_view); }},
+      {{"object_detection_rate_simulated", "1", "object-sensor cycles in view with a simulated object target",
+        Worse::lower},
+       [](const RunRecord& r) { return ratio(r.detected_simulated, r.in_view); }},
+      {{"object_detection_rate_difference", "1", "simulated - recorded object detection rate", Worse::away_from_zero},
+       [](const RunRecord& r) { return ratio(r.detected_simulated - r.detected_recorded, r.in_view); }},
+      {{"latency_difference_mean_s", "s", "simulated - recorded confirmation latency, mean over paired episodes",
+        Worse::away_from_zero},
+       [](const RunRecord& r) { return r.latency_pairs > 0 ? r.latency_difference_mean_s : std::nan(""); }},
+      {{"latency_recorded_s", "s", "recorded confirmation latency, mean", Worse::higher},
+       [](const RunRecord& r) { return r.latency_recorded_s; }},
+      {{"latency_simulated_s", "s", "simulated confirmation latency, mean", Worse::higher},
+       [](const RunRecord& r) { return r.latency_simulated_s; }},
+      {{"latency_unconfirmed_simulated_fraction", "1", "episodes the simulation never confirmed", Worse::higher},
+       [](const RunRecord& r) { return ratio(r.latency_unconfirmed_simulated, r.latency_episodes); }},
+      {{"merge_artefacts_recorded", "1", "recorded merge artefacts (paper Fig. 10)", Worse::higher},
+       [](const RunRecord& r) { return r.merge_recorded; }},
+      {{"merge_artefacts_simulated", "1", "simulated merge artefacts", Worse::higher},
+       [](const RunRecord& r) { return r.merge_simulated; }},
+      {{"merge_artefact_match_fraction", "1", "recorded merge artefacts the simulation matched", Worse::lower},
+       [](const RunRecord& r) { return ratio(r.merge_matched, r.merge_recorded); }},
+      {{"residual_range_rms_m", "m", "range residual of assigned pairs, RMS", Worse::higher},
+       [](const RunRecord& r) { return r.residual_range_rms_m; }},
+      {{"residual_azimuth_rms_rad", "rad", "azimuth residual of assigned pairs, RMS", Worse::higher},
+       [](const RunRecord& r) { return r.residual_azimuth_rms_rad; }},
+      {{"residual_range_rate_rms_mps", "m/s", "range-rate residual of assigned pairs, RMS", Worse::higher},
+       [](const RunRecord& r) { return r.residual_range_rate_rms_mps; }},
+      {{"residual_amplitude_mean_db", "dB", "amplitude residual of assigned pairs, mean", Worse::away_from_zero},
+       [](const RunRecord& r) { return r.residual_amplitude_mean_db; }},
+      {{"replay_wall_s", "s", "wall time of the replay", Worse::higher}, [](const RunRecord& r) { return r.wall_s; }},
+      {{"simulate_cpu_s", "s", "CPU time of the simulation", Worse::higher},
+       [](const RunRecord& r) { return r.simulate_cpu_s; }},
+  };
+  return entries;
+}
+
+constexpr std::string_view kW1Prefix = "wasserstein1.";
+constexpr std::string_view kKsPrefix = "kolmogorov_smirnov.";
+
+}  // namespace
+
+const std::vector<FigureInfo>& figure_catalogue() {
+  static const std::vector<FigureInfo> infos = [] {
+    std::vector<FigureInfo> out;
+    for (const auto& e : catalogue()) out.push_back(e.info);
+    return out;
+  }();
+  return infos;
+}
+
+std::optional<FigureInfo> find_figure(std::string_view name) {
+  for (const auto& e : catalogue()) {
+    if (e.info.name == name) return e.info;
+  }
+  for (const auto prefix : {kW1Prefix, kKsPrefix}) {
+    if (name.starts_with(prefix) && name.size() > prefix.size()) {
+      const bool w1 = prefix == kW1Prefix;
+      return FigureInfo{std::string(name), w1 ? "of the quantity" : "1",
+                        std::string(w1 ? "Wasserstein-1 (area metric) between recorded and simulated "
+                                       : "Kolmogorov-Smirnov statistic between recorded and simulated ") +
+                            std::string(name.substr(prefix.size())),
+                        Worse::higher};
+    }
+  }
+  return std::nullopt;
+}
+
+std::string figure_names() {
+  std::string out;
+  for (const auto& e : catalogue()) out += (out.empty() ? "" : ", ") + e.info.name;
+  return out + ", wasserstein1.QUANTITY, kolmogorov_smirnov.QUANTITY";
+}
+
+std::vector<RunFigureRow> read_run_figures(SQLite::Database& db, const std::vector<std::string>& figures) {
+  // What each figure asked for is computed from: a catalogue entry, or a distance of a quantity.
+  std::vector<const CatalogueEntry*> entries(figures.size(), nullptr);
+  std::map<std::string, std::vector<std::size_t>> distances;  // quantity -> figure indices
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    for (const auto& e : catalogue()) {
+      if (e.info.name == figures[i]) entries[i] = &e;
+    }
+    if (entries[i] != nullptr) continue;
+    if (!find_figure(figures[i])) throw std::invalid_argument("unknown figure '" + figures[i] + "'");
+    const auto dot = figures[i].find('.');
+    distances[figures[i].substr(dot + 1)].push_back(i);
+  }
+
+  std::vector<RunFigureRow> rows;
+  std::map<std::int64_t, std::size_t> row_of;
+  SQLite::Statement query(db, kRunQuery);
+  while (query.executeStep()) {
+    RunFigureRow row;
+    row.run_id = query.getColumn(0).getInt64();
+    row.recording_name = query.getColumn(1).getString();
+    row.recording_dir = query.getColumn(2).getString();
+    row.seed = query.getColumn(3).getInt64();
+    row.duration_s = query.getColumn(4).getDouble() * query.getColumn(5).getDouble();
+    double fields[kRecordColumns];
+    for (int c = 0; c < kRecordColumns; ++c) {
+      const SQLite::Column column = query.getColumn(kFirstFigureColumn + c);
+      fields[c] = column.isNull() ? std::nan("") : column.getDouble();
+    }
+    RunRecord record{};
+    static_assert(sizeof(RunRecord) == sizeof(fields));
+    std::memcpy(&record, fields, sizeof(record));
+    row.values.resize(figures.size());
+    for (std::size_t i = 0; i < figures.size(); ++i) {
+      if (entries[i] == nullptr) continue;
+      const double v = entries[i]->compute(record);
+      if (std::isfinite(v)) row.values[i] = v;
+    }
+    row_of[row.run_id] = rows.size();
+    rows.push_back(std::move(row));
+  }
+  if (!distances.empty()) {
+    SQLite::Statement d(db, "SELECT run_id, quantity, wasserstein1, kolmogorov_smirnov FROM distribution_distances");
+    while (d.executeStep()) {
+      const auto run = row_of.find(d.getColumn(0).getInt64());
+      const auto wanted = distances.find(d.getColumn(1).getString());
+      if (run == row_of.end() || wanted == distances.end()) continue;
+      for (const std::size_t i : wanted->second) {
+        const SQLite::Column value = d.getColumn(figures[i].starts_with(kW1Prefix) ? 2 : 3);
+        if (!value.isNull()) rows[run->second].values[i] = value.getDouble();
+      }
+    }
+  }
+  return rows;
+}
+
+}  // namespace rcsim::replay::campaign

@@ -1,0 +1,40 @@
+#pragma once
+// What makes two runs the same run (schemas/report-database.md, "Run identity"): the recording's
+// checksum, the seed, the store level, the sensor configurations simulated and the parameters.
+// Two runs of the same identity have the same figures (same inputs and seed, byte-identical
+// output), so a restarted campaign shard skips a run already stored, and `rcsim merge` reports a
+// second copy as a duplicate instead of counting it twice. The rcsim version is not part of it.
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "replay/import/importer.hpp"
+#include "replay/run/replay_run.hpp"
+#include "replay/store/run_rows.hpp"
+
+namespace rcsim::replay {
+
+struct RunIdentity {
+  std::string recording_checksum;  // 16 lower-case hex digits, as runs.recording_checksum
+  std::int64_t seed = 0;
+  std::string store;               // full | summary
+  std::string sensor_types;        // run_sensors.type in sensor order, one per line
+  std::string parameters;          // runs.parameters, as stored
+
+  // FNV-1a 64 over the fields, 16 hex digits: short enough to print and to index.
+  std::string key() const;
+  friend bool operator==(const RunIdentity&, const RunIdentity&) = default;
+};
+
+// The identity of every run stored in the database, by run id.
+std::map<std::int64_t, RunIdentity> stored_run_identities(SQLite::Database& db);
+
+// The identity the run of a recording will have, known before it runs: from its header, the
+// checksum of its files (recording_checksum), the header's import (import_header: the sensor
+// types and effects simulated) and the options.
+RunIdentity planned_run_identity(std::uint64_t recording_checksum, const ImportedScene& header_import,
+                                 const ReplayOptions& options, StoreLevel store);
+
+}  // namespace rcsim::replay
