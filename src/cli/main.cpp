@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   rcsim::cli::add_traffic_command(app);
   rcsim::cli::add_bench_command(app);
   rcsim::cli::add_calibrate_command(app);
+  rcsim::cli::add_merge_command(app);
   rcsim::cli::add_models_command(app);
   try {
     app.parse(argc, argv);
