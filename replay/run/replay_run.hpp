@@ -169,6 +169,13 @@ class RecordedCycles {
   virtual std::optional<std::pair<double, double>> take_moved_window() { return std::nullopt; }
 };
 
+// The level a recording is compared at unless the user says otherwise: what its sensors report
+// (schemas/recording.md): raw detections are compared without the tracker (no_tracking), tracks
+// with it (full).
+inline Fidelity default_fidelity_for(const Recording& recording) {
+  return recording.all_sensors_report(ReportedLevel::detections) ? Fidelity::no_tracking : Fidelity::full;
+}
+
 // rcsim replay: the reflection-center model (options.fidelity) against the recording in
 // directory `dir`, read, smoothed, simulated, compared and stored cycle by cycle in bounded
 // memory: the stored figures are those of replay_recording on the recording read whole.

@@ -16,5 +16,6 @@ void add_traffic_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
+void add_campaign_command(CLI::App& app);
 
 }  // namespace rcsim::cli

@@ -5,6 +5,7 @@
 
 #include "common/input_error.hpp"
 #include "io/recording.hpp"
+#include "replay/run/replay_run.hpp"
 #include "sim/fidelity.hpp"
 
 namespace rcsim::cli {
@@ -14,12 +15,8 @@ inline void add_fidelity_option(CLI::App& cmd, std::string& name) {
       ->capture_default_str();
 }
 
-// The level a recording is compared at unless --fidelity says otherwise: what its sensors report
-// (schemas/recording.md): raw detections are compared without the tracker (no_tracking), tracks
-// with it (full).
-inline Fidelity default_fidelity_for(const Recording& recording) {
-  return recording.all_sensors_report(ReportedLevel::detections) ? Fidelity::no_tracking : Fidelity::full;
-}
+// The level a recording is compared at unless --fidelity says otherwise (replay_run.hpp).
+using replay::default_fidelity_for;
 
 // An unknown name is an input error (exit 2).
 inline Fidelity fidelity_from_arg(const std::string& name) {

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/verdict_options.hpp"
 #include "common/input_error.hpp"
 
 int main(int argc, char** argv) {
@@ -22,11 +23,15 @@ int main(int argc, char** argv) {
   rcsim::cli::add_bench_command(app);
   rcsim::cli::add_calibrate_command(app);
   rcsim::cli::add_merge_command(app);
+  rcsim::cli::add_campaign_command(app);
   rcsim::cli::add_models_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const rcsim::cli::VerdictsFailed& e) {
+    std::cerr << "rcsim: failed: " << e.what() << '\n';
+    return rcsim::cli::kExitVerdictsFailed;
   } catch (const rcsim::InputError& e) {
     std::cerr << "rcsim: error: " << e.what() << '\n';
     return 2;

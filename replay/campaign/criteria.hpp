@@ -1,0 +1,81 @@
+#pragma once
+// Pass/fail criteria on the stored figures, and the verdicts they give (schemas/campaign.md,
+// "Criteria"). A criterion bounds one figure (run_figures.hpp) from above or below, either per
+// recording (every run must pass) or over the campaign (a statistic of the runs' values). A figure
+// a run lacks fails its criterion unless the criterion says `"if_missing": "pass"`. Criteria live
+// in a campaign manifest or an `rcsim-criteria` document, and in the report database (table
+// `criteria`), from which every verdict is computed when it is needed.
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/json_reader.hpp"
+#include "replay/campaign/run_figures.hpp"
+
+namespace rcsim::replay::campaign {
+
+enum class Scope { recording, campaign };
+enum class Statistic { value, mean, median, p95, min, max };  // value: per recording
+enum class Bound { max, min };  // max: passes if the figure <= threshold; min: if >= threshold
+
+struct Criterion {
+  std::string figure;
+  Scope scope = Scope::recording;
+  Statistic statistic = Statistic::value;
+  Bound bound = Bound::max;
+  double threshold = 0.0;
+  bool pass_if_missing = false;
+
+  // "gospa_mean_m <= 1.5" or "mean gospa_mean_m over the campaign <= 1.2".
+  std::string text() const;
+  friend bool operator==(const Criterion&, const Criterion&) = default;
+};
+
+// The `criteria` array of a manifest or criteria document. An entry may give both "min" and "max"
+// (two criteria). Errors name the file and the field (criteria[2].figure).
+std::vector<Criterion> parse_criteria(const JsonField& array);
+
+// An `rcsim-criteria` v1 document, or the criteria of an `rcsim-campaign` manifest.
+std::vector<Criterion> read_criteria_file(const std::filesystem::path& path);
+
+// The criteria stored in a report database (in order), and replacing them.
+std::vector<Criterion> stored_criteria(SQLite::Database& db);
+void store_criteria(SQLite::Database& db, const std::vector<Criterion>& criteria);
+
+struct CriterionResult {
+  std::size_t criterion = 0;  // index into Verdicts::criteria
+  std::optional<double> value;
+  bool passed = false;
+};
+
+struct RunVerdict {
+  std::int64_t run_id = 0;
+  std::string recording_name, recording_dir;
+  std::int64_t seed = 0;
+  double duration_s = 0.0;
+  double wall_s = 0.0;
+  bool passed = true;
+  std::vector<CriterionResult> results;  // the per-recording criteria, in order
+};
+
+struct Verdicts {
+  std::vector<Criterion> criteria;
+  std::vector<RunVerdict> runs;             // by run id
+  std::vector<CriterionResult> campaign;    // the campaign criteria, in order
+  int runs_failed = 0;
+  bool passed() const;
+};
+
+// Judges the runs of the database (all, or the one given) by the criteria. Campaign criteria are
+// judged over the runs judged.
+Verdicts judge(SQLite::Database& db, const std::vector<Criterion>& criteria,
+               std::optional<std::int64_t> only_run = std::nullopt);
+
+// "gospa_mean_m = 1.73 > 1.5" or "latency_difference_mean_s missing".
+std::string describe_failure(const Criterion& criterion, const CriterionResult& result);
+
+}  // namespace rcsim::replay::campaign

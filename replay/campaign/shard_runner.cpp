@@ -1,0 +1,77 @@
+#include "replay/campaign/shard_runner.hpp"
+
+#include <fmt/format.h>
+#include <ostream>
+#include <set>
+
+#include "common/input_error.hpp"
+#include "io/recording_stream.hpp"
+#include "model/model_library.hpp"
+#include "replay/store/report_store.hpp"
+#include "replay/store/run_identity.hpp"
+
+namespace rcsim::replay::campaign {
+
+void claim_report_for_campaign(SQLite::Database& db, const std::string& db_path, const CampaignManifest& manifest) {
+  SQLite::Transaction transaction(db);
+  SQLite::Statement stored(db, "SELECT name FROM campaign");
+  if (stored.executeStep()) {
+    const std::string name = stored.getColumn(0).getString();
+    if (name != manifest.name) {
+      throw InputError(db_path, "campaign", fmt::format("holds the runs of campaign '{}', not '{}'", name, manifest.name));
+    }
+    if (stored_criteria(db) != manifest.criteria) {
+      throw InputError(db_path, "criteria", "holds other criteria than the campaign's manifest; plan into a new directory");
+    }
+    return;
+  }
+  SQLite::Statement insert(db, "INSERT INTO campaign (name, manifest) VALUES (?, ?)");
+  insert.bind(1, manifest.name);
+  insert.bind(2, manifest.document.dump());
+  insert.exec();
+  store_criteria(db, manifest.criteria);
+  transaction.commit();
+}
+
+ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log) {
+  if (shard < 0 || shard >= static_cast<int>(plan.shards.size())) {
+    throw InputError("--shard", std::to_string(shard),
+                     fmt::format("the plan in {} has shards 0 to {}", plan.dir.string(), plan.shards.size() - 1));
+  }
+  const std::string db_path = plan.shard_report(shard).string();
+  const auto db = open_report_database(db_path, true);
+  claim_report_for_campaign(*db, db_path, plan.manifest);
+  std::set<std::string> stored_keys;
+  for (const auto& [run_id, identity] : stored_run_identities(*db)) stored_keys.insert(identity.key());
+
+  const ModelLibrary library = ModelLibrary::builtin();
+  const CampaignReplay& replay = plan.manifest.replay;
+  ShardOutcome outcome;
+  for (const PlannedRecording& r : plan.shards[static_cast<std::size_t>(shard)].recordings) {
+    try {
+      const Recording header = read_recording_header(r.dir);
+      const ReplayOptions options = replay.options_for(header);
+      const RunIdentity identity = planned_run_identity(recording_checksum(r.dir),
+                                                        import_header(header, 0.0, library, options.import), options,
+                                                        replay.store);
+      if (stored_keys.contains(identity.key())) {
+        ++outcome.skipped;
+        log << fmt::format("shard {}: {}: stored already (run {}), skipped\n", shard, r.dir.string(), identity.key());
+        continue;
+      }
+      ReportWriter writer(*db, replay.store);
+      const ReplaySummary summary = replay_recording_dir(r.dir, options, writer);
+      stored_keys.insert(identity.key());
+      ++outcome.stored;
+      log << fmt::format("shard {}: {}: run {} stored ({} cycles, GOSPA mean {:.3f} m, {:.2f} s)\n", shard,
+                         r.dir.string(), writer.run_id(), summary.cycles, summary.gospa_mean_m, summary.total_wall_s);
+    } catch (const std::exception& e) {
+      outcome.failures.push_back(fmt::format("{}: {}", r.dir.string(), e.what()));
+      log << fmt::format("shard {}: {}: FAILED: {}\n", shard, r.dir.string(), e.what());
+    }
+    log.flush();
+  }
+  return outcome;
+}
+
+}  // namespace rcsim::replay::campaign
