@@ -147,7 +147,9 @@ class SlurmCluster {
       if (path->empty()) missing += std::string(" ") + name;
     }
     for (const char* name : {"sbatch", "squeue", "sinfo", "scontrol", "scancel"}) {
-      if (slurm_detail::find_program(name).empty()) missing += std::string(" ") + name;
+      const auto path = slurm_detail::find_program(name);
+      if (path.empty()) missing += std::string(" ") + name;
+      programs.clients = path.parent_path();
     }
     if (!missing.empty()) {
       *why_not = "Slurm or munge not installed (missing" + missing + "); scripts/setup.sh installs slurm-wlm and munge";
@@ -231,12 +233,14 @@ class SlurmCluster {
  private:
   struct Programs {
     std::filesystem::path munged, slurmctld, slurmd;
+    std::filesystem::path clients;  // the directory of sbatch, squeue, ...
   };
 
   // Everything the daemons need, held behind a pointer so that the cluster moves (into the
   // optional) without stopping anything; its destructor stops the daemons.
   struct State {
     std::filesystem::path root, conf, munge_socket;
+    std::string path;  // PATH for client commands: the clients' directory first
     std::filesystem::path munged_log, slurmctld_log, slurmd_log;
     pid_t munged = -1, slurmctld = -1, slurmd = -1;
     int cpus = 1;
@@ -255,7 +259,8 @@ class SlurmCluster {
           prefix += " -u " + name;
         }
       }
-      return prefix + " " + slurm_detail::shell_quote("SLURM_CONF=" + conf.string()) + " ";
+      return prefix + " " + slurm_detail::shell_quote("PATH=" + path) + " " +
+             slurm_detail::shell_quote("SLURM_CONF=" + conf.string()) + " ";
     }
 
     std::string log_tails(std::size_t lines) const {
@@ -375,6 +380,7 @@ class SlurmCluster {
       ::close(held_a);
       ::close(held_b);
       write_files(at, slurmctld_port, slurmd_port);
+      path = programs.clients.string() + (std::getenv("PATH") != nullptr ? std::string(":") + std::getenv("PATH") : "");
       const auto dir = (root / "munge").string();
       munged = spawn({programs.munged.string(), "--foreground", "--force", "--socket=" + munge_socket.string(),
                       "--key-file=" + dir + "/munge.key", "--pid-file=" + dir + "/munged.pid",
