@@ -251,16 +251,16 @@ class SlurmCluster {
     ~State() { stop(); }
 
     std::string client_prefix() const {
-      std::string prefix = "cd " + slurm_detail::shell_quote(root.parent_path().string()) + " && env";
+      std::string prefix = "cd " + slurm_detail::shell_quote(root.parent_path().string()) + " || exit 1; ";
       for (char** e = environ; *e != nullptr; ++e) {
         const std::string entry(*e);
         const std::string name = entry.substr(0, entry.find('='));
         if (name.rfind("SLURM_", 0) == 0 || name.rfind("SBATCH_", 0) == 0 || name.rfind("SQUEUE_", 0) == 0) {
-          prefix += " -u " + name;
+          prefix += "unset " + name + "; ";
         }
       }
-      return prefix + " " + slurm_detail::shell_quote("PATH=" + path) + " " +
-             slurm_detail::shell_quote("SLURM_CONF=" + conf.string()) + " ";
+      return prefix + "export PATH=" + slurm_detail::shell_quote(path) +
+             " SLURM_CONF=" + slurm_detail::shell_quote(conf.string()) + "; ";
     }
 
     std::string log_tails(std::size_t lines) const {
