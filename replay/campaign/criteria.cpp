@@ -65,9 +65,9 @@ std::string Criterion::text() const {
   return fmt::format("{} {} over the campaign {}", statistic_name(statistic), figure, bound_text);
 }
 
-std::vector<Criterion> parse_criteria(const JsonField& array) {
+std::vector<Criterion> parse_criteria(const JsonField& document) {
   std::vector<Criterion> out;
-  for (const JsonField& entry : array.elements()) {
+  for (const JsonField& entry : document.array("criteria")) {
     entry.expect_only({"figure", "scope", "statistic", "min", "max", "if_missing"});
     Criterion c;
     c.figure = entry.string("figure");
@@ -111,10 +111,10 @@ std::vector<Criterion> read_criteria_file(const std::filesystem::path& path) {
   const nlohmann::json doc = parse_json_file(path.string());
   const JsonField root(doc, path.string(), "");
   const std::string format = root.has("format") ? root.string("format") : "";
-  if (format == "rcsim-campaign") return parse_criteria(root.member("criteria"));
+  if (format == "rcsim-campaign") return root.has("criteria") ? parse_criteria(root) : std::vector<Criterion>{};
   root.expect_format("rcsim-criteria", 1);
   root.expect_only({"format", "version", "criteria"});
-  return parse_criteria(root.member("criteria"));
+  return parse_criteria(root);
 }
 
 std::vector<Criterion> stored_criteria(SQLite::Database& db) {
@@ -134,22 +134,29 @@ std::vector<Criterion> stored_criteria(SQLite::Database& db) {
 }
 
 void store_criteria(SQLite::Database& db, const std::vector<Criterion>& criteria) {
-  SQLite::Transaction transaction(db);
-  db.exec("DELETE FROM criteria");
-  SQLite::Statement insert(db, "INSERT INTO criteria VALUES (?, ?, ?, ?, ?, ?, ?)");
-  for (std::size_t i = 0; i < criteria.size(); ++i) {
-    const Criterion& c = criteria[i];
-    insert.bind(1, static_cast<std::int64_t>(i));
-    insert.bind(2, c.figure);
-    insert.bind(3, c.scope == Scope::campaign ? "campaign" : "recording");
-    insert.bind(4, std::string(statistic_name(c.statistic)));
-    insert.bind(5, c.bound == Bound::min ? "min" : "max");
-    insert.bind(6, c.threshold);
-    insert.bind(7, c.pass_if_missing ? "pass" : "fail");
-    insert.exec();
-    insert.reset();
+  // A savepoint: all or nothing, on its own or within the caller's transaction.
+  db.exec("SAVEPOINT store_criteria");
+  try {
+    db.exec("DELETE FROM criteria");
+    SQLite::Statement insert(db, "INSERT INTO criteria VALUES (?, ?, ?, ?, ?, ?, ?)");
+    for (std::size_t i = 0; i < criteria.size(); ++i) {
+      const Criterion& c = criteria[i];
+      insert.bind(1, static_cast<std::int64_t>(i));
+      insert.bind(2, c.figure);
+      insert.bind(3, c.scope == Scope::campaign ? "campaign" : "recording");
+      insert.bind(4, std::string(statistic_name(c.statistic)));
+      insert.bind(5, c.bound == Bound::min ? "min" : "max");
+      insert.bind(6, c.threshold);
+      insert.bind(7, c.pass_if_missing ? "pass" : "fail");
+      insert.exec();
+      insert.reset();
+    }
+  } catch (...) {
+    db.exec("ROLLBACK TO store_criteria");
+    db.exec("RELEASE store_criteria");
+    throw;
   }
-  transaction.commit();
+  db.exec("RELEASE store_criteria");
 }
 
 bool Verdicts::passed() const {
@@ -182,7 +189,7 @@ Verdicts judge(SQLite::Database& db, const std::vector<Criterion>& criteria, std
     out.runs_failed += v.passed ? 0 : 1;
     out.runs.push_back(std::move(v));
   }
-  for (std::size_t i = 0; i < criteria.size(); ++i) {
+  for (std::size_t i = 0; i < criteria.size() && !only_run; ++i) {
     if (criteria[i].scope != Scope::campaign) continue;
     std::vector<double> values;
     for (const RunFigureRow& row : rows) {

@@ -35,9 +35,9 @@ struct Criterion {
   friend bool operator==(const Criterion&, const Criterion&) = default;
 };
 
-// The `criteria` array of a manifest or criteria document. An entry may give both "min" and "max"
-// (two criteria). Errors name the file and the field (criteria[2].figure).
-std::vector<Criterion> parse_criteria(const JsonField& array);
+// The `criteria` array of a manifest or criteria document (`document`). An entry may give both
+// "min" and "max" (two criteria). Errors name the file and the field (criteria[2].figure).
+std::vector<Criterion> parse_criteria(const JsonField& document);
 
 // An `rcsim-criteria` v1 document, or the criteria of an `rcsim-campaign` manifest.
 std::vector<Criterion> read_criteria_file(const std::filesystem::path& path);
@@ -70,8 +70,8 @@ struct Verdicts {
   bool passed() const;
 };
 
-// Judges the runs of the database (all, or the one given) by the criteria. Campaign criteria are
-// judged over the runs judged.
+// Judges the runs of the database by the criteria: all of them, with the campaign criteria over
+// all; or the one run given (rcsim replay), by the per-recording criteria alone.
 Verdicts judge(SQLite::Database& db, const std::vector<Criterion>& criteria,
                std::optional<std::int64_t> only_run = std::nullopt);
 

@@ -163,7 +163,7 @@ CampaignPlan read_plan(const std::filesystem::path& dir) {
   const JsonField manifest(m.document, file, "manifest");
   m.name = root.string("name");
   if (manifest.has("replay")) m.replay = parse_campaign_replay(manifest.member("replay"), m.file.parent_path());
-  if (manifest.has("criteria")) m.criteria = parse_criteria(manifest.member("criteria"));
+  if (manifest.has("criteria")) m.criteria = parse_criteria(manifest);
   plan.rcsim = root.string("rcsim");
   for (const JsonField& s : root.array("shards")) {
     Shard shard;

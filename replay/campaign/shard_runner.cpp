@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 #include <ostream>
-#include <set>
+#include <map>
 
 #include "common/input_error.hpp"
 #include "io/recording_stream.hpp"
@@ -41,8 +41,8 @@ ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log) {
   const std::string db_path = plan.shard_report(shard).string();
   const auto db = open_report_database(db_path, true);
   claim_report_for_campaign(*db, db_path, plan.manifest);
-  std::set<std::string> stored_keys;
-  for (const auto& [run_id, identity] : stored_run_identities(*db)) stored_keys.insert(identity.key());
+  std::map<std::string, std::int64_t> stored_keys;  // identity key -> run id
+  for (const auto& [run_id, identity] : stored_run_identities(*db)) stored_keys.emplace(identity.key(), run_id);
 
   const ModelLibrary library = ModelLibrary::builtin();
   const CampaignReplay& replay = plan.manifest.replay;
@@ -54,14 +54,14 @@ ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log) {
       const RunIdentity identity = planned_run_identity(recording_checksum(r.dir),
                                                         import_header(header, 0.0, library, options.import), options,
                                                         replay.store);
-      if (stored_keys.contains(identity.key())) {
+      if (const auto stored = stored_keys.find(identity.key()); stored != stored_keys.end()) {
         ++outcome.skipped;
-        log << fmt::format("shard {}: {}: stored already (run {}), skipped\n", shard, r.dir.string(), identity.key());
+        log << fmt::format("shard {}: {}: stored already (run {}), skipped\n", shard, r.dir.string(), stored->second);
         continue;
       }
       ReportWriter writer(*db, replay.store);
       const ReplaySummary summary = replay_recording_dir(r.dir, options, writer);
-      stored_keys.insert(identity.key());
+      stored_keys.emplace(identity.key(), writer.run_id());
       ++outcome.stored;
       log << fmt::format("shard {}: {}: run {} stored ({} cycles, GOSPA mean {:.3f} m, {:.2f} s)\n", shard,
                          r.dir.string(), writer.run_id(), summary.cycles, summary.gospa_mean_m, summary.total_wall_s);

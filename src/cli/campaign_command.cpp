@@ -39,6 +39,11 @@ struct RunShardArgs {
   int shard = 0;
 };
 
+// "42.0 min" or "3.25 h".
+std::string duration_text(double s) {
+  return s < 3600.0 ? fmt::format("{:.1f} min", s / 60.0) : fmt::format("{:.2f} h", s / 3600.0);
+}
+
 std::string merge_hint(const CampaignPlan& plan) {
   return fmt::format("rcsim merge {}/shards/shard-*.sqlite -o {}.sqlite", plan.dir.string(), plan.manifest.name);
 }
@@ -52,12 +57,12 @@ void run_plan(const PlanArgs& args) {
     total_s += s.duration_s;
     longest_s = std::max(longest_s, s.duration_s);
   }
-  std::cout << fmt::format("campaign '{}': {} recordings, {:.2f} h recorded, in {} shards (longest {:.2f} h, {:.3f} x the "
-                           "even share)\n",
-                           manifest.name, manifest.recordings.size(), total_s / 3600.0, plan.shards.size(),
-                           longest_s / 3600.0, longest_s / (total_s / static_cast<double>(plan.shards.size())));
+  std::cout << fmt::format("campaign '{}': {} recordings, {} recorded, in {} shards (longest {}, {:.3f} x the even "
+                           "share)\n",
+                           manifest.name, manifest.recordings.size(), duration_text(total_s), plan.shards.size(),
+                           duration_text(longest_s), longest_s / (total_s / static_cast<double>(plan.shards.size())));
   for (const auto& s : plan.shards) {
-    std::cout << fmt::format("  shard {}: {} recordings, {:.2f} h\n", s.index, s.recordings.size(), s.duration_s / 3600.0);
+    std::cout << fmt::format("  shard {}: {} recordings, {}\n", s.index, s.recordings.size(), duration_text(s.duration_s));
   }
   std::cout << fmt::format("planned in {}\n  on Slurm:        rcsim campaign submit {}   (or: sbatch {}/campaign.sbatch)\n"
                            "  on this machine: rcsim campaign run-local {} -j {}\n  then:            {}\n",

@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "cli/fidelity_option.hpp"
 #include "cli/replay_options.hpp"
+#include "cli/verdict_options.hpp"
 #include "io/recording.hpp"
 #include "io/recording_stream.hpp"
 #include "replay/run/replay_run.hpp"
@@ -30,6 +31,7 @@ struct ReplayArgs {
   ImportArgs import;
   std::string calibration;
   std::string store = "full";  // what the report keeps (schemas/report-database.md)
+  VerdictArgs verdicts;
 };
 
 const replay::QuantityDistance* find_distance(const replay::ReplaySummary& s, const std::string& quantity) {
@@ -216,6 +218,8 @@ void run_replay(const ReplayArgs& args) {
         args.db_path);
     print_class_figures(summary, recording.sensors.size());
   }
+  // The run judged by the criteria (--criteria, else the report's own): per-recording ones only.
+  conclude_with_verdicts(*db, args.verdicts, writer.run_id(), recording.name, args.json ? std::cerr : std::cout);
 }
 
 }  // namespace
@@ -247,6 +251,7 @@ void add_replay_command(CLI::App& app) {
       ->capture_default_str();
   add_import_options(*cmd, args->import);
   add_calibration_option(*cmd, args->calibration);
+  add_verdict_options(*cmd, args->verdicts);
   cmd->callback([args] { run_replay(*args); });
 }
 

@@ -1,0 +1,113 @@
+// Planning a campaign (replay/campaign/plan.hpp, manifest.hpp): the shard balance computed by
+// hand, the recorded duration, the batch script, and the manifest's errors.
+#include "replay/campaign/plan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "io/recording.hpp"
+#include "cli/run_rcsim.hpp"
+#include "scratch_dir.hpp"
+
+namespace rcsim::replay::campaign {
+namespace {
+
+const std::filesystem::path kBundled = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
+
+TEST(BalanceShards, LongestFirstOntoTheLeastLoaded) {
+  // 5, 4, 3, 3, 3 into two: 5 -> A, 4 -> B, 3 -> B (7), 3 -> A (8), 3 -> B (10). LPT's makespan is
+  // 10 where the best is 9 (5 + 4 | 3 + 3 + 3): within Graham's 4/3.
+  std::vector<PlannedRecording> r;
+  for (const auto& [name, d] : std::vector<std::pair<std::string, double>>{{"a", 3}, {"b", 5}, {"c", 3}, {"d", 4}, {"e", 3}}) {
+    r.push_back({name, d});
+  }
+  const auto shards = balance_shards(r, 2);
+  ASSERT_EQ(shards.size(), 2u);
+  EXPECT_DOUBLE_EQ(shards[0].duration_s, 8.0);
+  EXPECT_DOUBLE_EQ(shards[1].duration_s, 10.0);
+  ASSERT_EQ(shards[0].recordings.size(), 2u);
+  EXPECT_EQ(shards[0].recordings[0].dir, "b");  // each shard in path order
+  EXPECT_EQ(shards[1].recordings.size(), 3u);
+  // One shard per recording at most is the caller's choice; more shards than recordings leave some empty.
+  EXPECT_EQ(balance_shards(r, 7)[6].recordings.size(), 0u);
+}
+
+TEST(RecordedDuration, IsTheEgoLogsSpanPlusOneCycle) {
+  for (const char* name : {"front_approach", "city_drive_60s"}) {
+    const Recording rec = read_recording(kBundled / name);
+    EXPECT_NEAR(recorded_duration_s(kBundled / name),
+                rec.ego.back().t_s - rec.ego.front().t_s + rec.cycle_time_s, 1e-9)
+        << name;
+  }
+}
+
+class PlanTest : public rcsim::testing::ScratchDirTest {
+ protected:
+  PlanTest() : ScratchDirTest("plan") {}
+  std::filesystem::path write_manifest(const std::string& body) {
+    const auto path = dir_ / "campaign.json";
+    std::ofstream(path) << R"({"format": "rcsim-campaign", "version": 1, "name": "t", )" << body << "}";
+    return path;
+  }
+  std::string error_of(const std::string& body) {
+    try {
+      read_manifest(write_manifest(body));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+};
+
+TEST_F(PlanTest, WritesPlanAndBatchScriptAndReadsThemBack) {
+  const auto manifest = read_manifest(write_manifest(
+      R"("recordings": [")" + (kBundled / "[fo]*").string() + R"(", ")" + (kBundled / "close_front").string() +
+      R"("], "replay": {"seed": 7, "store": "full"}, "criteria": [{"figure": "gospa_mean_m", "max": 2}],
+      "slurm": {"partition": "cpu", "time_limit": "00:30:00", "extra": ["--qos=short"]})"));
+  ASSERT_EQ(manifest.recordings.size(), 3u);  // front_approach, overtaking, close_front; sorted
+  EXPECT_EQ(manifest.recordings[0].filename(), "close_front");
+  const auto plan = write_plan(manifest, 2, dir_ / "plan", "/opt/rcsim/bin/rcsim");
+  ASSERT_EQ(plan.shards.size(), 2u);
+  const std::string script = rcsim::testing::read_file(dir_ / "plan" / "campaign.sbatch");
+  for (const char* line : {"#SBATCH --array=0-1\n", "#SBATCH --partition=cpu\n", "#SBATCH --time=00:30:00\n",
+                           "#SBATCH --qos=short\n", "exec '/opt/rcsim/bin/rcsim' campaign run-shard '"}) {
+    EXPECT_NE(script.find(line), std::string::npos) << line << " in\n" << script;
+  }
+  const CampaignPlan back = read_plan(dir_ / "plan");
+  EXPECT_EQ(back.manifest.name, "t");
+  EXPECT_EQ(back.manifest.replay.options.seed, 7u);
+  EXPECT_EQ(back.manifest.replay.store, StoreLevel::full);
+  EXPECT_EQ(back.manifest.criteria, manifest.criteria);
+  ASSERT_EQ(back.shards.size(), 2u);
+  for (std::size_t s = 0; s < 2; ++s) {
+    ASSERT_EQ(back.shards[s].recordings.size(), plan.shards[s].recordings.size());
+    EXPECT_DOUBLE_EQ(back.shards[s].duration_s, plan.shards[s].duration_s);
+  }
+  EXPECT_EQ(back.shard_report(1), dir_ / "plan" / "shards" / "shard-0001.sqlite");
+  // A second plan into the same directory is refused: its shard reports would mix.
+  EXPECT_THROW(write_plan(manifest, 2, dir_ / "plan", "/opt/rcsim/bin/rcsim"), InputError);
+}
+
+TEST_F(PlanTest, BadManifestsNameTheFileAndField) {
+  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "no_such_*").string() + R"("])").find("recordings[0]: "),
+            std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "no_such_*").string() + R"("])").find("matches no recording"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": [")" + kBundled.string() + R"("])").find("not a recording directory"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "front_approach").string() + R"("], "replay": {"sead": 1})").find("sead"), std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "front_approach").string() +
+                     R"("], "replay": {"fidelity": "best"})")
+                .find("unknown fidelity level 'best'"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "front_approach").string() +
+                     R"("], "slurm": {"extra": ["qos=x"]})")
+                .find("slurm.extra[0]"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": [])").find("names no recording"), std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": ["x"])").find("campaign.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rcsim::replay::campaign
