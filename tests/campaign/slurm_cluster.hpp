@@ -244,6 +244,7 @@ class SlurmCluster {
     std::filesystem::path munged_log, slurmctld_log, slurmd_log;
     pid_t munged = -1, slurmctld = -1, slurmd = -1;
     int cpus = 1;
+    long memory_mb = 100;
 
     State() = default;
     State(const State&) = delete;
@@ -333,6 +334,9 @@ class SlurmCluster {
       cpus = std::max(1, static_cast<int>(::sysconf(_SC_NPROCESSORS_ONLN)));
       cpu_set_t affinity;
       if (::sched_getaffinity(0, sizeof(affinity), &affinity) == 0) cpus = std::max(1, CPU_COUNT(&affinity));
+      // The machine's memory, so that a script asking for --mem=… fits (CR_CPU does not track it).
+      const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
+      memory_mb = pages > 0 && page_size > 0 ? std::max(100L, pages / (1024L * 1024L / page_size)) : 1024L;
       conf = root / "slurm.conf";
       const auto r = root.string();
       std::ofstream out(conf);
@@ -369,7 +373,7 @@ class SlurmCluster {
           << "KillWait=2\n"
           << "MinJobAge=300\n"
           << "NodeName=" << node_name << " NodeAddr=127.0.0.1 NodeHostname=localhost CPUs=" << cpus
-          << " RealMemory=100 State=UNKNOWN\n"
+          << " RealMemory=" << memory_mb << " State=UNKNOWN\n"
           << "PartitionName=" << partition << " Nodes=" << node_name << " Default=YES MaxTime=INFINITE State=UP\n";
     }
 

@@ -67,7 +67,8 @@ TEST_F(SlurmClusterTest, ArrayOfFourTasksCompletes) {
   const auto script = write_task_script(out);
 
   const auto t1 = std::chrono::steady_clock::now();
-  const std::string job = cluster->sbatch(array_args("0-3", out, script));
+  // A batch script may ask for memory: the node has the machine's.
+  const std::string job = cluster->sbatch("--mem=512M " + array_args("0-3", out, script));
   const auto states = cluster->wait(job, seconds(60));
   const double array_s = seconds_since(t1);
 
