@@ -11,6 +11,7 @@
 #include "cli/verdict_options.hpp"
 #include "io/recording.hpp"
 #include "io/recording_stream.hpp"
+#include "replay/run/kill_after_cycles.hpp"
 #include "replay/run/replay_run.hpp"
 #include "replay/store/report_store.hpp"
 
@@ -131,27 +132,6 @@ nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, c
           {"wall_s", s.total_wall_s}};
 }
 
-// For the interruption test: with RCSIM_TEST_KILL_AFTER_CYCLES=N in the environment the process
-// kills itself (SIGKILL, no clean-up of any kind) after storing N sensor cycles, i.e. in the
-// middle of the run's transaction, exactly like a replay killed from outside.
-class KillAfterCycles final : public replay::ReplaySink {
- public:
-  KillAfterCycles(replay::ReplaySink& inner, long cycles) : inner_(inner), remaining_(cycles) {}
-  void begin_run(const Recording& r, const replay::ImportedScene& i, const Scene& s,
-                 const replay::ReplayOptions& o) override {
-    inner_.begin_run(r, i, s, o);
-  }
-  void add_cycle(const replay::CycleComparison& c) override {
-    inner_.add_cycle(c);
-    if (--remaining_ == 0) std::raise(SIGKILL);
-  }
-  void end_run(const replay::ReplaySummary& s) override { inner_.end_run(s); }
-
- private:
-  replay::ReplaySink& inner_;
-  long remaining_;
-};
-
 // Prints what the import noticed (bridged or split annotation gaps) to stderr, as rcsim import
 // does: the recording is read as the replay goes, so each warning as soon as it is found, the
 // first kMaxPrinted of them, then how many more there were.
@@ -200,9 +180,8 @@ void run_replay(const ReplayArgs& args) {
   options.stationary_gate_mps = args.stationary_gate_mps;
   const auto db = replay::open_report_database(args.db_path, true);
   replay::ReportWriter writer(*db, replay::store_level_from_name(args.store));
-  const char* kill_after = std::getenv("RCSIM_TEST_KILL_AFTER_CYCLES");
-  KillAfterCycles killer(writer, kill_after ? std::atol(kill_after) : 0);
-  PrintImportWarnings sink(kill_after ? static_cast<replay::ReplaySink&>(killer) : writer);
+  replay::KillAfterCycles killer(writer);  // only with RCSIM_TEST_KILL_AFTER_CYCLES set
+  PrintImportWarnings sink(killer);
   const replay::ReplaySummary summary = replay::replay_recording_dir(args.recording_dir, options, sink);
   if (args.json) {
     std::cout << summary_json(writer.run_id(), recording, summary).dump(2) << '\n';

@@ -1,0 +1,126 @@
+// rcsim campaign plan / run-local / run-shard, then rcsim merge, as a user runs them: the merged
+// report equals a serial replay figure for figure; a shard killed mid-run and run again redoes
+// only the run it had not finished; rcsim replay --criteria gives exit status 3 and JUnit.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+#include <fstream>
+#include <map>
+#include <set>
+#include <csignal>
+
+#include "cli/run_rcsim.hpp"
+#include "replay/campaign/run_figures.hpp"
+#include "replay/store/report_store.hpp"
+#include "replay/store/run_identity.hpp"
+#include "scratch_dir.hpp"
+
+namespace rcsim::testing {
+namespace {
+
+const std::filesystem::path kBundled = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
+const std::vector<std::string> kRecordings = {"close_front", "front_approach", "overtaking", "two_in_one_cell"};
+
+// Every figure of the catalogue but the times, per recording directory.
+std::map<std::string, std::vector<std::optional<double>>> figures_by_recording(const std::filesystem::path& db_path) {
+  std::vector<std::string> names;
+  for (const auto& f : replay::campaign::figure_catalogue()) {
+    if (f.name != "replay_wall_s" && f.name != "simulate_cpu_s") names.push_back(f.name);
+  }
+  names.push_back("wasserstein1.background_range");
+  SQLite::Database db(db_path.string());
+  std::map<std::string, std::vector<std::optional<double>>> out;
+  for (auto& row : replay::campaign::read_run_figures(db, names)) out[row.recording_dir] = row.values;
+  return out;
+}
+
+class CampaignCli : public ScratchDirTest {
+ protected:
+  CampaignCli() : ScratchDirTest("campaign_cli") {}
+  std::filesystem::path write_manifest(const std::string& extra = "") {
+    std::string recordings;
+    for (const auto& r : kRecordings) recordings += (recordings.empty() ? "\"" : ", \"") + (kBundled / r).string() + "\"";
+    const auto path = dir_ / "campaign.json";
+    std::ofstream(path) << R"({"format": "rcsim-campaign", "version": 1, "name": "cli-test", "recordings": [)"
+                        << recordings << R"(], "replay": {"seed": 3}, "criteria": [{"figure": "gospa_mean_m", "max": 100}])"
+                        << extra << "}";
+    return path;
+  }
+  std::string dir(const std::string& name) const { return (dir_ / name).string(); }
+};
+
+TEST_F(CampaignCli, RunLocalThenMergeEqualsASerialReplay) {
+  const auto plan = run_rcsim(fmt::format("campaign plan {} --shards 2 -o {}", write_manifest().string(), dir("plan")));
+  ASSERT_EQ(plan.exit_code, 0) << plan.output;
+  EXPECT_NE(plan.output.find("4 recordings"), std::string::npos) << plan.output;
+  const auto local = run_rcsim(fmt::format("campaign run-local {} -j 2", dir("plan")));
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  EXPECT_NE(local.output.find("all 2 shards done"), std::string::npos) << local.output;
+  const auto merge = run_rcsim(fmt::format("merge {0}/shards/shard-0000.sqlite {0}/shards/shard-0001.sqlite -o {1}",
+                                           dir("plan"), dir("campaign.sqlite")));
+  ASSERT_EQ(merge.exit_code, 0) << merge.output;
+
+  for (const auto& r : kRecordings) {
+    const auto serial = run_rcsim(fmt::format("replay {} --db {} --seed 3 --store summary", (kBundled / r).string(),
+                                              dir("serial.sqlite")));
+    ASSERT_EQ(serial.exit_code, 0) << serial.output;
+  }
+  const auto merged = figures_by_recording(dir_ / "campaign.sqlite");
+  const auto serial = figures_by_recording(dir_ / "serial.sqlite");
+  ASSERT_EQ(merged.size(), kRecordings.size());
+  EXPECT_EQ(merged, serial);  // figure for figure, bit for bit
+
+  // Run again: every shard finds its runs stored and replays nothing.
+  const auto again = run_rcsim(fmt::format("campaign run-shard {} --shard 0", dir("plan")));
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("0 runs stored"), std::string::npos) << again.output;
+}
+
+TEST_F(CampaignCli, AShardKilledMidRunRedoesOnlyWhatIsMissing) {
+  ASSERT_EQ(run_rcsim(fmt::format("campaign plan {} --shards 1 -o {}", write_manifest().string(), dir("plan"))).exit_code, 0);
+  // Killed (SIGKILL, as from outside) in the middle of a run's transaction: the first run of the
+  // shard that reaches 400 sensor cycles is overtaking (251 cycles x 2 sensors), the third;
+  // close_front (176 x 2) and front_approach (101 x 2) are stored before.
+  const std::string command = fmt::format("RCSIM_TEST_KILL_AFTER_CYCLES=400 {} campaign run-shard {} --shard 0 > {} 2>&1",
+                                          RCSIM_BINARY, dir("plan"), dir("killed.log"));
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGKILL) << read_file(dir_ / "killed.log");
+  const auto report = dir_ / "plan" / "shards" / "shard-0000.sqlite";
+  {
+    SQLite::Database db(report.string());
+    EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
+    EXPECT_EQ(db.execAndGet("SELECT count(*) FROM runs").getInt(), 2);  // the first two, whole; no trace of the third
+  }
+  const auto rerun = run_rcsim(fmt::format("campaign run-shard {} --shard 0", dir("plan")));
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+  EXPECT_NE(rerun.output.find("2 runs stored, 2 stored before, 0 failed"), std::string::npos) << rerun.output;
+  SQLite::Database db(report.string());
+  EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
+  std::set<std::string> keys;
+  for (const auto& [run, identity] : replay::stored_run_identities(db)) keys.insert(identity.key());
+  EXPECT_EQ(keys.size(), 4u);  // four runs, no two alike
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM summaries").getInt(), 4);
+}
+
+TEST_F(CampaignCli, ReplayCriteriaExitStatusAndJunit) {
+  const auto criteria = dir_ / "criteria.json";
+  std::ofstream(criteria) << R"({"format": "rcsim-criteria", "version": 1, "criteria": [{"figure": "gospa_mean_m", "max": 0.0}]})";
+  const auto failed = run_rcsim(fmt::format("replay {} --db {} --criteria {} --junit {}", (kBundled / "front_approach").string(),
+                                            dir("r.sqlite"), criteria.string(), dir("junit.xml")));
+  EXPECT_EQ(failed.exit_code, 3) << failed.output;
+  EXPECT_NE(failed.output.find("FAIL run 1: "), std::string::npos) << failed.output;
+  EXPECT_NE(read_file(dir_ / "junit.xml").find("<failure message=\"gospa_mean_m = "), std::string::npos);
+  // The criteria stay in the report: the next replay is judged by them without --criteria, and
+  // a passing criterion gives exit status 0.
+  std::ofstream(criteria) << R"({"format": "rcsim-criteria", "version": 1, "criteria": [{"figure": "gospa_mean_m", "max": 1000}]})";
+  EXPECT_EQ(run_rcsim(fmt::format("replay {} --db {} --criteria {}", (kBundled / "front_approach").string(), dir("r.sqlite"),
+                                  criteria.string()))
+                .exit_code,
+            0);
+  const auto bad = run_rcsim(fmt::format("replay {} --db {} --criteria {}", (kBundled / "front_approach").string(),
+                                         dir("r.sqlite"), (dir_ / "r.sqlite").string()));
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+}
+
+}  // namespace
+}  // namespace rcsim::testing
