@@ -12,7 +12,6 @@
 #include <chrono>
 #include <csignal>
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -21,6 +20,7 @@
 #include "stream/endpoints.hpp"
 #include "stream/pcap_writer.hpp"
 #include "stream/reassembly.hpp"
+#include "stream/sender_table.hpp"
 #include "stream/stop_signals.hpp"
 
 namespace rcsim::stream {
@@ -59,11 +59,6 @@ constexpr int kSubscribeAttempts = 20;
 // (crashed or killed) and ends with an error, keeping what it received.
 constexpr int kUnansweredKeepalives = 5;
 
-struct Source {
-  SequenceTracker sequence;
-  Reassembler reassembler;
-};
-
 std::int64_t unix_time_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
@@ -76,6 +71,8 @@ struct Listener::Impl {
   void receive();
   void drain();
   void process(std::span<const std::uint8_t> datagram, const udp::endpoint& sender);
+  void process_from(SenderState& source, const Header& header, std::span<const std::uint8_t> payload);
+  void refuse(DecodeError error);
   void handle_reply(std::span<const std::uint8_t> payload);
   void handle_message(const CompleteMessage& complete);
   void send_control(MessageType type);
@@ -96,7 +93,7 @@ struct Listener::Impl {
   asio::signal_set signals{io};
   std::array<std::uint8_t, 65536> buffer{};
   udp::endpoint sender;
-  std::map<udp::endpoint, Source> sources;
+  SenderTable<udp::endpoint> senders;
   ListenSummary summary;
   std::string output, truth_output;  // rows not yet written
   std::optional<std::ofstream> truth;
@@ -130,7 +127,10 @@ Listener::Impl::Impl(const ListenOptions& options_in, std::ostream& out_in, std:
     else socket.set_option(asio::ip::multicast::join_group(group, asio::ip::make_address_v4(options.group_interface)));
   }
   local = socket.local_endpoint();
-  if (!options.subscribe.empty()) control = parse_endpoint(options.subscribe, "127.0.0.1");
+  if (!options.subscribe.empty()) {
+    control = parse_endpoint(options.subscribe, "127.0.0.1");
+    senders.pin(*control);
+  }
   if (!options.truth_output.empty()) {
     truth.emplace(options.truth_output, std::ios::trunc);
     if (!*truth) throw std::runtime_error(options.truth_output + ": cannot open for writing");
@@ -175,29 +175,35 @@ void Listener::Impl::flush_output() {
   output.clear();
 }
 
+void Listener::Impl::refuse(DecodeError error) {
+  ++summary.malformed;
+  ++summary.malformed_by_reason[static_cast<std::size_t>(error)];
+}
+
 void Listener::Impl::process(std::span<const std::uint8_t> datagram, const udp::endpoint& from) {
   ++summary.datagrams;
   summary.bytes += datagram.size();
   last_datagram = Clock::now();
   if (pcap) pcap->write(unix_time_ns(), from, local, datagram);
   const HeaderResult decoded = decode_header(datagram);
-  const auto refuse = [this](DecodeError error) {
-    ++summary.malformed;
-    ++summary.malformed_by_reason[static_cast<std::size_t>(error)];
-  };
   if (decoded.error != DecodeError::none) return refuse(decoded.error);
   const Header& header = decoded.header;
   const auto payload = datagram.subspan(kHeaderBytes);
   if (is_control_request(header.type)) return refuse(DecodeError::wrong_kind);
   if (header.type == MessageType::control_reply) return handle_reply(payload);  // outside every stream
 
-  auto [it, fresh] = sources.try_emplace(from);
+  bool fresh = false;
+  SenderState& source = senders.hear(from, fresh);
   if (fresh) {
     // A subscription starts its stream at sequence 0; a passive listener starts where it joins.
-    if (control && from == *control) it->second.sequence = SequenceTracker(std::uint64_t{0});
+    if (control && from == *control) source.sequence = SequenceTracker(std::uint64_t{0});
     ++summary.sources;
   }
-  Source& source = it->second;
+  process_from(source, header, payload);
+  senders.account(from);  // may forget other senders to keep the bounds
+}
+
+void Listener::Impl::process_from(SenderState& source, const Header& header, std::span<const std::uint8_t> payload) {
   if (source.sequence.observe(header.sequence) == Arrival::duplicate) return;
   if (header.type == MessageType::end_of_stream) {
     EndOfStream end;
@@ -210,7 +216,9 @@ void Listener::Impl::process(std::span<const std::uint8_t> datagram, const udp::
   }
   const Reassembler::Result result = source.reassembler.add(header, payload);
   if (result.status == Reassembler::Status::malformed) return refuse(result.error);
-  if (result.message) handle_message(*result.message);
+  if (!result.message) return;
+  source.delivered = true;
+  handle_message(*result.message);
 }
 
 void Listener::Impl::handle_message(const CompleteMessage& complete) {
@@ -364,13 +372,14 @@ ListenSummary Listener::run() {
     throw;
   }
   flush_all();
-  for (auto& [endpoint, source] : s.sources) {
-    source.reassembler.flush();
-    s.summary.lost += source.sequence.lost();
-    s.summary.duplicates += source.sequence.duplicates();
-    s.summary.reordered += source.sequence.reordered();
-    s.summary.incomplete += source.reassembler.incomplete();
-  }
+  const SenderCounts counts = s.senders.finish();
+  s.summary.lost += counts.lost;
+  s.summary.duplicates += counts.duplicates;
+  s.summary.reordered += counts.reordered;
+  s.summary.incomplete += counts.incomplete;
+  s.summary.senders_forgotten = s.senders.forgotten();
+  s.summary.senders_peak = s.senders.peak_senders();
+  s.summary.sender_state_peak_bytes = s.senders.peak_state_bytes();
   if (!s.failure.empty()) throw std::runtime_error(s.failure);
   return s.summary;
 }
@@ -382,6 +391,10 @@ std::string ListenSummary::line() const {
       interrupted ? "stopped, " : idle ? "idle, " : "", datagrams, bytes, sources, messages, fragmented_messages, target_lists,
       rows, truth_messages, lost, duplicates, reordered, incomplete, malformed);
   if (late_flagged > 0) text += fmt::format(", {} late-flagged", late_flagged);
+  if (senders_forgotten > 0) {
+    text += fmt::format(", {} senders forgotten (at most {} tracked, {} MiB)", senders_forgotten,
+                        SenderTable<int>::kMaxSenders, SenderTable<int>::kMaxStateBytes >> 20);
+  }
   if (end_received) {
     text += fmt::format("; end of stream: the sender sent {} datagrams, {} cycles", end.datagrams_sent + 1, end.cycles_sent);
   } else {

@@ -39,6 +39,11 @@ struct ListenSummary {
   std::uint64_t messages = 0, fragmented_messages = 0, target_lists = 0, rows = 0, truth_messages = 0;
   std::uint64_t replies = 0, late_flagged = 0;
   std::uint64_t lost = 0, duplicates = 0, reordered = 0, incomplete = 0;
+  // Senders (source addresses and ports) whose state was forgotten to keep at most 64 tracked in
+  // at most 64 MiB (sender_table.hpp); their partial messages count as incomplete. `sources`
+  // counts a forgotten sender heard again once more.
+  std::uint64_t senders_forgotten = 0;
+  std::size_t senders_peak = 0, sender_state_peak_bytes = 0;
   bool end_received = false;
   EndOfStream end;
   bool interrupted = false, idle = false;

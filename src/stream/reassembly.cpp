@@ -204,6 +204,11 @@ void Reassembler::make_room(std::size_t more, std::uint32_t keep) {
   }
 }
 
+std::size_t Reassembler::state_bytes() const {
+  constexpr std::size_t kNodeLinkBytes = 32;  // a map node's colour and three pointers
+  return pending_bytes_ + partial_.size() * (sizeof(decltype(partial_)::value_type) + kNodeLinkBytes);
+}
+
 std::uint64_t Reassembler::flush() {
   const std::uint64_t n = partial_.size();
   incomplete_ += n;

@@ -37,6 +37,10 @@ class SequenceTracker {
   std::uint64_t reordered() const { return reordered_; }
   std::uint64_t lost() const { return given_up_ + missing_count_; }  // missing so far
   std::optional<std::uint64_t> first() const { return first_; }
+  // Heap held for the missing ranges: a map node each (48 bytes, 64 with the allocator's header);
+  // at most kWindow ranges, 4 MiB, when every other number is missing.
+  std::size_t state_bytes() const { return missing_.size() * kRangeNodeBytes; }
+  static constexpr std::size_t kRangeNodeBytes = 64;
 
  private:
   void give_up_beyond_window();
@@ -88,6 +92,8 @@ class Reassembler {
   std::uint64_t fragmented_completed() const { return fragmented_completed_; }
   std::size_t pending() const { return partial_.size(); }
   std::size_t pending_bytes() const { return pending_bytes_; }
+  // Heap held in all: the fragments' bytes (pending_bytes) and a map node per partial message.
+  std::size_t state_bytes() const;
 
  private:
   struct Partial {

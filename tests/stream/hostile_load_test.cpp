@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "stream/listener.hpp"
+#include "stream/sender_table.hpp"
 #include "stream/streamer.hpp"
 #include "stream_test_support.hpp"
 #include "test_support.hpp"
@@ -146,6 +147,66 @@ TEST(HostileLoad, AListenerFloodedWithAHundredThousandMalformedDatagramsKeepsThe
   EXPECT_EQ(s.target_lists, static_cast<std::uint64_t>(scene.cycle_count()));
 }
 
+// Half a message (fragment 0 of 2, a full datagram) from each of `senders` source ports, one
+// fresh socket after the other (the kernel picks each port), paced `per_ms` a millisecond.
+void flood_from_many_ports(std::uint16_t port, int senders, int per_ms) {
+  asio::io_context io;
+  const udp::endpoint to(asio::ip::make_address("127.0.0.1"), port);
+  Header h;
+  h.fragment_count = 2;
+  const Bytes datagram = make_datagram(h, Bytes(kMaxDatagramBytes - kHeaderBytes, 0));
+  for (int i = 0; i < senders; ++i) {
+    udp::socket socket(io, udp::endpoint(udp::v4(), 0));
+    socket.send_to(asio::buffer(datagram), to);
+    if (i % per_ms == per_ms - 1) std::this_thread::sleep_for(1ms);
+  }
+}
+
+TEST(HostileLoad, HalfMessagesFromThousandsOfSourcePortsKeepTheListenerBoundedAndTheStreamComplete) {
+  constexpr int kPorts = 4000;
+  const Scene scene = flood_scene();
+  SourceOptions source_options;
+  source_options.simulation.seed = 10;
+  ListenOptions listen;
+  listen.stop_at_end = false;
+  std::ostringstream out, log;
+  Listener listener(listen, out, log);
+  auto listened = std::async(std::launch::async, [&] { return listener.run(); });
+  flood_from_many_ports(listener.port(), kPorts / 2, 25);  // half before the stream, half while it plays
+  auto source = make_scene_source(scene, source_options);
+  StreamOptions options;
+  options.destinations = {fmt::format("127.0.0.1:{}", listener.port())};
+  options.speed = testing::kLosslessSpeed / 4;
+  std::ostringstream stream_log;
+  Streamer streamer(*source, options, stream_log);
+  auto streamed = std::async(std::launch::async, [&] { return streamer.run(); });
+  flood_from_many_ports(listener.port(), kPorts / 2, 8);
+  const StreamSummary sent = streamed.get();
+  std::this_thread::sleep_for(500ms);
+  const std::uint64_t dropped = kernel_drops(listener.port());
+  listener.stop();
+  const ListenSummary s = listened.get();
+  EXPECT_EQ(out.str(), testing::simulate_rows(scene, source_options.simulation)) << "the capture is complete";
+  EXPECT_TRUE(s.end_received);
+  EXPECT_EQ(s.lost, 0u) << "the stream's sender, which delivers, was never forgotten";
+  // Each hostile datagram is a fresh sender with half a message, or (a port the kernel handed out
+  // again while still tracked) a duplicate; each half message is counted incomplete once.
+  const std::uint64_t hostile = s.datagrams - sent.datagrams;
+  EXPECT_EQ(hostile + dropped, static_cast<std::uint64_t>(kPorts));
+  EXPECT_EQ(hostile, s.sources - 1 + s.duplicates);
+  EXPECT_EQ(s.incomplete, s.sources - 1);
+  EXPECT_EQ(s.malformed, 0u);
+  using Table = SenderTable<udp::endpoint>;
+  EXPECT_EQ(s.senders_peak, Table::kMaxSenders);
+  EXPECT_EQ(s.senders_forgotten, s.sources - Table::kMaxSenders);
+  EXPECT_LE(s.sender_state_peak_bytes, Table::kMaxSenders * 2 * kMaxDatagramBytes + (64u << 10));
+  EXPECT_NE(s.line().find(fmt::format("{} senders forgotten", s.senders_forgotten)), std::string::npos) << s.line();
+  std::cout << "[ figures  ] " << kPorts << " source ports with half a message each: " << s.sources << " senders heard, "
+            << s.senders_forgotten << " forgotten, at most " << s.senders_peak << " tracked holding at most "
+            << s.sender_state_peak_bytes << " bytes; " << dropped << " dropped by the kernel; the stream's "
+            << sent.datagrams << " datagrams all arrived\n";
+}
+
 TEST(HostileLoad, AStreamerFloodedWithAbsurdControlRequestsStreamsOnUnchanged) {
   const Scene scene = flood_scene();
   SourceOptions source_options;
@@ -175,7 +236,7 @@ TEST(HostileLoad, AStreamerFloodedWithAbsurdControlRequestsStreamsOnUnchanged) {
       case 2: h.type = MessageType::pause; requests.push_back(make_datagram(h, encode_control_payload(h.type, 0, 0))); break;
       case 3: h.type = MessageType::resume; requests.push_back(make_datagram(h, encode_control_payload(h.type, 0, 0))); break;
       default: {
-        Bytes d = make_datagram(h, encode_control_payload(MessageType::pause, rng(), rng()));
+        Bytes d = make_datagram(h, encode_control_payload(MessageType::pause, static_cast<std::uint32_t>(rng()), static_cast<std::uint32_t>(rng())));
         d[5] = static_cast<std::uint8_t>(0x40 + rng() % 0x30);  // a type nobody defined
         requests.push_back(std::move(d));
       }
