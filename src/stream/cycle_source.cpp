@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <stdexcept>
 
-#include "io/recording.hpp"
+#include "io/recording_stream.hpp"
 #include "model/model_library.hpp"
-#include "replay/import/importer.hpp"
+#include "replay/import/streaming_import.hpp"
 #include "scene/scene.hpp"
 
 namespace rcsim::stream {
@@ -70,7 +71,6 @@ class SceneSource final : public CycleSource {
     restart();
   }
   int cycle_count() const override { return scene_.cycle_count(); }
-  double time_s(int cycle) const override { return scene_.cycle_time_at(cycle); }
   std::uint32_t available_messages() const override { return kSimulatedBit | kTruthBit; }
   const std::vector<std::string>& sensor_ids() const override { return sensor_ids_; }
   int next_cycle() const override { return next_; }
@@ -87,7 +87,7 @@ class SceneSource final : public CycleSource {
     simulation_->run_cycle(k);
     CycleFrame frame;
     frame.cycle = static_cast<std::uint32_t>(k);
-    frame.t_s = time_s(k);
+    frame.t_s = scene_.cycle_time_at(k);
     frame.timestamp_ns = to_timestamp_ns(frame.t_s);
     add_simulated(*simulation_, scene_, frame.cycle, options_, frame);
     GroundTruthMessage truth;
@@ -115,27 +115,22 @@ class SceneSource final : public CycleSource {
   int next_ = 0;
 };
 
+// A recording streamed as `rcsim replay` reads it (replay/import/streaming_import.hpp): its rows
+// are read, smoothed and simulated cycle by cycle, so memory does not grow with its length. The
+// ground truth (the raw annotated boxes and ego rows, not the smoothed ones the simulation sees)
+// is read alongside by readers of its own, a few rows at a time.
 class RecordingSource final : public CycleSource {
  public:
-  RecordingSource(Recording recording, const SourceOptions& options)
-      : recording_(std::move(recording)), options_(options) {
-    check_sensor_count(recording_.sensors.size());
+  RecordingSource(std::filesystem::path dir, const SourceOptions& options)
+      : dir_(std::move(dir)), options_(options), library_(ModelLibrary::builtin()) {
     list_level(options_.simulation.level);
-    const ModelLibrary library = ModelLibrary::builtin();
-    imported_ = replay::import_recording(recording_, library, replay::ImportOptions{});
-    scene_ = replay::build_scene(imported_, library, recording_.dir.string());
-    for (const auto& s : recording_.sensors) sensor_ids_.push_back(s.id);
-    // targets.csv is in cycle order: where each cycle's rows begin.
-    cycle_begin_.assign(static_cast<std::size_t>(recording_.cycle_count()) + 1, recording_.targets.size());
-    for (std::size_t i = recording_.targets.size(); i-- > 0;) {
-      const int c = recording_.targets[i].cycle;
-      if (c >= 0 && c < recording_.cycle_count()) cycle_begin_[static_cast<std::size_t>(c)] = i;
-    }
-    for (std::size_t k = cycle_begin_.size() - 1; k-- > 0;) cycle_begin_[k] = std::min(cycle_begin_[k], cycle_begin_[k + 1]);
     restart();
+    const Recording& header = input_->recording();
+    check_sensor_count(header.sensors.size());
+    cycle_count_ = header.cycle_count();
+    for (const auto& s : header.sensors) sensor_ids_.push_back(s.id);
   }
-  int cycle_count() const override { return recording_.cycle_count(); }
-  double time_s(int cycle) const override { return recording_.ego[static_cast<std::size_t>(cycle)].t_s; }
+  int cycle_count() const override { return cycle_count_; }
   std::uint32_t available_messages() const override { return kSimulatedBit | kRecordedBit | kTruthBit; }
   const std::vector<std::string>& sensor_ids() const override { return sensor_ids_; }
   int next_cycle() const override { return next_; }
@@ -143,68 +138,106 @@ class RecordingSource final : public CycleSource {
   void seek(int cycle) override {
     if (cycle < 0 || cycle > cycle_count()) throw std::out_of_range("seek beyond the recording");
     if (cycle < next_) restart();
-    for (; next_ < cycle; ++next_) simulation_->run_at(scene_time_s(next_));
+    while (next_ < cycle) advance();
   }
 
   CycleFrame produce() override {
-    const int k = next_++;
+    advance();  // read => smooth => simulate
+    const Recording& header = input_->recording();
     CycleFrame frame;
-    frame.cycle = static_cast<std::uint32_t>(k);
-    frame.t_s = time_s(k);
+    frame.cycle = static_cast<std::uint32_t>(next_ - 1);
+    frame.t_s = t_rec_s_;
     frame.timestamp_ns = to_timestamp_ns(frame.t_s);
     // Recorded lists first: they are what the real sensor said in this cycle.
-    for (std::size_t s = 0; s < recording_.sensors.size(); ++s) {
+    for (std::size_t s = 0; s < header.sensors.size(); ++s) {
       TargetListMessage message;
       message.cycle = frame.cycle;
       message.sensor_index = static_cast<std::uint16_t>(s);
       message.level = ListLevel::recorded;
-      message.sensor_id = recording_.sensors[s].id;
-      for (std::size_t i = cycle_begin_[static_cast<std::size_t>(k)]; i < cycle_begin_[static_cast<std::size_t>(k) + 1]; ++i) {
-        const RecordedTarget& r = recording_.targets[i];
-        if (r.cycle != k || r.sensor != static_cast<int>(s)) continue;
-        message.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db});
+      message.sensor_id = header.sensors[s].id;
+      for (const RecordedTarget& r : recorded_) {
+        if (r.sensor == static_cast<int>(s)) message.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db});
       }
       frame.messages.push_back({MessageType::recorded_targets, message.sensor_index,
                                 encode_target_list(message, options_.max_datagram_bytes)});
     }
-    simulation_->run_at(scene_time_s(k));
-    add_simulated(*simulation_, scene_, frame.cycle, options_, frame);
-    frame.messages.push_back({MessageType::ground_truth, 0, encode_ground_truth(truth_at(k), options_.max_datagram_bytes)});
+    add_simulated(*simulation_, input_->scene(), frame.cycle, options_, frame);
+    frame.messages.push_back({MessageType::ground_truth, 0, encode_ground_truth(truth(frame.cycle), options_.max_datagram_bytes)});
     return frame;
   }
 
  private:
-  double scene_time_s(int cycle) const { return time_s(cycle) - imported_.time_offset_s; }
-  void restart() {
-    simulation_ = std::make_unique<Simulation>(scene_, options_.simulation);
-    next_ = 0;
-  }
-  // The annotation: the ego row of the cycle and every box annotated at its time.
-  GroundTruthMessage truth_at(int k) const {
-    const EgoSample& ego = recording_.ego[static_cast<std::size_t>(k)];
-    GroundTruthMessage truth;
-    truth.cycle = static_cast<std::uint32_t>(k);
-    truth.ego = {ego.x_m, ego.y_m, ego.yaw_rad, ego.speed_mps};
-    constexpr double kSameTimeS = 1e-6;  // the files carry 6 decimals
-    for (std::size_t o = 0; o < recording_.objects.size(); ++o) {
-      const auto& boxes = recording_.boxes[o];
-      const auto it = std::lower_bound(boxes.begin(), boxes.end(), ego.t_s - kSameTimeS,
-                                       [](const AnnotatedBox& b, double t_s) { return b.t_s < t_s; });
-      if (it == boxes.end() || std::abs(it->t_s - ego.t_s) > kSameTimeS) continue;
-      const RecordingObject& object = recording_.objects[o];
-      truth.objects.push_back({static_cast<std::uint32_t>(o), {it->x_m, it->y_m, it->yaw_rad, it->speed_mps},
-                               object.length_m, object.width_m, object.id});
-    }
-    return truth;
+  // The next cycle read and simulated; its recorded targets in recorded_, its time in t_rec_s_.
+  void advance() {
+    int cycle = 0;
+    if (!input_->next_cycle(cycle, t_rec_s_, recorded_)) throw std::logic_error("a recording streamed beyond its last cycle");
+    if (const auto window = input_->take_moved_window()) simulation_->cull_within(window->first, window->second);
+    simulation_->run_at(t_rec_s_ - input_->imported().time_offset_s);
+    next_ = cycle + 1;
   }
 
-  Recording recording_;
+  void restart() {
+    simulation_.reset();  // it refers to the old import's scene
+    input_ = std::make_unique<replay::StreamingImport>(dir_, library_, replay::ImportOptions{});
+    const Recording& header = input_->recording();
+    truth_ego_ = std::make_unique<EgoRowReader>(dir_ / "ego.csv", header.cycle_time_s);
+    truth_boxes_ = std::make_unique<BoxRowReader>(dir_ / "objects.csv", header.objects);
+    truth_ego_cycle_ = 0;
+    boxes_ahead_.clear();
+    boxes_done_ = false;
+    simulation_ = std::make_unique<Simulation>(input_->scene(), options_.simulation);
+    next_ = 0;
+  }
+
+  // The annotation as recorded: the ego row of the cycle and every box annotated at its time
+  // (within 1 µs: the files carry 6 decimals). Rows are in time order, so the boxes of earlier
+  // times are dropped and those beyond it wait for the next cycle.
+  GroundTruthMessage truth(std::uint32_t cycle) {
+    constexpr double kSameTimeS = 1e-6;
+    EgoSample ego;
+    for (; truth_ego_cycle_ <= cycle; ++truth_ego_cycle_) {  // past the cycles a seek skipped
+      if (!truth_ego_->next(ego)) throw std::logic_error("ego.csv ended before its cycles");
+    }
+    GroundTruthMessage message;
+    message.cycle = cycle;
+    message.ego = {ego.x_m, ego.y_m, ego.yaw_rad, ego.speed_mps};
+    const auto beyond = [&ego](const AnnotatedBox& b) { return b.t_s > ego.t_s && std::abs(b.t_s - ego.t_s) > kSameTimeS; };
+    while (!boxes_done_ && (boxes_ahead_.empty() || !beyond(boxes_ahead_.back().second))) {
+      std::pair<std::size_t, AnnotatedBox> row;
+      if (truth_boxes_->next(row.first, row.second)) boxes_ahead_.push_back(row);
+      else boxes_done_ = true;
+    }
+    while (!boxes_ahead_.empty() && boxes_ahead_.front().second.t_s < ego.t_s - kSameTimeS) boxes_ahead_.pop_front();
+    // Each object's first box from ego.t_s - 1 µs on, if it lies within 1 µs; in object order.
+    std::vector<std::pair<std::size_t, const AnnotatedBox*>> at_time;
+    for (const auto& [o, box] : boxes_ahead_) at_time.emplace_back(o, &box);
+    std::stable_sort(at_time.begin(), at_time.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    at_time.erase(std::unique(at_time.begin(), at_time.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+                  at_time.end());
+    std::erase_if(at_time, [&ego](const auto& a) { return std::abs(a.second->t_s - ego.t_s) > kSameTimeS; });
+    const Recording& header = input_->recording();
+    for (const auto& [o, box] : at_time) {
+      const RecordingObject& object = header.objects[o];
+      message.objects.push_back({static_cast<std::uint32_t>(o), {box->x_m, box->y_m, box->yaw_rad, box->speed_mps},
+                                 object.length_m, object.width_m, object.id});
+    }
+    return message;
+  }
+
+  std::filesystem::path dir_;
   SourceOptions options_;
-  replay::ImportedScene imported_;
-  Scene scene_;
+  ModelLibrary library_;
   std::vector<std::string> sensor_ids_;
-  std::vector<std::size_t> cycle_begin_;
+  int cycle_count_ = 0;
+  std::unique_ptr<replay::StreamingImport> input_;
+  std::unique_ptr<EgoRowReader> truth_ego_;
+  std::uint32_t truth_ego_cycle_ = 0;  // the cycle of truth_ego_'s next row
+  std::unique_ptr<BoxRowReader> truth_boxes_;
+  std::deque<std::pair<std::size_t, AnnotatedBox>> boxes_ahead_;  // read, not yet older than the cycle
+  bool boxes_done_ = false;
   std::unique_ptr<Simulation> simulation_;
+  std::vector<RecordedTarget> recorded_;  // of the cycle last advanced to
+  double t_rec_s_ = 0.0;
   int next_ = 0;
 };
 
@@ -220,7 +253,7 @@ std::unique_ptr<CycleSource> make_scene_source(Scene scene, const SourceOptions&
 }
 
 std::unique_ptr<CycleSource> open_source(const std::filesystem::path& path, const SourceOptions& options) {
-  if (std::filesystem::is_directory(path)) return std::make_unique<RecordingSource>(read_recording(path), options);
+  if (std::filesystem::is_directory(path)) return std::make_unique<RecordingSource>(path, options);
   return std::make_unique<SceneSource>(load_scene_file(path.string(), ModelLibrary::builtin()), options);
 }
 

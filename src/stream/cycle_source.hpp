@@ -41,7 +41,6 @@ class CycleSource {
  public:
   virtual ~CycleSource() = default;
   virtual int cycle_count() const = 0;
-  virtual double time_s(int cycle) const = 0;
   // Message types this source has (kSimulatedBit | kTruthBit, plus kRecordedBit for recordings).
   virtual std::uint32_t available_messages() const = 0;
   virtual const std::vector<std::string>& sensor_ids() const = 0;
