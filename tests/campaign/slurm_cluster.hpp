@@ -62,10 +62,10 @@ inline std::string trim(const std::string& s) {
   return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
 }
 
-// The command's stdout and stderr, and its exit code.
+// The command's stdout and stderr (except what the command redirects itself), and its exit code.
 inline CommandResult shell(const std::string& command) {
   CommandResult result{0, {}};
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  FILE* pipe = popen(("{ " + command + "\n} 2>&1").c_str(), "r");
   if (pipe == nullptr) return {127, "popen failed"};
   std::array<char, 4096> buffer{};
   while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
@@ -182,6 +182,7 @@ class SlurmCluster {
 
   // COMMAND through the shell, in the scratch directory (so that jobs without --output or
   // --chdir write there), with env() and without the caller's own SLURM_*/SBATCH_* variables.
+  // The output holds stdout and stderr, unless COMMAND redirects stderr itself (`2>/dev/null`).
   CommandResult run(const std::string& command) const { return slurm_detail::shell(state_->client_prefix() + command); }
 
   // `sbatch --parsable ARGS`: the job id. Throws with sbatch's message when it refuses.
