@@ -31,8 +31,9 @@ std::optional<CycleFrame> FrameProducer::try_pop() {
   std::optional<CycleFrame> frame;
   {
     std::lock_guard lock(mutex_);
-    if (error_) std::rethrow_exception(error_);
     if (queue_.empty()) {
+      // The source's error in its place: after the frames produced before it.
+      if (error_) std::rethrow_exception(error_);
       waiting_ = true;
       return frame;
     }

@@ -25,7 +25,8 @@ class FrameProducer {
   FrameProducer& operator=(const FrameProducer&) = delete;
 
   void start(int first_cycle);
-  // The next frame, if ready. Rethrows an error of the source (bad input found while running).
+  // The next frame, if ready. Rethrows an error of the source (bad input found while running)
+  // once the frames produced before it have been taken.
   std::optional<CycleFrame> try_pop();
   // Every cycle up to the end has been produced and taken.
   bool finished();

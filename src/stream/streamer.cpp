@@ -470,7 +470,17 @@ StreamSummary Streamer::run() {
     });
   }
   s.post_pump();
-  s.io.run();
+  try {
+    s.io.run();
+  } catch (...) {
+    // An error of the source (a recording's bad row, found when the stream reaches it): the
+    // receivers hear the end of the stream, so that they end and keep what came before it.
+    if (!s.finished && !s.stopping) {
+      for (Sink& sink : s.sinks) s.send_end(sink);
+    }
+    if (normal_policy) pthread_setschedparam(pthread_self(), normal_policy->first, &normal_policy->second);
+    throw;
+  }
   if (normal_policy) pthread_setschedparam(pthread_self(), normal_policy->first, &normal_policy->second);
   s.producer.stop();
   StreamSummary summary = s.summary;

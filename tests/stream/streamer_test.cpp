@@ -8,11 +8,13 @@
 #include <poll.h>
 
 #include <boost/asio/io_context.hpp>
+#include <fstream>
 #include <future>
 #include <random>
 #include <set>
 
-#include "replay/run/model_recording.hpp"
+#include "common/input_error.hpp"
+#include "io/recording.hpp"
 #include "stream/endpoints.hpp"
 #include "stream/listener.hpp"
 #include "stream/reassembly.hpp"
@@ -338,9 +340,7 @@ TEST(StreamLoopback, FragmentedCyclesReassembleEndToEnd) {
 }
 
 TEST(StreamLoopback, RecordingStreamsRecordedSimulatedAndTruth) {
-  const Scene scene = two_sensor_scene(2.0);
-  const fs::path dir = testing::temp_dir("recording") / "rec";
-  write_recording(dir, replay::model_recording(scene, "rec", 5));
+  const fs::path dir = fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / "two_in_one_cell";
   const Recording rec = read_recording(dir);
   ASSERT_GT(rec.targets.size(), 20u);
   SourceOptions source_options;
@@ -372,6 +372,46 @@ TEST(StreamLoopback, RecordingStreamsRecordedSimulatedAndTruth) {
     EXPECT_EQ(s.target_lists, 4u * static_cast<std::uint64_t>(rec.cycle_count()));
     EXPECT_EQ(s.lost, 0u);
   }
+}
+
+TEST(StreamLoopback, ABadRowEndsTheStreamWithItsErrorAndTheListenerKeepsTheCyclesBefore) {
+  // A recording is read as it streams: a bad row in the last cycle is found there. The streamer
+  // ends with the error (file, line, column), after telling its receivers the stream ended.
+  const fs::path dir = testing::temp_dir("bad_row") / "rec";
+  fs::copy(fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / "two_in_one_cell", dir);
+  std::string targets = testing::read_file(dir / "targets.csv");
+  const std::size_t last_row = targets.rfind('\n', targets.size() - 2) + 1;
+  const std::size_t range = [&] {
+    std::size_t at = last_row;
+    for (int comma = 0; comma < 4; ++comma) at = targets.find(',', at) + 1;
+    return at;
+  }();
+  targets.replace(range, targets.find(',', range) - range, "1e308");
+  std::ofstream(dir / "targets.csv", std::ios::trunc) << targets;
+  const int rows = static_cast<int>(std::count(targets.begin(), targets.end(), '\n'));
+
+  SourceOptions source_options;
+  auto source = open_source(dir, source_options);
+  ListenerRun client(ListenOptions{});
+  StreamOptions options;
+  options.destinations = {fmt::format("127.0.0.1:{}", client.listener.port())};
+  options.speed = testing::kLosslessSpeed * 4;
+  std::ostringstream log;
+  Streamer streamer(*source, options, log);
+  try {
+    streamer.run();
+    ADD_FAILURE() << "the bad row was not found";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(fmt::format("targets.csv: line {}, column 'range_m'", rows)), std::string::npos)
+        << e.what();
+  }
+  const ListenSummary s = client.get();
+  EXPECT_TRUE(s.end_received) << "the listener heard the end";
+  EXPECT_EQ(s.lost, 0u);
+  const int cycles = source->cycle_count();
+  // The bad row is the last cycle's only row; reading cycle k reads on to the first row beyond it,
+  // so the error comes in place of cycle k = cycles - 2, and every cycle before it arrived.
+  EXPECT_EQ(s.target_lists, 2u * static_cast<std::uint64_t>(cycles - 2));
 }
 
 TEST(StreamLoopback, MulticastGroupOnTheLoopbackInterface) {
