@@ -14,6 +14,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sqlite3.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -317,19 +318,44 @@ std::vector<StoredRun> read_runs(SQLite::Database& db) {
   return runs;
 }
 
-struct InputSnapshot {
+// A bench as its rows say, its id aside: two benches with the same fingerprint are one.
+std::string bench_fingerprint(SQLite::Database& db, std::int64_t bench_id) {
+  std::string out;
+  for (const char* table : {"bench_runs", "bench_rows"}) {
+    std::vector<std::string> columns;
+    for (const auto& column : table_columns(db, "main", table)) {
+      if (column != "bench_id") columns.push_back(quoted(column));
+    }
+    SQLite::Statement q(db, fmt::format("SELECT {0} FROM main.{1} WHERE bench_id = ? ORDER BY {0}", join(columns, ", "),
+                                        table));
+    q.bind(1, bench_id);
+    while (q.executeStep()) out += row_exact(q) + '\n';
+    out += '\x1e';
+  }
+  return out;
+}
+
+// The benches of a database, by bench id, with their fingerprints.
+std::vector<std::pair<std::int64_t, std::string>> read_benches(SQLite::Database& db) {
+  std::vector<std::int64_t> ids;
+  SQLite::Statement q(db, "SELECT bench_id FROM bench_runs ORDER BY bench_id");
+  while (q.executeStep()) ids.push_back(q.getColumn(0).getInt64());
+  std::vector<std::pair<std::int64_t, std::string>> benches;
+  for (const std::int64_t id : ids) benches.emplace_back(id, bench_fingerprint(db, id));
+  return benches;
+}
+
+// What pass 1 reads of a database.
+struct Snapshot {
   std::string file;
   std::vector<StoredRun> runs;
+  std::vector<std::pair<std::int64_t, std::string>> benches;  // id, fingerprint
+  CampaignRows campaign;
 };
 
-// Pass 1 for one input: read-only, checked, its runs' identities.
-InputSnapshot read_input(const std::string& file, CampaignAgreement& agreement) {
-  Header header = Header::empty;
-  const auto db = open_existing(file, SQLite::OPEN_READONLY, header);
-  if (header == Header::empty) throw InputError(file, "", "the database is empty: no replay has been stored in it");
+Snapshot read_snapshot(SQLite::Database& db, const std::string& file) {
   try {
-    agreement.check(read_campaign(*db, "main", file), file);
-    return {file, read_runs(*db)};
+    return {file, read_runs(db), read_benches(db), read_campaign(db, "main", file)};
   } catch (const SQLite::Exception& e) {
     throw InputError(file, "", std::string("cannot read as a report database: ") + e.what());
   }
@@ -341,55 +367,48 @@ struct KeptRun {
   std::int64_t run_id = 0, output_run_id = 0;
 };
 
-// Pass 2: the temporary output and the statements that fill it.
-class MergeTarget {
- public:
-  MergeTarget(SQLite::Database& db, const std::string& output) : db_(db), output_(output) {
-    tables_ = classify_report_tables(db_);
-    if (!tables_.unknown.empty()) {
-      throw std::logic_error(fmt::format("{}: rcsim merge does not know how to merge the table(s) {}", output,
-                                         join(tables_.unknown, ", ")));
-    }
-    for (const auto& table : tables_.run_scoped) columns_[table] = table_columns(db_, "main", table);
-    for (const auto& table : tables_.bench) columns_[table] = table_columns(db_, "main", table);
-    for (const auto& table : tables_.campaign) columns_[table] = table_columns(db_, "main", table);
-    summary_figures_.clear();
-    for (const auto& column : columns_.at("summaries")) {
-      if (column != "run_id" && kTimingColumns.count(column) == 0) summary_figures_.push_back(column);
-    }
-    db_.exec("CREATE TEMP TABLE merge_run_map (old_id INTEGER PRIMARY KEY, new_id INTEGER NOT NULL)");
-    db_.exec("CREATE TEMP TABLE merge_bench_map (old_id INTEGER PRIMARY KEY, new_id INTEGER NOT NULL)");
-    next_run_id_ = db_.execAndGet("SELECT coalesce(max(run_id), 0) + 1 FROM main.runs").getInt64();
-    next_bench_id_ = db_.execAndGet("SELECT coalesce(max(bench_id), 0) + 1 FROM main.bench_runs").getInt64();
-    SQLite::Statement benches(db_, "SELECT bench_id FROM main.bench_runs ORDER BY bench_id");
-    while (benches.executeStep()) bench_fingerprints_.insert(bench_fingerprint("main", benches.getColumn(0).getInt64()));
+// What the merge will do, decided from the snapshots before anything is written.
+struct Plan {
+  struct Input {
+    std::vector<std::pair<std::int64_t, std::int64_t>> runs, benches;  // to copy: id there, id in the output
+    bool campaign = false, criteria = false;                          // to copy from it
+    std::size_t first_duplicate = 0, end_duplicate = 0;               // its duplicates in MergeResult::duplicates
+  };
+  std::vector<Input> inputs;
+  bool writes() const {
+    return std::any_of(inputs.begin(), inputs.end(), [](const Input& i) {
+      return !i.runs.empty() || !i.benches.empty() || i.campaign || i.criteria;
+    });
   }
+};
 
-  // The output's own runs: the first of each identity is the one kept.
-  void keep_output_runs(const std::vector<StoredRun>& runs, const std::string& label) {
-    for (const StoredRun& run : runs) kept_.emplace(run.key, KeptRun{label, run.run_id, run.run_id});
+Plan make_plan(const Snapshot& output, const std::vector<Snapshot>& inputs, MergeResult& result) {
+  Plan plan;
+  std::map<std::string, KeptRun> kept;  // by identity key; the first of each is kept
+  std::int64_t next_run_id = 1, next_bench_id = 1;
+  for (const StoredRun& run : output.runs) {
+    kept.emplace(run.key, KeptRun{output.file, run.run_id, run.run_id});
+    next_run_id = std::max(next_run_id, run.run_id + 1);
   }
-
-  // Copies the runs of one input (ATTACHed as `src`) that are not kept yet, and its benches.
-  MergeInput add(const InputSnapshot& input, std::vector<MergeDuplicate>& duplicates) {
-    check_columns(input.file);
-    MergeInput result;
-    result.file = input.file;
-    result.runs = static_cast<long long>(input.runs.size());
-    SQLite::Transaction transaction(db_);
-    db_.exec("DELETE FROM temp.merge_run_map");
-    SQLite::Statement map(db_, "INSERT INTO temp.merge_run_map VALUES (?, ?)");
-    const std::size_t first_duplicate = duplicates.size();
+  std::set<std::string> benches;
+  for (const auto& [id, fingerprint] : output.benches) {
+    benches.insert(fingerprint);
+    next_bench_id = std::max(next_bench_id, id + 1);
+  }
+  bool has_campaign = output.campaign.campaign.has_value(), has_criteria = !output.campaign.criteria_exact.empty();
+  for (const Snapshot& input : inputs) {
+    Plan::Input& step = plan.inputs.emplace_back();
+    MergeInput& counts = result.inputs.emplace_back();
+    counts.file = input.file;
+    counts.runs = static_cast<long long>(input.runs.size());
+    step.first_duplicate = result.duplicates.size();
     for (const StoredRun& run : input.runs) {
-      const auto [it, added] = kept_.emplace(run.key, KeptRun{input.file, run.run_id, next_run_id_});
+      const auto [it, added] = kept.emplace(run.key, KeptRun{input.file, run.run_id, next_run_id});
       if (added) {
-        map.bind(1, run.run_id);
-        map.bind(2, next_run_id_++);
-        map.exec();
-        map.reset();
-        ++result.added;
+        step.runs.emplace_back(run.run_id, next_run_id++);
+        ++counts.added;
       } else {
-        MergeDuplicate d;
+        MergeDuplicate& d = result.duplicates.emplace_back();
         d.file = input.file;
         d.run_id = run.run_id;
         d.kept_file = it->second.file;
@@ -398,17 +417,115 @@ class MergeTarget {
         d.recording_name = run.recording_name;
         d.seed = run.seed;
         d.identity = run.key;
-        duplicates.push_back(std::move(d));
-        ++result.duplicates;
+        ++counts.duplicates;
       }
-      result.run_ids.emplace_back(run.run_id, it->second.output_run_id);
+      counts.run_ids.emplace_back(run.run_id, it->second.output_run_id);
     }
-    for (const auto& table : tables_.run_scoped) db_.exec(copy_sql(table, "run_id", "merge_run_map"));
-    add_benches(result);
-    add_campaign();
-    for (std::size_t i = first_duplicate; i < duplicates.size(); ++i) compare_summaries(duplicates[i]);
+    step.end_duplicate = result.duplicates.size();
+    for (const auto& [id, fingerprint] : input.benches) {
+      ++counts.benches;
+      if (!benches.insert(fingerprint).second) continue;  // an exact duplicate
+      step.benches.emplace_back(id, next_bench_id++);
+      ++counts.benches_added;
+    }
+    // Checked to agree with the output's and each other's: copied once, from the first that has them.
+    step.campaign = !has_campaign && input.campaign.campaign.has_value();
+    step.criteria = !has_criteria && !input.campaign.criteria_exact.empty();
+    has_campaign = has_campaign || step.campaign;
+    has_criteria = has_criteria || step.criteria;
+    result.campaign_copied = result.campaign_copied || step.campaign || step.criteria;
+  }
+  return plan;
+}
+
+// ATTACHes an input read-only as `src` for the scope.
+class AttachedInput {
+ public:
+  AttachedInput(SQLite::Database& db, const std::string& file) : db_(db) {
+    SQLite::Statement attach(db_, "ATTACH DATABASE ? AS src");
+    attach.bind(1, read_only_uri(file));
+    attach.exec();
+    // Checked in pass 1; again in case the file was replaced since.
+    const int application_id = db_.execAndGet("PRAGMA src.application_id").getInt();
+    const int version = db_.execAndGet("PRAGMA src.user_version").getInt();
+    if (application_id != kReportApplicationId || version != kReportSchemaVersion) {
+      throw InputError(file, "", fmt::format("changed during the merge (application_id {:#x}, report schema version {}, "
+                                             "expected {:#x} and {})",
+                                             static_cast<std::uint32_t>(application_id), version, kReportApplicationId,
+                                             kReportSchemaVersion));
+    }
+  }
+  ~AttachedInput() {
+    try {
+      db_.exec("DETACH DATABASE src");
+    } catch (const SQLite::Exception&) {
+      // only while unwinding from an error: the connection is closed next
+    }
+  }
+  AttachedInput(const AttachedInput&) = delete;
+  AttachedInput& operator=(const AttachedInput&) = delete;
+
+ private:
+  SQLite::Database& db_;
+};
+
+// The summaries figures (timings aside) in which a duplicate (in src) differs from its kept run (in main).
+void compare_summaries(SQLite::Database& db, MergeDuplicate& d) {
+  std::vector<std::string> figures;
+  for (const auto& column : table_columns(db, "main", "summaries")) {
+    if (column != "run_id" && kTimingColumns.count(column) == 0) figures.push_back(column);
+  }
+  std::vector<std::string> columns;
+  for (const auto& figure : figures) columns.push_back(quoted(figure));
+  SQLite::Statement theirs(db, fmt::format("SELECT {} FROM src.summaries WHERE run_id = ?", join(columns, ", ")));
+  SQLite::Statement kept(db, fmt::format("SELECT {} FROM main.summaries WHERE run_id = ?", join(columns, ", ")));
+  theirs.bind(1, d.run_id);
+  kept.bind(1, d.output_run_id);
+  const bool has_theirs = theirs.executeStep(), has_kept = kept.executeStep();
+  if (!has_theirs || !has_kept) {
+    if (has_theirs != has_kept) {
+      d.differences.push_back({"summaries", has_kept ? "a row" : "no row", has_theirs ? "a row" : "no row"});
+    }
+    return;
+  }
+  for (int c = 0; c < theirs.getColumnCount(); ++c) {
+    if (exact(theirs.getColumn(c)) != exact(kept.getColumn(c))) {
+      d.differences.push_back({figures[static_cast<std::size_t>(c)], display(kept.getColumn(c)),
+                               display(theirs.getColumn(c))});
+    }
+  }
+}
+
+// Pass 2: the temporary output and the statements that fill it.
+class MergeTarget {
+ public:
+  MergeTarget(SQLite::Database& db, const std::string& output) : db_(db) {
+    tables_ = classify_report_tables(db_);
+    if (!tables_.unknown.empty()) {
+      throw std::logic_error(fmt::format("{}: rcsim merge does not know how to merge the table(s) {}", output,
+                                         join(tables_.unknown, ", ")));
+    }
+    for (const auto* group : {&tables_.run_scoped, &tables_.bench, &tables_.campaign}) {
+      for (const auto& table : *group) columns_[table] = table_columns(db_, "main", table);
+    }
+    db_.exec("CREATE TEMP TABLE merge_run_map (old_id INTEGER PRIMARY KEY, new_id INTEGER NOT NULL)");
+    db_.exec("CREATE TEMP TABLE merge_bench_map (old_id INTEGER PRIMARY KEY, new_id INTEGER NOT NULL)");
+  }
+
+  // Copies from the input ATTACHed as `src` what the plan says, then compares its duplicates.
+  void add(const std::string& file, const Plan::Input& step, std::vector<MergeDuplicate>& duplicates) {
+    check_columns(file);
+    SQLite::Transaction transaction(db_);
+    if (fill_map("merge_run_map", step.runs)) {
+      for (const auto& table : tables_.run_scoped) db_.exec(copy_sql(table, "run_id", "merge_run_map"));
+    }
+    if (fill_map("merge_bench_map", step.benches)) {
+      for (const auto& table : tables_.bench) db_.exec(copy_sql(table, "bench_id", "merge_bench_map"));
+    }
+    if (step.campaign) copy_all("campaign");
+    if (step.criteria) copy_all("criteria");
+    for (std::size_t i = step.first_duplicate; i < step.end_duplicate; ++i) compare_summaries(db_, duplicates[i]);
     transaction.commit();
-    return result;
   }
 
  private:
@@ -424,102 +541,64 @@ class MergeTarget {
     }
   }
 
+  bool fill_map(const char* map, const std::vector<std::pair<std::int64_t, std::int64_t>>& ids) {
+    db_.exec(fmt::format("DELETE FROM temp.{}", map));
+    SQLite::Statement insert(db_, fmt::format("INSERT INTO temp.{} VALUES (?, ?)", map));
+    for (const auto& [from, to] : ids) {
+      insert.bind(1, from);
+      insert.bind(2, to);
+      insert.exec();
+      insert.reset();
+    }
+    return !ids.empty();
+  }
+
   std::string copy_sql(const std::string& table, const std::string& key, const std::string& map) const {
-    const auto& columns = columns_.at(table);
-    std::vector<std::string> selected;
-    for (const auto& column : columns) selected.push_back(column == key ? "m.new_id" : "s." + quoted(column));
-    std::vector<std::string> names;
-    for (const auto& column : columns) names.push_back(quoted(column));
+    std::vector<std::string> names, selected;
+    for (const auto& column : columns_.at(table)) {
+      names.push_back(quoted(column));
+      selected.push_back(column == key ? "m.new_id" : "s." + quoted(column));
+    }
     return fmt::format("INSERT INTO main.{0} ({1}) SELECT {2} FROM src.{0} AS s JOIN temp.{3} AS m ON m.old_id = s.{4}",
                        quoted(table), join(names, ", "), join(selected, ", "), map, quoted(key));
   }
 
-  // A bench as its rows say, its id aside: two benches with the same fingerprint are one.
-  std::string bench_fingerprint(const std::string& schema, std::int64_t bench_id) {
-    std::string out;
-    for (const char* table : {"bench_runs", "bench_rows"}) {
-      std::vector<std::string> columns;
-      for (const auto& column : columns_.at(table)) {
-        if (column != "bench_id") columns.push_back(quoted(column));
-      }
-      SQLite::Statement q(db_, fmt::format("SELECT {0} FROM {1}.{2} WHERE bench_id = ? ORDER BY {0}", join(columns, ", "),
-                                           quoted(schema), table));
-      q.bind(1, bench_id);
-      while (q.executeStep()) out += row_exact(q) + '\n';
-      out += '\x1e';
-    }
-    return out;
+  void copy_all(const std::string& table) {
+    std::vector<std::string> names;
+    for (const auto& column : columns_.at(table)) names.push_back(quoted(column));
+    db_.exec(fmt::format("INSERT INTO main.{0} ({1}) SELECT {1} FROM src.{0}", quoted(table), join(names, ", ")));
   }
 
-  void add_benches(MergeInput& result) {
-    db_.exec("DELETE FROM temp.merge_bench_map");
-    SQLite::Statement map(db_, "INSERT INTO temp.merge_bench_map VALUES (?, ?)");
-    std::vector<std::int64_t> ids;
-    SQLite::Statement benches(db_, "SELECT bench_id FROM src.bench_runs ORDER BY bench_id");
-    while (benches.executeStep()) ids.push_back(benches.getColumn(0).getInt64());
-    for (const std::int64_t id : ids) {
-      ++result.benches;
-      if (!bench_fingerprints_.insert(bench_fingerprint("src", id)).second) continue;  // an exact duplicate
-      map.bind(1, id);
-      map.bind(2, next_bench_id_++);
-      map.exec();
-      map.reset();
-      ++result.benches_added;
-    }
-    if (result.benches_added == 0) return;
-    db_.exec(copy_sql("bench_runs", "bench_id", "merge_bench_map"));
-    db_.exec(copy_sql("bench_rows", "bench_id", "merge_bench_map"));
-  }
-
-  // The campaign and criteria (checked to agree in pass 1) into an output that has none.
-  void add_campaign() {
-    for (const auto& table : tables_.campaign) {
-      if (db_.execAndGet(fmt::format("SELECT count(*) FROM main.{}", quoted(table))).getInt64() > 0) continue;
-      std::vector<std::string> names;
-      for (const auto& column : columns_.at(table)) names.push_back(quoted(column));
-      const int copied = db_.exec(fmt::format("INSERT INTO main.{0} ({1}) SELECT {1} FROM src.{0}", quoted(table),
-                                              join(names, ", ")));
-      campaign_copied_ = campaign_copied_ || copied > 0;
-    }
-  }
-
-  void compare_summaries(MergeDuplicate& d) {
-    std::vector<std::string> columns;
-    for (const auto& column : summary_figures_) columns.push_back(quoted(column));
-    const std::string select = join(columns, ", ");
-    SQLite::Statement theirs(db_, fmt::format("SELECT {} FROM src.summaries WHERE run_id = ?", select));
-    SQLite::Statement kept(db_, fmt::format("SELECT {} FROM main.summaries WHERE run_id = ?", select));
-    theirs.bind(1, d.run_id);
-    kept.bind(1, d.output_run_id);
-    const bool has_theirs = theirs.executeStep(), has_kept = kept.executeStep();
-    if (!has_theirs || !has_kept) {
-      if (has_theirs != has_kept) {
-        d.differences.push_back({"summaries", has_kept ? "a row" : "no row", has_theirs ? "a row" : "no row"});
-      }
-      return;
-    }
-    for (int c = 0; c < theirs.getColumnCount(); ++c) {
-      if (exact(theirs.getColumn(c)) != exact(kept.getColumn(c))) {
-        d.differences.push_back({summary_figures_[static_cast<std::size_t>(c)], display(kept.getColumn(c)),
-                                 display(theirs.getColumn(c))});
-      }
-    }
-  }
-
- public:
-  bool campaign_copied() const { return campaign_copied_; }
-
- private:
   SQLite::Database& db_;
-  std::string output_;
   ReportTables tables_;
   std::map<std::string, std::vector<std::string>> columns_;
-  std::vector<std::string> summary_figures_;
-  std::map<std::string, KeptRun> kept_;  // by identity key
-  std::set<std::string> bench_fingerprints_;
-  std::int64_t next_run_id_ = 1, next_bench_id_ = 1;
-  bool campaign_copied_ = false;
 };
+
+// The output on disk, to see before the rename that nothing changed it meanwhile (a replay into
+// it, another merge): their runs would be lost with the old file.
+struct FileState {
+  bool exists = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+  off_t size = 0;
+  long long mtime_ns = 0;
+  bool wal_written = false;  // its -wal holds frames (ours was checkpointed and truncated)
+  bool operator==(const FileState&) const = default;
+};
+
+FileState file_state(const fs::path& path) {
+  FileState state;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return state;
+  state.exists = true;
+  state.device = st.st_dev;
+  state.inode = st.st_ino;
+  state.size = st.st_size;
+  state.mtime_ns = static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec;
+  struct stat wal {};
+  state.wal_written = ::stat((path.string() + "-wal").c_str(), &wal) == 0 && wal.st_size > 0;
+  return state;
+}
 
 // The temporary output, removed unless it was renamed into place.
 class TemporaryDatabase {
@@ -537,6 +616,27 @@ class TemporaryDatabase {
   fs::path path_;
   bool kept_ = false;
 };
+
+// Nothing to add (every run a duplicate, every bench there, the campaign too): the output is left
+// as it is, only read to compare the duplicates' figures.
+void compare_only(const std::string& output, const std::vector<Snapshot>& inputs, const Plan& plan,
+                  MergeResult& result) {
+  try {
+    SQLite::Database db(read_only_uri(output), SQLite::OPEN_READONLY | SQLite::OPEN_URI);
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      const Plan::Input& step = plan.inputs[i];
+      if (step.first_duplicate == step.end_duplicate) continue;
+      try {
+        AttachedInput attached(db, inputs[i].file);
+        for (std::size_t d = step.first_duplicate; d < step.end_duplicate; ++d) compare_summaries(db, result.duplicates[d]);
+      } catch (const SQLite::Exception& e) {
+        throw InputError(inputs[i].file, "", std::string("cannot read as a report database: ") + e.what());
+      }
+    }
+  } catch (const SQLite::Exception& e) {
+    throw InputError(output, "", std::string("cannot read as a report database: ") + e.what());
+  }
+}
 
 }  // namespace
 
@@ -594,36 +694,57 @@ MergeResult merge_reports(const std::vector<std::string>& inputs, const std::str
   result.stale_temporaries_removed = remove_stale_temporaries(output_path);
 
   // The output as it is: checked, its WAL checkpointed into it (so that no -wal of the old file
-  // lies beside the new one after the rename), its runs' identities.
+  // lies beside the new one after the rename), what it holds.
   std::unique_ptr<SQLite::Database> existing;
-  CampaignAgreement agreement;
-  std::vector<StoredRun> output_runs;
+  Snapshot output_snapshot{output, {}, {}, {}};
+  FileState output_state;  // as the merge found it, its WAL checkpointed: it must stay so until the rename
   if (fs::exists(output_path, error)) {
     Header header = Header::empty;
     existing = open_existing(output, SQLite::OPEN_READWRITE, header);
-    try {
-      if (header == Header::empty) {
-        existing.reset();  // an empty database: made anew
-      } else {
+    if (header == Header::empty) {
+      existing.reset();  // an empty database: made anew
+    } else {
+      try {
         SQLite::Statement checkpoint(*existing, "PRAGMA wal_checkpoint(TRUNCATE)");
         if (checkpoint.executeStep() && checkpoint.getColumn(0).getInt() != 0) {
           throw InputError(output, "", "in use by another process (its WAL cannot be checkpointed): merge into it "
                                        "when nothing else has it open");
         }
-        agreement.check(read_campaign(*existing, "main", output), output);
-        output_runs = read_runs(*existing);
-        result.output_existed = true;
-        result.runs_before = static_cast<long long>(output_runs.size());
+      } catch (const SQLite::Exception& e) {
+        throw InputError(output, "", std::string("cannot read as a report database: ") + e.what());
       }
-    } catch (const SQLite::Exception& e) {
-      throw InputError(output, "", std::string("cannot read as a report database: ") + e.what());
+      output_snapshot = read_snapshot(*existing, output);
+      result.output_existed = true;
+      result.runs_before = static_cast<long long>(output_snapshot.runs.size());
     }
+    output_state = file_state(output_path);
   }
 
-  // Pass 1: every input checked before anything is written.
-  std::vector<InputSnapshot> snapshots;
+  // Pass 1: every input checked, and agreeing with the output, before anything is written.
+  CampaignAgreement agreement;
+  agreement.check(output_snapshot.campaign, output);
+  std::vector<Snapshot> snapshots;
   snapshots.reserve(inputs.size());
-  for (const std::string& input : inputs) snapshots.push_back(read_input(input, agreement));
+  for (const std::string& input : inputs) {
+    Header header = Header::empty;
+    const auto db = open_existing(input, SQLite::OPEN_READONLY, header);
+    if (header == Header::empty) throw InputError(input, "", "the database is empty: no replay has been stored in it");
+    snapshots.push_back(read_snapshot(*db, input));
+    agreement.check(snapshots.back().campaign, input);
+  }
+  const Plan plan = make_plan(output_snapshot, snapshots, result);
+  result.campaign = output_snapshot.campaign.campaign ? output_snapshot.campaign.campaign->first : "";
+  result.criteria = static_cast<long long>(output_snapshot.campaign.criteria_exact.size());
+  for (std::size_t i = 0; i < snapshots.size(); ++i) {
+    if (plan.inputs[i].campaign) result.campaign = snapshots[i].campaign.campaign->first;
+    if (plan.inputs[i].criteria) result.criteria = static_cast<long long>(snapshots[i].campaign.criteria_exact.size());
+  }
+  if (existing && !plan.writes()) {
+    existing.reset();
+    compare_only(output, snapshots, plan, result);
+    result.runs_after = result.runs_before;
+    return result;
+  }
 
   // Pass 2: the temporary output.
   TemporaryDatabase temporary(temporary_path(output_path));
@@ -646,35 +767,20 @@ MergeResult merge_reports(const std::vector<std::string>& inputs, const std::str
     db.exec("PRAGMA cache_size = -32768");
     db.exec("PRAGMA temp_store = MEMORY");
     MergeTarget target(db, output);
-    target.keep_output_runs(output_runs, output);
-    for (const InputSnapshot& input : snapshots) {
-      try {
-        {
-          SQLite::Statement attach(db, "ATTACH DATABASE ? AS src");
-          attach.bind(1, read_only_uri(input.file));
-          attach.exec();
-        }
-        // Checked in pass 1; again in case the file was replaced since.
-        const int application_id = db.execAndGet("PRAGMA src.application_id").getInt();
-        const int version = db.execAndGet("PRAGMA src.user_version").getInt();
-        if (application_id != kReportApplicationId || version != kReportSchemaVersion) {
-          throw InputError(input.file, "", fmt::format("changed during the merge (application_id {:#x}, report schema "
-                                                       "version {}, expected {:#x} and {})",
-                                                       static_cast<std::uint32_t>(application_id), version,
-                                                       kReportApplicationId, kReportSchemaVersion));
-        }
-        result.inputs.push_back(target.add(input, result.duplicates));
-      } catch (const SQLite::Exception& e) {
-        throw InputError(input.file, "", fmt::format("cannot merge into {}: {}", output, e.what()));
+    for (std::size_t i = 0; i < snapshots.size(); ++i) {
+      const Plan::Input& step = plan.inputs[i];
+      if (step.runs.empty() && step.benches.empty() && !step.campaign && !step.criteria &&
+          step.first_duplicate == step.end_duplicate) {
+        continue;  // nothing to copy or compare
       }
-      db.exec("DETACH DATABASE src");
+      try {
+        AttachedInput attached(db, snapshots[i].file);
+        target.add(snapshots[i].file, step, result.duplicates);
+      } catch (const SQLite::Exception& e) {
+        throw InputError(snapshots[i].file, "", fmt::format("cannot merge into {}: {}", output, e.what()));
+      }
     }
-    result.campaign_copied = target.campaign_copied();
     result.runs_after = db.execAndGet("SELECT count(*) FROM main.runs").getInt64();
-    result.criteria = db.execAndGet("SELECT count(*) FROM main.criteria").getInt64();
-    SQLite::Statement campaign(db, "SELECT name FROM main.campaign");
-    if (campaign.executeStep()) result.campaign = campaign.getColumn(0).getString();
-    campaign.reset();
     db.exec("PRAGMA foreign_keys = ON");
     if (db.execAndGet("PRAGMA journal_mode = WAL").getString() != "wal") {
       throw InputError(output, "", "cannot set the merged report to WAL");
@@ -682,9 +788,15 @@ MergeResult merge_reports(const std::vector<std::string>& inputs, const std::str
   } catch (const SQLite::Exception& e) {
     throw InputError(output, "", std::string("cannot write the merged report: ") + e.what());
   }
-  // Closed above (the last connection of a WAL database leaves no -wal, -shm); synced, renamed
-  // over the output, and the directory synced so that the rename survives a power loss.
+  // Closed above (the last connection of a WAL database leaves no -wal, -shm); given the old
+  // output's permissions, synced, renamed over the output, and the directory synced so that the
+  // rename survives a power loss.
+  if (output_state.exists) fs::permissions(temporary.path(), fs::status(output_path).permissions(), error);
   fsync_path(temporary.path(), O_RDONLY, output);
+  if (file_state(output_path) != output_state) {
+    throw InputError(output, "", "changed while it was being merged into (written by another process): nothing "
+                                 "merged; merge again when nothing else writes it");
+  }
   if (std::rename(temp.c_str(), output.c_str()) != 0) {
     throw InputError(output, "", std::string("cannot rename the merged report into place: ") + std::strerror(errno));
   }

@@ -178,34 +178,57 @@ TEST_F(MergeCli, RefusesAShardOfAnotherSchemaVersionWithStatus2NamingIt) {
   EXPECT_NE(r.exit_code, 0) << "a shard is required";
 }
 
+// A report of one full run (the old output) and a shard of 24 full runs to merge into it: a merge
+// of a few hundred milliseconds, long enough to be interrupted.
+class MergeCliAtomicity : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(testing::fresh_scratch_dir("merge_cli_atomicity"));
+    replay("city_drive_60s", *dir_ / "a.sqlite", 1, "full");
+    replay("city_drive_60s", *dir_ / "b.sqlite", 2, "full");
+    multiply_runs(*dir_ / "b.sqlite", 24);
+    const auto r = run_rcsim(fmt::format("merge {} -o {}", (*dir_ / "a.sqlite").string(), old_report().string()));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static fs::path old_report() { return *dir_ / "old.sqlite"; }
+  static fs::path shard() { return *dir_ / "b.sqlite"; }
+
+  // The merged report, made by a merge left alone, and how long that took.
+  static std::pair<ReportContent, long> merged(const fs::path& out) {
+    fs::copy_file(old_report(), out, fs::copy_options::overwrite_existing);
+    const auto start = std::chrono::steady_clock::now();
+    const auto r = run_rcsim(fmt::format("merge {} -o {}", shard().string(), out.string()));
+    const long ms =
+        std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return {content(out), ms};
+  }
+
+  static fs::path* dir_;
+};
+
+fs::path* MergeCliAtomicity::dir_ = nullptr;
+
 // SIGKILL at random moments of a merge into an existing report, 30 times: afterwards the output
 // is, every time, either the report as it was or the complete merged one, and passes SQLite's
 // integrity check; the next merge clears the killed ones' temporary files.
-TEST_F(MergeCli, AMergeKilledAtAnyMomentLeavesTheOldOrTheNewReport) {
-  const fs::path shard_a = dir_ / "a.sqlite", shard_b = dir_ / "b.sqlite", out = dir_ / "campaign.sqlite";
-  const fs::path old_copy = dir_ / "old.sqlite";
-  replay("city_drive_60s", shard_a, 1, "full");
-  replay("city_drive_60s", shard_b, 2, "full");
-  multiply_runs(shard_b, 24);  // 24 full runs: a merge of a few hundred ms
-  auto r = run_rcsim(fmt::format("merge {} -o {}", shard_a.string(), old_copy.string()));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const ReportContent old_state = content(old_copy);
-  // The complete new report, from a merge left alone, timed to spread the kills over it.
-  fs::copy_file(old_copy, out);
-  const auto start = std::chrono::steady_clock::now();
-  r = run_rcsim(fmt::format("merge {} -o {}", shard_b.string(), out.string()));
-  const auto merge_ms =
-      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start).count();
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const ReportContent new_state = content(out);
+TEST_F(MergeCliAtomicity, AMergeKilledAtAnyMomentLeavesTheOldOrTheNewReport) {
+  const fs::path work = testing::fresh_scratch_dir("merge_cli_kill");
+  const fs::path out = work / "campaign.sqlite";
+  const ReportContent old_state = content(old_report());
+  const auto [new_state, merge_ms] = merged(out);
   ASSERT_NE(new_state.rows, old_state.rows);
   std::mt19937_64 rng(20);
-  std::uniform_int_distribution<long> delay_ms(0, std::max<long>(2, merge_ms + merge_ms / 4));
+  std::uniform_int_distribution<long> delay_ms(0, std::max<long>(2, 2 * merge_ms));
   constexpr int kKills = 30;
   int killed = 0, finished = 0, old_seen = 0, new_seen = 0;
   for (int i = 0; i < kKills; ++i) {
-    fs::copy_file(old_copy, out, fs::copy_options::overwrite_existing);
-    Child child = spawn({RCSIM_BINARY, "merge", shard_b.string(), "-o", out.string()}, dir_ / "out", dir_ / "err");
+    fs::copy_file(old_report(), out, fs::copy_options::overwrite_existing);
+    Child child = spawn({RCSIM_BINARY, "merge", shard().string(), "-o", out.string()}, work / "out", work / "err");
     ASSERT_GT(child.pid, 0);
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
     ::kill(child.pid, SIGKILL);
@@ -213,7 +236,7 @@ TEST_F(MergeCli, AMergeKilledAtAnyMomentLeavesTheOldOrTheNewReport) {
     if (status == 0) {
       ++finished;
     } else {
-      ASSERT_EQ(status, 128 + SIGKILL) << stream::testing::read_file(dir_ / "err");
+      ASSERT_EQ(status, 128 + SIGKILL) << stream::testing::read_file(work / "err");
       ++killed;
     }
     const ReportContent now = content(out);
@@ -229,15 +252,61 @@ TEST_F(MergeCli, AMergeKilledAtAnyMomentLeavesTheOldOrTheNewReport) {
   EXPECT_GE(killed, kKills / 3) << "the kills must land inside merges to test anything";
   EXPECT_GT(old_seen, 0);
   // The killed merges' temporary files go with the next merge, which then adds the runs.
-  r = run_rcsim(fmt::format("merge {} -o {}", shard_b.string(), out.string()));
+  const auto r = run_rcsim(fmt::format("merge {} -o {}", shard().string(), out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(content(out).rows, new_state.rows);
-  for (const auto& e : fs::directory_iterator(dir_)) {
+  for (const auto& e : fs::directory_iterator(work)) {
     EXPECT_EQ(e.path().filename().string().find(".merge-"), std::string::npos) << e.path();
   }
   std::cout << "[ figures  ] " << kKills << " kills over a " << merge_ms << " ms merge of 24 full runs: " << killed
             << " killed, " << finished << " finished first; the old report left " << old_seen << " times, the new "
             << new_seen << " times, never anything else\n";
+  fs::remove_all(work);
+}
+
+// Something writing the output while a merge runs (a replay into it): its write is never lost.
+// Either it came before the merge read the output and is in the merged report, or the merge
+// notices the change before its rename and refuses, status 2, leaving the output with the write.
+TEST_F(MergeCliAtomicity, AWriteIntoTheOutputDuringAMergeIsNeverLost) {
+  const fs::path work = testing::fresh_scratch_dir("merge_cli_writer");
+  const fs::path out = work / "campaign.sqlite";
+  const long merge_ms = merged(out).second;
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<long> delay_ms(0, std::max<long>(2, merge_ms));
+  int refused = 0, merged_with_it = 0;
+  for (int i = 0; i < 8; ++i) {
+    fs::copy_file(old_report(), out, fs::copy_options::overwrite_existing);
+    Child child = spawn({RCSIM_BINARY, "merge", shard().string(), "-o", out.string()}, work / "out", work / "err");
+    ASSERT_GT(child.pid, 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    const std::string name = fmt::format("written {}", i);
+    {
+      SQLite::Database writer(out.string(), SQLite::OPEN_READWRITE);
+      writer.setBusyTimeout(10000);
+      SQLite::Statement update(writer, "UPDATE runs SET recording_name = ? WHERE run_id = 1");
+      update.bind(1, name);
+      update.exec();
+    }
+    const int status = child.wait(std::chrono::seconds(60));
+    const std::string err = stream::testing::read_file(work / "err");
+    SQLite::Database db(out.string(), SQLite::OPEN_READONLY);
+    EXPECT_EQ(db.execAndGet("SELECT recording_name FROM runs WHERE run_id = 1").getString(), name)
+        << "write " << i << " lost; merge status " << status << ": " << err;
+    const long long runs = db.execAndGet("SELECT count(*) FROM runs").getInt64();
+    if (status == 0) {
+      ++merged_with_it;
+      EXPECT_EQ(runs, 25);
+    } else {
+      ++refused;
+      EXPECT_EQ(status, 2) << err;
+      EXPECT_NE(err.find(out.string() + ": changed while it was being merged into"), std::string::npos) << err;
+      EXPECT_EQ(runs, 1);
+    }
+  }
+  EXPECT_GT(refused, 0) << "writes during the merge";
+  std::cout << "[ figures  ] 8 writes during " << merge_ms << " ms merges: " << refused << " merges refused, "
+            << merged_with_it << " took the write in\n";
+  fs::remove_all(work);
 }
 
 }  // namespace
