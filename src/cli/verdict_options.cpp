@@ -32,6 +32,7 @@ void conclude_with_verdicts(SQLite::Database& db, const VerdictArgs& args, std::
   } else {
     criteria = stored_criteria(db);
   }
+  if (criteria.empty() && args.junit_path.empty()) return;  // nothing to judge or to write
   const Verdicts verdicts = judge(db, criteria, only_run);
   if (!args.junit_path.empty()) write_junit(args.junit_path, verdicts, suite);
   if (criteria.empty()) return;

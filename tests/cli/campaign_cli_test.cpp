@@ -9,6 +9,7 @@
 #include <set>
 #include <csignal>
 
+#include "campaign/campaign_figures.hpp"
 #include "cli/run_rcsim.hpp"
 #include "replay/campaign/run_figures.hpp"
 #include "replay/store/report_store.hpp"
@@ -20,19 +21,6 @@ namespace {
 
 const std::filesystem::path kBundled = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
 const std::vector<std::string> kRecordings = {"close_front", "front_approach", "overtaking", "two_in_one_cell"};
-
-// Every figure of the catalogue but the times, per recording directory.
-std::map<std::string, std::vector<std::optional<double>>> figures_by_recording(const std::filesystem::path& db_path) {
-  std::vector<std::string> names;
-  for (const auto& f : replay::campaign::figure_catalogue()) {
-    if (f.name != "replay_wall_s" && f.name != "simulate_cpu_s") names.push_back(f.name);
-  }
-  names.push_back("wasserstein1.background_range");
-  SQLite::Database db(db_path.string());
-  std::map<std::string, std::vector<std::optional<double>>> out;
-  for (auto& row : replay::campaign::read_run_figures(db, names)) out[row.recording_dir] = row.values;
-  return out;
-}
 
 class CampaignCli : public ScratchDirTest {
  protected:

@@ -44,15 +44,21 @@ ReportState inspect(const fs::path& db_path) {
 TEST(ReportCrashSafety, ReplaysKilledAtRandomMomentsLeaveOnlyCompleteRuns) {
   const fs::path dir = testing::fresh_scratch_dir("crash_safety");
   const fs::path db = dir / "report.sqlite";
-  // How long one replay takes here (to spread the kills over it), from a first complete one.
-  const auto start = std::chrono::steady_clock::now();
-  Child first = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string()}, dir / "out", dir / "err");
-  ASSERT_EQ(first.wait(std::chrono::seconds(60)), 0);
-  const auto replay_ms = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
+  // How long one replay takes here (to spread the kills over it): the faster of two complete ones
+  // (the first also creates the database, and a busy machine slows one or the other).
+  long replay_ms = 0;
+  for (int i = 0; i < 2; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    Child first = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string()}, dir / "out", dir / "err");
+    ASSERT_EQ(first.wait(std::chrono::seconds(60)), 0);
+    const long ms = static_cast<long>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start).count());
+    replay_ms = i == 0 ? ms : std::min(replay_ms, ms);
+  }
   std::mt19937_64 rng(21);
-  std::uniform_int_distribution<long> delay_ms(0, std::max<long>(1, 2 * replay_ms.count()));
+  std::uniform_int_distribution<long> delay_ms(0, std::max<long>(1, 3 * replay_ms / 2));
   constexpr int kKills = 120;
-  int succeeded = 1, killed = 0, failed = 0;
+  int succeeded = 2, killed = 0, failed = 0;
   std::vector<long long> reported_runs;  // the run ids successful replays printed
   for (int i = 0; i < kKills; ++i) {
     Child child = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string()}, dir / "out", dir / "err");
@@ -90,7 +96,7 @@ TEST(ReportCrashSafety, ReplaysKilledAtRandomMomentsLeaveOnlyCompleteRuns) {
   Child last = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string()}, dir / "out", dir / "err");
   EXPECT_EQ(last.wait(std::chrono::seconds(60)), 0);
   EXPECT_EQ(inspect(db).runs, s.runs + 1);
-  std::cout << "[ figures  ] " << kKills << " kills over a " << replay_ms.count() << " ms replay: " << killed
+  std::cout << "[ figures  ] " << kKills << " kills over a " << replay_ms << " ms replay: " << killed
             << " killed mid-run, " << succeeded - 1 << " finished first; " << s.runs << " runs, integrity ok\n";
 }
 
