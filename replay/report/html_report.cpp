@@ -1,9 +1,11 @@
 #include "replay/report/html_report.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "common/atomic_file.hpp"
+#include "replay/report/campaign_section.hpp"
 #include "replay/report/speed_error_section.hpp"
 #include "replay/store/report_reader.hpp"
 #include "replay/report/html_cells.hpp"
@@ -48,6 +50,15 @@ details { margin: 4px 0; }
 .swatch { display: inline-block; width: 10px; height: 10px; border-radius: 5px; margin: 0 4px 0 10px; }
 nav ul { columns: 2; }
 tr.default td { background: #fff4e6; }
+td.pass { color: #2b8a3e; font-weight: 600; }
+td.fail, tr.fail td.fail { color: #c92a2a; font-weight: 600; }
+tr.fail td:first-child { border-left: 3px solid #c92a2a; }
+table.worst td { font-size: 12px; min-width: 110px; white-space: nowrap; }
+table.worst td .num { font-variant-numeric: tabular-nums; font-weight: 600; }
+.rec { color: #495057; }
+.norun { border-bottom: 1px dotted #868e96; cursor: help; }
+section.campaign .figs svg { border: 1px solid #dee2e6; }
+ul.campaign-nav { columns: 1; }
 )CSS";
 
 // The chosen cycles, each with the cycles before it faded.
@@ -123,30 +134,82 @@ void write_run_section(std::ostream& out, SQLite::Database& db, const report::Ru
   out << "</section>\n";
 }
 
-}  // namespace
+// What a page shows: the bench, the runs detailed, whether the campaign overview comes first.
+struct PageSelection {
+  std::optional<std::int64_t> bench_id;
+  std::size_t all_runs = 0;
+  std::vector<std::int64_t> ids;  // detailed, ascending as selected
+  bool overview = false;
+};
 
-void write_html_report(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
-                       std::ostream& out) {
-  const std::optional<std::int64_t> bench_id = report::select_bench(db, db_label, options.bench_id);
-  const std::size_t all_runs = report::run_ids(db).size();
+PageSelection select_page(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options) {
+  PageSelection s;
+  const bool only = options.campaign == CampaignOverview::only;
+  s.bench_id = only ? std::nullopt : report::select_bench(db, db_label, options.bench_id);
+  s.all_runs = report::run_ids(db).size();
   // A bench alone makes a page; with neither runs nor a bench, select_runs says there are no runs.
-  const bool bench_alone = bench_id && all_runs == 0 && options.run_ids.empty();
-  const std::vector<std::int64_t> ids =
-      bench_alone ? std::vector<std::int64_t>{} : report::select_runs(db, db_label, options.run_ids, options.last_runs);
+  const bool bench_alone = s.bench_id && s.all_runs == 0 && options.run_ids.empty();
+  if (!bench_alone && (!only || s.all_runs == 0 || !options.run_ids.empty())) {
+    s.ids = report::select_runs(db, db_label, options.run_ids, options.last_runs);
+  }
+  if (only) s.ids.clear();
+  switch (options.campaign) {
+    case CampaignOverview::always:
+    case CampaignOverview::only: s.overview = true; break;
+    case CampaignOverview::never: s.overview = false; break;
+    case CampaignOverview::automatic:
+      s.overview = options.run_ids.empty() && s.all_runs > 0 &&
+                   (s.all_runs > kCampaignOverviewRuns || report::is_campaign_database(db));
+      break;
+  }
+  return s;
+}
+
+// How the page links: to the campaign overview's data and run pages, back to an overview.
+struct PageContext {
+  const report::CampaignData* campaign = nullptr;  // null: no overview
+  std::string pages_href;                          // run pages written beside the page ("c-runs/")
+  std::vector<std::int64_t> pages;
+  std::string back_href;  // a run page's link back to its overview
+};
+
+report::CampaignOverviewOptions overview_options(const HtmlReportOptions& options) {
+  report::CampaignOverviewOptions o;
+  o.worst = std::max(1, options.campaign_worst);
+  o.failed_rows = std::max(0, options.campaign_failed_rows);
+  return o;
+}
+
+void write_page(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
+                const PageSelection& selection, const PageContext& context, std::ostream& out) {
   const std::optional<report::BenchData> bench =
-      bench_id ? std::optional<report::BenchData>(report::load_bench(db, *bench_id)) : std::nullopt;
+      selection.bench_id ? std::optional<report::BenchData>(report::load_bench(db, *selection.bench_id)) : std::nullopt;
   std::vector<report::RunData> runs;
-  for (const std::int64_t id : ids) runs.push_back(report::load_run(db, id));
+  for (const std::int64_t id : selection.ids) runs.push_back(report::load_run(db, id));
   const int n = static_cast<int>(runs.size());
   const int max_points = n <= 4 ? options.max_points : std::max(250, 4 * options.max_points / n);
+  const report::CampaignData* campaign = context.campaign;
 
   out << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">";
-  out << "<title>rcsim validation report: " << escape(db_label) << "</title>";
+  if (campaign != nullptr && !campaign->name.empty()) {
+    out << "<title>rcsim campaign report: " << escape(campaign->name) << "</title>";
+  } else {
+    out << "<title>rcsim validation report: " << escape(db_label) << "</title>";
+  }
   out << "<style>" << kStyle << "</style></head><body>\n";
-  out << "<h1>rcsim validation report</h1>";
+  if (campaign != nullptr && !campaign->name.empty()) {
+    out << "<h1>rcsim campaign report: " << escape(campaign->name) << "</h1>";
+  } else {
+    out << "<h1>rcsim validation report</h1>";
+  }
+  if (!context.back_href.empty()) {
+    out << fmt::format(R"(<p class="meta"><a href="{}#campaign">&larr; The campaign overview</a></p>)",
+                       escape(context.back_href));
+  }
   out << "<p class=\"meta\">Report database <code>" << escape(db_label) << "</code>; "
-      << fmt::format("{} of its {} runs shown", n, all_runs);
+      << fmt::format("{} of its {} runs shown", n, selection.all_runs);
+  if (campaign != nullptr) out << " in detail, all of them in the campaign overview";
   if (bench) out << fmt::format(", and bench {} of its {} benches", bench->info.bench_id, report::bench_ids(db).size());
   out << fmt::format("; written by rcsim {}.", RCSIM_VERSION) << "</p>";
   if (!runs.empty()) {
@@ -161,6 +224,13 @@ void write_html_report(SQLite::Database& db, const std::string& db_label, const 
            "first reported target.</p>\n";
   }
   out << "<nav><ul>";
+  if (campaign != nullptr) {
+    out << fmt::format(R"(<li><a href="#campaign">Campaign overview</a>: {} runs{}</li>)", campaign->runs.size(),
+                       campaign->verdicts.criteria.empty()
+                           ? std::string()
+                           : fmt::format(", {} failed, {}", campaign->verdicts.runs_failed,
+                                         campaign->verdicts.passed() ? "PASS" : "FAIL"));
+  }
   if (bench) {
     out << fmt::format(R"(<li><a href="#bench-{0}">Speed against error</a>: bench {0}, {1} recordings</li>)",
                        bench->info.bench_id, bench->recordings().size());
@@ -170,6 +240,15 @@ void write_html_report(SQLite::Database& db, const std::string& db_label, const 
                        escape(r.info.recording_name), r.info.seed);
   }
   out << "</ul></nav>\n";
+  if (campaign != nullptr) {
+    report::RunLinks links;
+    links.db_label = db_label;
+    links.on_page = selection.ids;
+    std::sort(links.on_page.begin(), links.on_page.end());
+    links.pages_href = context.pages_href;
+    links.pages = context.pages;
+    out << report::campaign_overview(*campaign, links, overview_options(options));
+  }
   if (bench) out << report::bench_section(*bench);
   if (runs.size() > 1) {
     out << "<h2>Runs side by side</h2>" << report::comparison_table(runs) << "\n";
@@ -178,11 +257,65 @@ void write_html_report(SQLite::Database& db, const std::string& db_label, const 
   out << "</body></html>\n";
 }
 
-void write_html_report_file(const std::string& db_path, const std::string& html_path, const HtmlReportOptions& options) {
+// `to` relative to the directory `from_dir`, with '/' separators.
+std::string relative_href(const std::filesystem::path& to, const std::filesystem::path& from_dir) {
+  const auto absolute = [](const std::filesystem::path& p) { return std::filesystem::absolute(p).lexically_normal(); };
+  std::filesystem::path rel = absolute(to).lexically_relative(absolute(from_dir));
+  if (rel.empty()) rel = absolute(to);
+  return rel.generic_string();
+}
+
+}  // namespace
+
+void write_html_report(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
+                       std::ostream& out) {
+  const PageSelection selection = select_page(db, db_label, options);
+  std::optional<report::CampaignData> campaign;
+  if (selection.overview) campaign = report::read_campaign_data(db);
+  PageContext context;
+  context.campaign = campaign ? &*campaign : nullptr;
+  write_page(db, db_label, options, selection, context, out);
+}
+
+int write_html_report_file(const std::string& db_path, const std::string& html_path, const HtmlReportOptions& options) {
   const auto db = open_report_database(db_path, false);
+  const PageSelection selection = select_page(*db, db_path, options);
+  std::optional<report::CampaignData> campaign;
+  if (selection.overview) campaign = report::read_campaign_data(*db);
+  PageContext context;
+  context.campaign = campaign ? &*campaign : nullptr;
+
+  // The run pages first, so that the overview never links to a page not yet written.
+  int pages_written = 0;
+  if (campaign && !options.runs_dir.empty()) {
+    const std::filesystem::path dir = options.runs_dir;
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path html_dir = std::filesystem::path(html_path).parent_path();
+    context.pages_href = relative_href(dir, html_dir.empty() ? "." : html_dir) + "/";
+    std::vector<std::int64_t> on_page = selection.ids;
+    std::sort(on_page.begin(), on_page.end());
+    HtmlReportOptions run_options = options;
+    run_options.campaign = CampaignOverview::never;
+    run_options.runs_dir.clear();
+    PageContext run_context;
+    run_context.back_href = relative_href(html_path, dir);
+    for (const std::int64_t id : report::overview_linked_runs(*campaign, overview_options(options))) {
+      if (std::binary_search(on_page.begin(), on_page.end(), id)) continue;
+      run_options.run_ids = {id};
+      PageSelection run_selection;
+      run_selection.all_runs = selection.all_runs;
+      run_selection.ids = {id};
+      AtomicFileWriter writer((dir / fmt::format("run-{}.html", id)).string());
+      write_page(*db, db_path, run_options, run_selection, run_context, writer.stream());
+      writer.commit();
+      context.pages.push_back(id);
+      ++pages_written;
+    }
+  }
   AtomicFileWriter writer(html_path);
-  write_html_report(*db, db_path, options, writer.stream());
+  write_page(*db, db_path, options, selection, context, writer.stream());
   writer.commit();
+  return pages_written;
 }
 
 }  // namespace rcsim::replay

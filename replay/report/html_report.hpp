@@ -4,7 +4,10 @@
 // chosen cycles, time series, residual histograms, merge-artefact and latency tables, the
 // parameters with their sources, and a side-by-side table when several runs are selected; and,
 // when the database holds a bench of `rcsim bench`, its speed against error (Pareto plot, tables).
-// Every text that came from a recording is HTML-escaped.
+// A campaign's database (criteria, a campaign, or more runs than a page details) starts with the
+// campaign overview: verdicts, the worst runs by each figure, the figures' distributions, links
+// into each run's detail (campaign_section.hpp). Every text that came from a recording is
+// HTML-escaped.
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
@@ -14,6 +17,14 @@
 #include <vector>
 
 namespace rcsim::replay {
+
+// When the page starts with the campaign overview (docs/report.md, "Campaign report").
+enum class CampaignOverview {
+  automatic,  // without --run: when the database has criteria or a campaign, or more than 20 runs
+  always,
+  never,
+  only,  // the overview alone, no run sections
+};
 
 struct HtmlReportOptions {
   std::vector<std::int64_t> run_ids;  // empty: the last `last_runs` runs of the database
@@ -26,7 +37,16 @@ struct HtmlReportOptions {
   int histogram_bins = 41;
   int object_pictures = 12;  // objects drawn in their own frame per run (the most targets first)
   std::optional<std::int64_t> bench_id;  // the bench shown as "Speed against error"; absent: the latest
+  CampaignOverview campaign = CampaignOverview::automatic;
+  int campaign_worst = 5;          // runs listed per figure
+  int campaign_failed_rows = 50;   // failed runs listed before the rest is folded
+  // write_html_report_file only: a directory into which the pages of the runs the overview lists
+  // (and does not detail) are written, run-ID.html, linked from the overview. Empty: none.
+  std::string runs_dir;
 };
+
+// Databases with more runs than this get the campaign overview by default.
+inline constexpr std::size_t kCampaignOverviewRuns = 20;
 
 // Writes the page for the runs and the bench selected by `options` (unknown ids: InputError
 // naming `db_label`). A database with a bench but no runs gives the bench section alone.
@@ -34,7 +54,8 @@ void write_html_report(SQLite::Database& db, const std::string& db_label, const 
                        std::ostream& out);
 
 // Opens the report database at `db_path` (refusing other files), writes the page to `html_path`
-// atomically.
-void write_html_report_file(const std::string& db_path, const std::string& html_path, const HtmlReportOptions& options);
+// atomically; with options.runs_dir, first the pages of the runs the overview lists, each atomically.
+// Returns how many run pages it wrote.
+int write_html_report_file(const std::string& db_path, const std::string& html_path, const HtmlReportOptions& options);
 
 }  // namespace rcsim::replay

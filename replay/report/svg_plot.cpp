@@ -179,10 +179,10 @@ std::string histogram_svg(const HistogramSpec& spec) {
                         spec.above);
   }
   if (!note.empty()) out += fmt::format(R"(<text x="8" y="30" class="note">{}</text>)", escape(note));
-  draw_axes(out, f, sx, sy, tx, ty, spec.x_label, "matched pairs");
+  draw_axes(out, f, sx, sy, tx, ty, spec.x_label, spec.y_label);
   if (total == 0) {
-    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle" class="note">no matched pairs</text>)",
-                       coord(0.5 * (f.left + f.right)), coord(0.5 * (f.top + f.bottom)));
+    out += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle" class="note">no {}</text>)",
+                       coord(0.5 * (f.left + f.right)), coord(0.5 * (f.top + f.bottom)), escape(spec.y_label));
   }
   out += R"(<g class="bars" fill="#6a51a3" stroke="#fff" stroke-width="0.5">)";
   for (std::size_t i = 0; i < spec.counts.size(); ++i) {
@@ -195,9 +195,21 @@ std::string histogram_svg(const HistogramSpec& spec) {
   }
   out += "</g>";
   // Zero residual, the ideal.
-  if (x_lo < 0.0 && x_hi > 0.0) {
+  if (spec.zero_line && x_lo < 0.0 && x_hi > 0.0) {
     out += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#222" stroke-dasharray="3 3"/>)",
                        coord(sx(0.0)), coord(f.top), coord(f.bottom));
+  }
+  // Markers, their labels staggered in two rows so that neighbours stay legible.
+  int row = 0;
+  for (const HistogramMarker& m : spec.markers) {
+    if (!std::isfinite(m.x) || m.x < x_lo || m.x > x_hi) continue;
+    const double x = sx(m.x);
+    out += fmt::format(R"(<line class="marker" x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="{3}" stroke-width="1.5"{4}/>)",
+                       coord(x), coord(f.top), coord(f.bottom), m.colour, m.dashed ? R"( stroke-dasharray="5 3")" : "");
+    const bool right_half = x > 0.5 * (f.left + f.right);
+    out += fmt::format(R"(<text class="note" x="{}" y="{}" text-anchor="{}" style="fill:{}">{}</text>)",
+                       coord(right_half ? x - 3 : x + 3), coord(f.top + 11 + 11 * (row++ % 2)),
+                       right_half ? "end" : "start", m.colour, escape(m.label));
   }
   out += "</svg>";
   return out;

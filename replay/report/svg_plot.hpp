@@ -30,14 +30,25 @@ struct PlotSpec {
 
 std::string plot_svg(const PlotSpec& spec);
 
+// A vertical line across a histogram at x, labelled at its top (a criterion's threshold).
+struct HistogramMarker {
+  double x = 0.0;
+  std::string label;
+  std::string colour = "#c92a2a";
+  bool dashed = false;
+};
+
 struct HistogramSpec {
   std::string title;
   std::string x_label;
+  std::string y_label = "matched pairs";
   double lo = 0.0, bin_width = 1.0;  // bin i covers [lo + i w, lo + (i + 1) w)
   std::vector<long long> counts;     // the first and last bins include what lies beyond them
   long long below = 0, above = 0;    // how many of those were clamped into the end bins
   std::string note;
   int width_px = 600, height_px = 230;
+  bool zero_line = true;  // a dashed line at x = 0 (the ideal residual) where the axis spans it
+  std::vector<HistogramMarker> markers;  // drawn where they fall on the axis
 };
 
 std::string histogram_svg(const HistogramSpec& spec);

@@ -1,6 +1,7 @@
-// rcsim report REPORT.sqlite -o REPORT.html [--run ID ...] [--bench ID]: the validation report a person
-// reads (docs/report.md).
+// rcsim report REPORT.sqlite -o REPORT.html [--run ID ...] [--bench ID] [--campaign WHEN] [--runs-dir DIR]:
+// the validation report a person reads, a campaign's overview first (docs/report.md).
 #include <iostream>
+#include <map>
 
 #include "cli/commands.hpp"
 #include "replay/report/html_report.hpp"
@@ -38,9 +39,28 @@ void add_report_command(CLI::App& app) {
   cmd->add_option("--trace-cycles", args->options.trace_cycles, "earlier cycles drawn as fading traces")
       ->check(CLI::Range(0, 50))
       ->capture_default_str();
+  const std::map<std::string, replay::CampaignOverview> when = {{"auto", replay::CampaignOverview::automatic},
+                                                                 {"always", replay::CampaignOverview::always},
+                                                                 {"never", replay::CampaignOverview::never},
+                                                                 {"only", replay::CampaignOverview::only}};
+  cmd->add_option("--campaign", args->options.campaign,
+                  "the campaign overview (verdicts, worst runs by each figure, distributions): auto (without --run, "
+                  "when the database has criteria, a campaign or more than 20 runs), always, never, or only (no run "
+                  "sections)")
+      ->transform(CLI::CheckedTransformer(when, CLI::ignore_case))
+      ->default_str("auto");
+  cmd->add_option("--runs-dir", args->options.runs_dir,
+                  "also write the page of each run the campaign overview lists (worst and failed runs) into DIR as "
+                  "run-ID.html, and link them from the overview");
+  cmd->add_option("--campaign-rows", args->options.campaign_failed_rows,
+                  "failed runs listed in the overview's table before the rest is folded")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
   cmd->callback([args] {
-    replay::write_html_report_file(args->db_path, args->html_path, args->options);
-    std::cerr << "rcsim report: wrote " << args->html_path << '\n';
+    const int pages = replay::write_html_report_file(args->db_path, args->html_path, args->options);
+    std::cerr << "rcsim report: wrote " << args->html_path;
+    if (pages > 0) std::cerr << " and " << pages << " run pages in " << args->options.runs_dir;
+    std::cerr << '\n';
   });
 }
 

@@ -1,0 +1,103 @@
+#include "replay/report/campaign_data.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rcsim::replay::report {
+
+namespace {
+
+// The campaign's name, empty without one. The table exists in every database opened (schema v5).
+std::string campaign_name(SQLite::Database& db) {
+  SQLite::Statement q(db, "SELECT name FROM campaign LIMIT 1");
+  return q.executeStep() ? q.getColumn(0).getString() : std::string();
+}
+
+// The quantities of the table distribution_distances with their units, in the order they were
+// first stored.
+std::vector<std::pair<std::string, std::string>> distance_quantities(SQLite::Database& db) {
+  std::vector<std::pair<std::string, std::string>> out;
+  SQLite::Statement q(db, "SELECT quantity, min(unit) FROM distribution_distances GROUP BY quantity ORDER BY min(rowid)");
+  while (q.executeStep()) out.emplace_back(q.getColumn(0).getString(), q.getColumn(1).getString());
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> CampaignData::sorted_values(std::size_t figure) const {
+  std::vector<double> values;
+  values.reserve(runs.size());
+  for (const auto& run : runs) {
+    if (run.values[figure]) values.push_back(*run.values[figure]);
+  }
+  std::sort(values.begin(), values.end());
+  return values;
+}
+
+std::optional<std::size_t> CampaignData::figure_index(const std::string& figure) const {
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    if (figures[i].name == figure) return i;
+  }
+  return std::nullopt;
+}
+
+bool is_campaign_database(SQLite::Database& db) {
+  return !campaign_name(db).empty() || db.execAndGet("SELECT count(*) FROM criteria").getInt64() > 0;
+}
+
+CampaignData read_campaign_data(SQLite::Database& db) {
+  CampaignData data;
+  data.name = campaign_name(db);
+  const std::vector<campaign::Criterion> criteria = campaign::stored_criteria(db);
+
+  // Every candidate figure, then those some run has or a criterion names.
+  std::vector<campaign::FigureInfo> candidates = campaign::figure_catalogue();
+  for (const auto& [quantity, unit] : distance_quantities(db)) {
+    for (const char* prefix : {"wasserstein1.", "kolmogorov_smirnov."}) {
+      auto info = campaign::find_figure(prefix + quantity);
+      if (!info) continue;
+      if (info->name.starts_with("wasserstein1.")) info->unit = unit;
+      candidates.push_back(*info);
+    }
+  }
+  for (const auto& c : criteria) {
+    const bool listed = std::any_of(candidates.begin(), candidates.end(), [&](const auto& f) { return f.name == c.figure; });
+    if (!listed) {
+      if (auto info = campaign::find_figure(c.figure)) candidates.push_back(*info);
+    }
+  }
+  std::vector<std::string> names;
+  for (const auto& f : candidates) names.push_back(f.name);
+  std::vector<campaign::RunFigureRow> rows = campaign::read_run_figures(db, names);
+
+  // The judged figures first, in the order of the criteria; then the others some run has.
+  std::vector<std::size_t> kept;
+  for (const auto& c : criteria) {
+    const auto i = static_cast<std::size_t>(std::find(names.begin(), names.end(), c.figure) - names.begin());
+    if (i < names.size() && std::find(kept.begin(), kept.end(), i) == kept.end()) kept.push_back(i);
+  }
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const bool present = std::any_of(rows.begin(), rows.end(), [&](const auto& r) { return r.values[i].has_value(); });
+    if (present && std::find(kept.begin(), kept.end(), i) == kept.end()) kept.push_back(i);
+  }
+  for (const std::size_t i : kept) data.figures.push_back(candidates[i]);
+  for (auto& row : rows) {
+    std::vector<std::optional<double>> values;
+    values.reserve(kept.size());
+    for (const std::size_t i : kept) values.push_back(row.values[i]);
+    row.values = std::move(values);
+  }
+  data.runs = std::move(rows);
+  data.verdicts = campaign::judge(db, criteria);
+  return data;
+}
+
+double quantile_of_sorted(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return std::nan("");
+  const double h = std::clamp(q, 0.0, 1.0) * static_cast<double>(sorted.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+}  // namespace rcsim::replay::report

@@ -1,0 +1,43 @@
+#pragma once
+// What the campaign overview of `rcsim report` reads (docs/report.md, "Campaign report"): every
+// run's figures (replay/campaign/run_figures.hpp: a few queries, whatever the number of runs), the
+// verdicts of the stored criteria (replay/campaign/criteria.hpp), the campaign's name, and the
+// figures the overview ranks and plots: those of the catalogue and the distribution distances that
+// some run has, and every criterion's figure. Text fields are as stored (unescaped).
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "replay/campaign/criteria.hpp"
+#include "replay/campaign/run_figures.hpp"
+
+namespace rcsim::replay::report {
+
+struct CampaignData {
+  std::string name;  // the campaign's name (table campaign); empty if the database has none
+  // The criteria's figures first (in the criteria's order), then the catalogue's and the
+  // distribution distances' that some run has.
+  std::vector<campaign::FigureInfo> figures;
+  std::vector<campaign::RunFigureRow> runs;   // by run id; values[i] is figures[i]
+  campaign::Verdicts verdicts;                // by the stored criteria; no criteria: every run passed
+
+  // The values of figure i that runs have, ascending.
+  std::vector<double> sorted_values(std::size_t figure) const;
+  // The index of the figure named `figure` in `figures`, if listed.
+  std::optional<std::size_t> figure_index(const std::string& figure) const;
+};
+
+// Whether the database belongs to a campaign or holds criteria: cheap, for deciding whether the
+// page starts with the campaign overview.
+bool is_campaign_database(SQLite::Database& db);
+
+CampaignData read_campaign_data(SQLite::Database& db);
+
+// The q-quantile (0 <= q <= 1) of ascending values, interpolated linearly between order statistics
+// (Hyndman and Fan type 7, as the campaign criteria's p95 and median).
+double quantile_of_sorted(const std::vector<double>& sorted, double q);
+
+}  // namespace rcsim::replay::report
