@@ -1,12 +1,15 @@
 // rcsim merge SHARD.sqlite... -o CAMPAIGN.sqlite: the runs of many report databases (a campaign's
 // shards) in one, atomically, duplicates reported and not copied twice (docs/merge.md).
+#include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/verdict_options.hpp"
 #include "replay/store/report_merge.hpp"
+#include "replay/store/report_store.hpp"
 
 namespace rcsim::cli {
 
@@ -16,6 +19,7 @@ struct MergeArgs {
   std::vector<std::string> inputs;
   std::string output;
   bool json = false;
+  VerdictArgs verdicts;
 };
 
 std::string plural(long long n, const char* one, const char* many) {
@@ -136,12 +140,15 @@ void add_merge_command(CLI::App& app) {
   cmd->add_option("SHARD", args->inputs, "report databases to merge (rcsim-report, read only)")->required();
   cmd->add_option("-o,--output", args->output, "the merged report database; created if missing, else its runs kept")
       ->required();
-  cmd->add_flag("--json", args->json, "print the merge's summary as JSON");
+  cmd->add_flag("--json", args->json, "print the merge's summary as JSON (the verdicts then go to stderr)");
+  add_verdict_options(*cmd, args->verdicts);
   cmd->callback([args] {
     const replay::MergeResult result = run_merge(*args);
-    // ---- Verdicts (issue 20: --criteria FILE, --junit FILE, the exit code) judge `result.output`
-    // here, after the merge; nothing above depends on them. ----
-    (void)result;
+    // Every run of the merged report judged by its criteria (--criteria replaces them), and the
+    // campaign criteria over all of them; exit status 3 if anything failed.
+    const auto db = replay::open_report_database(result.output, false);
+    const std::string suite = result.campaign.empty() ? std::filesystem::path(result.output).stem().string() : result.campaign;
+    conclude_with_verdicts(*db, args->verdicts, std::nullopt, suite, args->json ? std::cerr : std::cout);
   });
 }
 

@@ -58,6 +58,18 @@ TEST_F(CampaignCli, RunLocalThenMergeEqualsASerialReplay) {
   ASSERT_EQ(merged.size(), kRecordings.size());
   EXPECT_EQ(merged, serial);  // figure for figure, bit for bit
 
+  EXPECT_NE(merge.output.find("verdicts: 4 of 4 runs passed 1 criteria per recording"), std::string::npos) << merge.output;
+
+  // Judged again by stricter criteria: every run fails, exit status 3, JUnit lists the failures.
+  std::ofstream(dir_ / "strict.json") << R"({"format": "rcsim-criteria", "version": 1, "criteria": [
+      {"figure": "gospa_mean_m", "max": 0}, {"figure": "gospa_mean_m", "scope": "campaign", "statistic": "max", "max": 1e6}]})";
+  const auto strict = run_rcsim(fmt::format("merge {0}/shards/shard-0000.sqlite -o {1} --criteria {2} --junit {3}",
+                                            dir("plan"), dir("campaign.sqlite"), dir("strict.json"), dir("junit.xml")));
+  EXPECT_EQ(strict.exit_code, 3) << strict.output;
+  EXPECT_NE(strict.output.find("0 of 4 runs passed"), std::string::npos) << strict.output;
+  EXPECT_NE(strict.output.find("pass campaign: max gospa_mean_m = "), std::string::npos) << strict.output;
+  EXPECT_NE(read_file(dir_ / "junit.xml").find(R"(tests="5" failures="4")"), std::string::npos);
+
   // Run again: every shard finds its runs stored and replays nothing.
   const auto again = run_rcsim(fmt::format("campaign run-shard {} --shard 0", dir("plan")));
   ASSERT_EQ(again.exit_code, 0) << again.output;
