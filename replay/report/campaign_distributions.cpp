@@ -68,10 +68,20 @@ svg::HistogramSpec figure_histogram(const campaign::FigureInfo& info, const std:
     lo = std::max(lo, p1 - 0.5 * span);
     hi = std::min(hi, p99 + 0.5 * span);
   }
+  // The axis reaches a threshold within the values' span, or half their magnitude, of them; one
+  // farther out is named in the note instead of squeezing every run into one bin.
+  const double reach = std::max({hi - lo, 0.5 * std::max(std::abs(lo), std::abs(hi)), 1e-9});
+  std::string beyond;
   for (const Criterion* c : criteria) {
+    if (c->threshold < lo - reach || c->threshold > hi + reach) {
+      beyond += fmt::format("{}{} {}", beyond.empty() ? "" : ", ", threshold_text(*c),
+                            c->threshold < lo ? "left of the axis" : "right of the axis");
+      continue;
+    }
     lo = std::min(lo, c->threshold);
     hi = std::max(hi, c->threshold);
   }
+  if (!beyond.empty()) spec.note += "; " + beyond;
   svg::widen(lo, hi, std::max(1e-9, 0.1 * std::abs(lo)), 0.0);
   const int bins = std::clamp(static_cast<int>(std::ceil(std::sqrt(static_cast<double>(sorted.size())))), 5, max_bins);
   spec.lo = lo;

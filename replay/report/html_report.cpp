@@ -257,12 +257,22 @@ void write_page(SQLite::Database& db, const std::string& db_label, const HtmlRep
   out << "</body></html>\n";
 }
 
-// `to` relative to the directory `from_dir`, with '/' separators.
+// `to` relative to the directory `from_dir`, with '/' separators, as a URL path: the characters
+// that would end or bend it (space, '#', '?', '%', quotes, and anything not ASCII) percent-encoded.
 std::string relative_href(const std::filesystem::path& to, const std::filesystem::path& from_dir) {
   const auto absolute = [](const std::filesystem::path& p) { return std::filesystem::absolute(p).lexically_normal(); };
   std::filesystem::path rel = absolute(to).lexically_relative(absolute(from_dir));
   if (rel.empty()) rel = absolute(to);
-  return rel.generic_string();
+  std::string href;
+  for (const char c : rel.generic_string()) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u <= 0x20 || u >= 0x7f || c == '#' || c == '?' || c == '%' || c == '"' || c == '\'' || c == '<' || c == '>') {
+      href += fmt::format("%{:02X}", u);
+    } else {
+      href += c;
+    }
+  }
+  return href;
 }
 
 }  // namespace

@@ -59,7 +59,7 @@ void add_report_command(CLI::App& app) {
   cmd->callback([args] {
     const int pages = replay::write_html_report_file(args->db_path, args->html_path, args->options);
     std::cerr << "rcsim report: wrote " << args->html_path;
-    if (pages > 0) std::cerr << " and " << pages << " run pages in " << args->options.runs_dir;
+    if (!args->options.runs_dir.empty()) std::cerr << " and " << pages << " run pages in " << args->options.runs_dir;
     std::cerr << '\n';
   });
 }
