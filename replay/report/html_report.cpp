@@ -53,8 +53,9 @@ tr.default td { background: #fff4e6; }
 td.pass { color: #2b8a3e; font-weight: 600; }
 td.fail, tr.fail td.fail { color: #c92a2a; font-weight: 600; }
 tr.fail td:first-child { border-left: 3px solid #c92a2a; }
-table.worst td { font-size: 12px; min-width: 110px; white-space: nowrap; }
+table.worst td { font-size: 12px; }
 table.worst td .num { font-variant-numeric: tabular-nums; font-weight: 600; }
+table.worst td .num, table.worst td a, table.worst td .norun { white-space: nowrap; }
 .rec { color: #495057; }
 .norun { border-bottom: 1px dotted #868e96; cursor: help; }
 section.campaign .figs svg { border: 1px solid #dee2e6; }
