@@ -6,34 +6,9 @@
 #include <fmt/format.h>
 
 #include "common/atomic_file.hpp"
+#include "common/xml_escape.hpp"
 
 namespace rcsim::replay::campaign {
-
-namespace {
-
-// Escaped for an XML 1.0 attribute or text; characters XML 1.0 cannot hold become U+FFFD.
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') {
-          out += "\xEF\xBF\xBD";
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out;
-}
-
-}  // namespace
 
 std::string junit_xml(const Verdicts& v, const std::string& suite) {
   const std::size_t campaign_failed =

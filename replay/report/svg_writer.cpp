@@ -4,23 +4,11 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "common/xml_escape.hpp"
+
 namespace rcsim::replay::svg {
 
-std::string escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size() + text.size() / 8);
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string escape(std::string_view text) { return xml_escape(text); }
 
 std::string shorten(std::string_view text, std::size_t max_chars) {
   std::size_t chars = 0;
