@@ -1,6 +1,9 @@
 // `rcsim merge` (docs/merge.md). Two passes:
 //  1. every input is opened read-only and checked (an rcsim report of the current schema
-//     version; campaign and criteria agreeing), and the identities of its runs are read;
+//     version; campaign and criteria agreeing), and the identities of its runs and its benches
+//     are read; from them a plan: which runs and benches are new, which are duplicates, and their
+//     ids in the output. With nothing new the output is left as it is (only read, to compare the
+//     duplicates' figures);
 //  2. the output is built in a temporary file beside it, `.NAME.merge-HOST-PID.tmp`: a copy of
 //     the existing output made with SQLite's backup API (which reads through its WAL), then each
 //     input ATTACHed read-only and its new runs copied table by table with INSERT ... SELECT;

@@ -178,6 +178,14 @@ TEST_F(MergeCli, RefusesAShardOfAnotherSchemaVersionWithStatus2NamingIt) {
   EXPECT_NE(r.exit_code, 0) << "a shard is required";
 }
 
+bool has_merge_file(const fs::path& dir) {
+  std::error_code error;
+  for (const auto& e : fs::directory_iterator(dir, error)) {
+    if (e.path().filename().string().find(".merge-") != std::string::npos) return true;
+  }
+  return false;
+}
+
 // A report of one full run (the old output) and a shard of 24 full runs to merge into it: a merge
 // of a few hundred milliseconds, long enough to be interrupted.
 class MergeCliAtomicity : public ::testing::Test {
@@ -265,8 +273,10 @@ TEST_F(MergeCliAtomicity, AMergeKilledAtAnyMomentLeavesTheOldOrTheNewReport) {
 }
 
 // Something writing the output while a merge runs (a replay into it): its write is never lost.
-// Either it came before the merge read the output and is in the merged report, or the merge
-// notices the change before its rename and refuses, status 2, leaving the output with the write.
+// Either it came before the merge read the output, or after its rename, and is in the merged
+// report; or the merge notices the change before its rename and refuses, status 2, leaving the
+// output with the write. Half the writes come at random moments, half once the merge is building
+// its temporary file (those it must refuse).
 TEST_F(MergeCliAtomicity, AWriteIntoTheOutputDuringAMergeIsNeverLost) {
   const fs::path work = testing::fresh_scratch_dir("merge_cli_writer");
   const fs::path out = work / "campaign.sqlite";
@@ -278,7 +288,15 @@ TEST_F(MergeCliAtomicity, AWriteIntoTheOutputDuringAMergeIsNeverLost) {
     fs::copy_file(old_report(), out, fs::copy_options::overwrite_existing);
     Child child = spawn({RCSIM_BINARY, "merge", shard().string(), "-o", out.string()}, work / "out", work / "err");
     ASSERT_GT(child.pid, 0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    if (i % 2 == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    } else {
+      // Once the merge builds its temporary file: it has read the output, and not renamed yet.
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (!has_merge_file(work) && std::chrono::steady_clock::now() < give_up) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    }
     const std::string name = fmt::format("written {}", i);
     {
       SQLite::Database writer(out.string(), SQLite::OPEN_READWRITE);
