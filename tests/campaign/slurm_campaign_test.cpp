@@ -22,6 +22,12 @@ const std::vector<std::string> kRecordings = {"close_front",  "corner_approach",
 class SlurmCampaign : public ScratchDirTest {
  protected:
   SlurmCampaign() : ScratchDirTest("sc") {}
+  // The test cluster, or nullopt with the reason printed in one line (not root, no packages).
+  std::optional<SlurmCluster> start_cluster() {
+    auto cluster = SlurmCluster::start(dir_ / "c", &why_not_);
+    if (!cluster) std::cout << "Slurm test cluster unavailable: " << why_not_ << '\n';
+    return cluster;
+  }
   void plan(int shards) {
     std::string recordings;
     for (const auto& r : kRecordings) recordings += (recordings.empty() ? "\"" : ", \"") + (kBundled / r).string() + "\"";
@@ -54,15 +60,12 @@ class SlurmCampaign : public ScratchDirTest {
     EXPECT_EQ(campaign.size(), kRecordings.size());
     EXPECT_EQ(campaign, figures_by_recording(dir_ / "serial.sqlite"));
   }
+  std::string why_not_;
 };
 
 TEST_F(SlurmCampaign, ArrayMergesToSerial) {
-  std::string why_not;
-  auto cluster = SlurmCluster::start(dir_ / "c", &why_not);
-  if (!cluster) {
-    std::cout << "Slurm test cluster unavailable: " << why_not << '\n';
-    GTEST_SKIP() << why_not;
-  }
+  auto cluster = start_cluster();
+  if (!cluster) GTEST_SKIP() << why_not_;
   plan(3);
   const std::string job = submit(*cluster);
   ASSERT_FALSE(job.empty());
@@ -73,12 +76,8 @@ TEST_F(SlurmCampaign, ArrayMergesToSerial) {
 }
 
 TEST_F(SlurmCampaign, KilledTasksResubmitted) {
-  std::string why_not;
-  auto cluster = SlurmCluster::start(dir_ / "c", &why_not);
-  if (!cluster) {
-    std::cout << "Slurm test cluster unavailable: " << why_not << '\n';
-    GTEST_SKIP() << why_not;
-  }
+  auto cluster = start_cluster();
+  if (!cluster) GTEST_SKIP() << why_not_;
   plan(2);
   // sbatch passes the environment on: every task kills itself (SIGKILL) inside the first run that
   // reaches 420 sensor cycles, mid-transaction. The shards (longest first onto the least loaded):
