@@ -19,7 +19,7 @@ constexpr double kTimeTolerance_s = 2e-6;
 
 // Limits on a target's numbers (schemas/recording.md): beyond them a value is a unit or format
 // error, not a measurement (a range of 1e308 would be averaged into GOSPA).
-constexpr double kMaxRange_m = limits::kMaxRange_m, kMaxRangeRate_mps = 1'000.0, kMaxLevel_db = 1'000.0;
+constexpr double kMaxRange_m = limits::kMaxRange_m, kMaxRangeRate_mps = limits::kMaxSpeed_mps, kMaxLevel_db = limits::kMaxLevel_dB;
 
 double number_within(const CsvReader& csv, int column, double limit, const char* unit) {
   const double value = csv.number(column);
@@ -194,7 +194,7 @@ bool TargetRowReader::read_row(Row& row) {
   target.range_m = number_within(csv_, r_, kMaxRange_m, "m");
   if (target.range_m < 0.0) csv_.fail(r_, "range must not be negative");
   target.azimuth_rad = csv_.number(az_);
-  if (std::abs(target.azimuth_rad) > 3.15) csv_.fail(az_, "azimuth beyond ±π: is it in degrees?");
+  if (std::abs(target.azimuth_rad) > limits::kMaxAzimuth_rad) csv_.fail(az_, "azimuth beyond ±π: is it in degrees?");
   target.range_rate_mps = number_within(csv_, rr_, kMaxRangeRate_mps, "m/s");
   target.amplitude_db = number_within(csv_, amp_, kMaxLevel_db, "dB");
   if (rcs_ >= 0) target.rcs_dbsm = number_within(csv_, rcs_, kMaxLevel_db, "dBsm");

@@ -153,10 +153,10 @@ std::vector<TrajectorySample> parse_trajectory(const JsonField& owner, std::stri
     s.yaw_rad = samples.empty() ? e.angle_rad("yaw_rad", kMaxYaw_rad) : e.angle_rad("yaw_rad", kMaxUnwrappedYaw_rad);
     s.speed_mps = e.number_within("speed_mps", -kMaxSpeed_mps, kMaxSpeed_mps, "m/s");
     if (e.has("yaw_rate_radps")) s.yaw_rate_radps = e.number_within("yaw_rate_radps", -kMaxYawRate_radps, kMaxYawRate_radps, "rad/s");
-    const auto size_m = [&e](const char* key) -> std::optional<double> {
-      if (!e.has(key)) return std::nullopt;
-      require_positive(e, key, e.number(key));
-      return e.number_within(key, 0.0, kMaxSize_m, "m");
+    const auto size_m = [&e](const char* name) -> std::optional<double> {
+      if (!e.has(name)) return std::nullopt;
+      require_positive(e, name, e.number(name));
+      return e.number_within(name, 0.0, kMaxSize_m, "m");
     };
     s.length_m = size_m("length_m");
     s.width_m = size_m("width_m");

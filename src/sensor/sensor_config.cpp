@@ -36,7 +36,7 @@ int positive_int(const JsonField& f, std::string_view key, int max = limits::kMa
 }
 
 // Amplitudes and levels in dB beyond this are no sensor's (schemas/sensor-config.md).
-constexpr double kMaxLevelMagnitudeDb = 1000.0;
+constexpr double kMaxLevelMagnitudeDb = limits::kMaxLevel_dB;
 
 double level_db(const JsonField& f, std::string_view key) {
   const double x = f.number(key);

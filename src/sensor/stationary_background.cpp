@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/angles.hpp"
+#include "common/limits.hpp"
 
 namespace rcsim {
 namespace {
@@ -69,7 +70,7 @@ StationaryBackground parse_stationary_background(const JsonField& f) {
   if (!(total > 0.0)) f.fail("weights", "must not all be 0");
   for (double& w : b.weights) w /= total;
   const auto deciles = number_rows(f, "amplitude_deciles_db", b.range_bins(), kAmplitudeQuantiles,
-                                   [](double a) { return std::abs(a) <= 1000.0; }, "amplitudes must be within +-1000 dB");
+                                   [](double a) { return std::abs(a) <= limits::kMaxLevel_dB; }, "amplitudes must be within +-1000 dB");
   for (std::size_t r = 0; r < deciles.size(); ++r) {
     auto& q = b.amplitude_deciles_db.emplace_back();
     for (int k = 0; k < kAmplitudeQuantiles; ++k) {

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "common/limits.hpp"
+
 namespace rcsim::stream {
 namespace {
 
@@ -111,6 +113,17 @@ bool is_utf8(std::string_view text) {
 
 bool finite(std::initializer_list<double> values) {
   return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+// Within schemas/limits.md, as the file readers check them: a range of 1e308 is no measurement.
+bool plausible(const WireTarget& t) {
+  return std::abs(t.range_m) <= limits::kMaxRange_m && std::abs(t.azimuth_rad) <= limits::kMaxAzimuth_rad &&
+         std::abs(t.range_rate_mps) <= limits::kMaxSpeed_mps && std::abs(t.amplitude_db) <= limits::kMaxLevel_dB;
+}
+
+bool plausible(const WirePose& p) {
+  return std::abs(p.x_m) <= limits::kMaxCoordinate_m && std::abs(p.y_m) <= limits::kMaxCoordinate_m &&
+         std::abs(p.yaw_rad) <= limits::kMaxUnwrappedYaw_rad && std::abs(p.speed_mps) <= limits::kMaxSpeed_mps;
 }
 
 void write_pose(Writer& w, const WirePose& p) {
@@ -388,7 +401,7 @@ DecodeError decode_target_list(std::span<const std::uint8_t> payload, TargetList
     t.azimuth_rad = r.f64();
     t.range_rate_mps = r.f64();
     t.amplitude_db = r.f64();
-    if (!finite({t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db})) return DecodeError::bad_value;
+    if (!finite({t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db}) || !plausible(t)) return DecodeError::bad_value;
   }
   return DecodeError::none;
 }
@@ -404,7 +417,7 @@ DecodeError decode_ground_truth(std::span<const std::uint8_t> payload, GroundTru
   m.ego = read_pose(r);
   if (!r.ok()) return DecodeError::bad_length;
   if (static_cast<std::uint64_t>(out.first_index) + n > out.total_count) return DecodeError::bad_value;
-  if (!finite({m.ego.x_m, m.ego.y_m, m.ego.yaw_rad, m.ego.speed_mps})) return DecodeError::bad_value;
+  if (!finite({m.ego.x_m, m.ego.y_m, m.ego.yaw_rad, m.ego.speed_mps}) || !plausible(m.ego)) return DecodeError::bad_value;
   if (n > r.remaining() / kTruthObjectFixedBytes) return DecodeError::bad_length;
   m.objects.resize(n);
   for (WireObject& o : m.objects) {
@@ -416,7 +429,8 @@ DecodeError decode_ground_truth(std::span<const std::uint8_t> payload, GroundTru
     o.object_id = r.text(id_length);
     if (!r.ok()) return DecodeError::bad_length;
     if (id_length == 0 || !is_utf8(o.object_id) ||
-        !finite({o.pose.x_m, o.pose.y_m, o.pose.yaw_rad, o.pose.speed_mps, o.length_m, o.width_m})) {
+        !finite({o.pose.x_m, o.pose.y_m, o.pose.yaw_rad, o.pose.speed_mps, o.length_m, o.width_m}) || !plausible(o.pose) ||
+        std::abs(o.length_m) > limits::kMaxSize_m || std::abs(o.width_m) > limits::kMaxSize_m) {
       return DecodeError::bad_value;
     }
   }

@@ -208,6 +208,41 @@ TEST(WireFormat, RefusalsNameTheirReason) {
   EXPECT_EQ(decode_target_list(payload, f), DecodeError::bad_length);
 }
 
+TEST(WireFormat, NumbersBeyondTheStatedLimitsAreRefusedAsFileReadersRefuseThem) {
+  // schemas/limits.md: a range of 1e308 is no measurement (issue 21; the listener printed it
+  // with all its digits, slowly). Each field just inside its limit decodes; just beyond, not.
+  struct Case {
+    double WireTarget::*field;
+    double inside, beyond;
+  };
+  const std::vector<Case> cases = {{&WireTarget::range_m, 10'000.0, 10'000.5},
+                                   {&WireTarget::range_m, -10'000.0, 1e308},
+                                   {&WireTarget::azimuth_rad, -3.15, 3.16},
+                                   {&WireTarget::azimuth_rad, 3.15, 90.0},
+                                   {&WireTarget::range_rate_mps, -1000.0, -1000.5},
+                                   {&WireTarget::amplitude_db, 1000.0, 1000.5}};
+  TargetListFragment f;
+  for (const Case& c : cases) {
+    TargetListMessage list = make_list(2);
+    list.targets[1].*c.field = c.inside;
+    EXPECT_EQ(decode_target_list(encode_target_list(list)[0], f), DecodeError::none) << c.inside;
+    list.targets[1].*c.field = c.beyond;
+    EXPECT_EQ(decode_target_list(encode_target_list(list)[0], f), DecodeError::bad_value) << c.beyond;
+  }
+  GroundTruthFragment g;
+  GroundTruthMessage truth;
+  truth.objects.push_back({0, {1.0, 2.0, 0.0, 0.0}, 4.0, 2.0, "car"});
+  EXPECT_EQ(decode_ground_truth(encode_ground_truth(truth)[0], g), DecodeError::none);
+  truth.objects[0].length_m = 100.5;
+  EXPECT_EQ(decode_ground_truth(encode_ground_truth(truth)[0], g), DecodeError::bad_value);
+  truth.objects[0].length_m = 4.0;
+  truth.ego.x_m = 2e7;
+  EXPECT_EQ(decode_ground_truth(encode_ground_truth(truth)[0], g), DecodeError::bad_value);
+  truth.ego.x_m = 0.0;
+  truth.objects[0].pose.speed_mps = 1e4;
+  EXPECT_EQ(decode_ground_truth(encode_ground_truth(truth)[0], g), DecodeError::bad_value);
+}
+
 TEST(WireFormat, IdsMustBeWellFormedUtf8) {
   // A sensor id of one byte 0xFF ended `rcsim listen --format jsonl` (the JSON writer threw on
   // it); found with the fuzz harness's path (tests/fuzz/regressions/udp_datagram/).
