@@ -35,6 +35,13 @@ std::map<std::int64_t, RunIdentity> stored_run_identities(SQLite::Database& db) 
   return out;
 }
 
+std::vector<std::string> stored_recording_dirs(SQLite::Database& db) {
+  std::vector<std::string> out;
+  SQLite::Statement runs(db, "SELECT recording_dir FROM runs ORDER BY run_id");
+  while (runs.executeStep()) out.push_back(runs.getColumn(0).getString());
+  return out;
+}
+
 RunIdentity planned_run_identity(std::uint64_t recording_checksum, const ImportedScene& header_import,
                                  const ReplayOptions& options, StoreLevel store) {
   RunIdentity id;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "replay/import/importer.hpp"
 #include "replay/run/replay_run.hpp"
@@ -30,6 +31,10 @@ struct RunIdentity {
 
 // The identity of every run stored in the database, by run id.
 std::map<std::int64_t, RunIdentity> stored_run_identities(SQLite::Database& db);
+
+// The recording directory of every run stored, as given to the replay (`rcsim campaign status`
+// finds a plan's recordings in its shard reports by them, without reading the recordings).
+std::vector<std::string> stored_recording_dirs(SQLite::Database& db);
 
 // The identity the run of a recording will have, known before it runs: from its header, the
 // checksum of its files (recording_checksum), the header's import (import_header: the sensor

@@ -12,6 +12,7 @@
 #include "common/input_error.hpp"
 #include "replay/campaign/plan.hpp"
 #include "replay/campaign/shard_runner.hpp"
+#include "replay/campaign/status.hpp"
 
 namespace rcsim::cli {
 
@@ -32,6 +33,10 @@ struct SubmitArgs {
 struct RunLocalArgs {
   std::string dir;
   int jobs = 1;
+};
+
+struct StatusArgs {
+  std::string dir;
 };
 
 struct RunShardArgs {
@@ -130,6 +135,37 @@ void run_local(const RunLocalArgs& args) {
   std::cout << fmt::format("all {} shards done; next: {}\n", n, merge_hint(plan));
 }
 
+// Per shard: its state and stored share, the failed recordings with their errors (the first
+// few), then the command that finishes the campaign or, when all is stored, the merge.
+void run_status(const StatusArgs& args) {
+  constexpr std::size_t kFailuresShown = 5;
+  const CampaignPlan plan = replay::campaign::read_plan(args.dir);
+  const auto status = replay::campaign::campaign_status(plan);
+  std::cout << fmt::format("campaign '{}' (plan {}): {} of {} recordings stored ({} of {}), {} failed\n", plan.manifest.name,
+                           plan.dir.string(), status.stored, status.planned, duration_text(status.stored_s),
+                           duration_text(status.planned_s), status.failed);
+  for (const auto& s : status.shards) {
+    std::cout << fmt::format("  shard {}: {}, {} of {} stored ({} of {})", s.index, replay::campaign::shard_state_name(s.state),
+                             s.stored, s.planned, duration_text(s.stored_s), duration_text(s.planned_s));
+    if (!s.failed.empty()) std::cout << fmt::format("; {} failed", s.failed.size());
+    std::cout << '\n';
+    for (std::size_t i = 0; i < std::min(s.failed.size(), kFailuresShown); ++i) {
+      std::cout << fmt::format("      {}: {}\n", s.failed[i].dir.string(), s.failed[i].message);
+    }
+    if (s.failed.size() > kFailuresShown) std::cout << fmt::format("      ... and {} more\n", s.failed.size() - kFailuresShown);
+  }
+  const std::vector<int> unfinished = status.unfinished();
+  if (unfinished.empty()) {
+    std::cout << fmt::format("all {} shards done; next: {}\n", plan.shards.size(), merge_hint(plan));
+  } else {
+    std::cout << fmt::format("to finish (only what is missing is replayed): rcsim campaign submit {} --shards {}\n"
+                             "  or on this machine: rcsim campaign run-local {} -j {}\n",
+                             plan.dir.string(), replay::campaign::index_ranges(unfinished), plan.dir.string(),
+                             std::min<std::size_t>(unfinished.size(), 2));
+    if (status.failed > 0) std::cout << "  (a failed recording fails again until its input is fixed; its error is above)\n";
+  }
+}
+
 void run_one_shard(const RunShardArgs& args) {
   const CampaignPlan plan = replay::campaign::read_plan(args.dir);
   const auto outcome = replay::campaign::run_shard(plan, args.shard, std::cout);
@@ -169,6 +205,11 @@ void add_campaign_command(CLI::App& app) {
   l->add_option("PLAN_DIR", local->dir, "plan directory")->required();
   l->add_option("-j,--jobs", local->jobs, "shards run at once (one core each)")->check(CLI::Range(1, 1024))->capture_default_str();
   l->callback([local] { run_local(*local); });
+
+  auto status = std::make_shared<StatusArgs>();
+  auto* st = cmd->add_subcommand("status", "how many runs each shard has stored, which recordings failed, what to resubmit");
+  st->add_option("PLAN_DIR", status->dir, "plan directory")->required();
+  st->callback([status] { run_status(*status); });
 
   auto shard = std::make_shared<RunShardArgs>();
   auto* r = cmd->add_subcommand("run-shard", "replay one shard into its report (what each array task runs); restartable");

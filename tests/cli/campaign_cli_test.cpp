@@ -44,6 +44,11 @@ TEST_F(CampaignCli, RunLocalThenMergeEqualsASerialReplay) {
   const auto local = run_rcsim(fmt::format("campaign run-local {} -j 2", dir("plan")));
   ASSERT_EQ(local.exit_code, 0) << local.output;
   EXPECT_NE(local.output.find("all 2 shards done"), std::string::npos) << local.output;
+  const auto status = run_rcsim(fmt::format("campaign status {}", dir("plan")));
+  ASSERT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_NE(status.output.find("4 of 4 recordings stored"), std::string::npos) << status.output;
+  EXPECT_NE(status.output.find("shard 1: done, "), std::string::npos) << status.output;
+  EXPECT_NE(status.output.find("all 2 shards done; next: rcsim merge"), std::string::npos) << status.output;
   const auto merge = run_rcsim(fmt::format("merge {0}/shards/shard-0000.sqlite {0}/shards/shard-0001.sqlite -o {1}",
                                            dir("plan"), dir("campaign.sqlite")));
   ASSERT_EQ(merge.exit_code, 0) << merge.output;
@@ -91,6 +96,10 @@ TEST_F(CampaignCli, AShardKilledMidRunRedoesOnlyWhatIsMissing) {
     EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
     EXPECT_EQ(db.execAndGet("SELECT count(*) FROM runs").getInt(), 2);  // the first two, whole; no trace of the third
   }
+  const auto where = run_rcsim(fmt::format("campaign status {}", dir("plan")));
+  EXPECT_NE(where.output.find("2 of 4 recordings stored"), std::string::npos) << where.output;
+  EXPECT_NE(where.output.find("shard 0: unfinished, 2 of 4 stored"), std::string::npos) << where.output;
+  EXPECT_NE(where.output.find("rcsim campaign submit " + dir("plan") + " --shards 0\n"), std::string::npos) << where.output;
   const auto rerun = run_rcsim(fmt::format("campaign run-shard {} --shard 0", dir("plan")));
   ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
   EXPECT_NE(rerun.output.find("2 runs stored, 2 stored before, 0 failed"), std::string::npos) << rerun.output;
