@@ -40,8 +40,13 @@ std::vector<std::filesystem::path> expand(const JsonField& entry, const std::fil
     }
   }
   ::globfree(&matches);
+  const std::string relative =
+      std::filesystem::path(text).is_absolute() ? "" : fmt::format(" (a relative pattern is relative to the manifest's directory {})", base_dir.string());
+  if (status == GLOB_ABORTED) {
+    entry.fail(fmt::format("cannot expand '{}': a directory in it is missing or unreadable{}", pattern.string(), relative));
+  }
   if (status != 0 && status != GLOB_NOMATCH) entry.fail(fmt::format("cannot expand '{}' (glob error {})", pattern.string(), status));
-  if (out.empty()) entry.fail(fmt::format("'{}' matches no recording directory", pattern.string()));
+  if (out.empty()) entry.fail(fmt::format("'{}' matches no recording directory{}", pattern.string(), relative));
   return out;
 }
 

@@ -116,6 +116,10 @@ CampaignPlan write_plan(const CampaignManifest& manifest, int n, const std::file
     throw InputError((plan.dir / "plan.json").string(), "",
                      "a campaign is planned here already; plan into a new directory (its shard reports stay valid)");
   }
+  if (std::filesystem::exists(plan.dir) &&
+      (!std::filesystem::is_directory(plan.dir) || !std::filesystem::is_empty(plan.dir))) {
+    throw InputError(plan.dir.string(), "", "exists and is not an empty directory; plan into a new one");
+  }
   std::vector<PlannedRecording> recordings;
   for (const auto& d : manifest.recordings) recordings.push_back({d, recorded_duration_s(d)});
   plan.shards = balance_shards(std::move(recordings), std::min<int>(n, static_cast<int>(manifest.recordings.size())));
@@ -151,6 +155,10 @@ CampaignPlan read_plan(const std::filesystem::path& dir) {
   CampaignPlan plan;
   plan.dir = std::filesystem::absolute(dir).lexically_normal();
   const std::string file = (plan.dir / "plan.json").string();
+  if (!std::filesystem::exists(plan.dir)) throw InputError(plan.dir.string(), "", "no such plan directory");
+  if (!std::filesystem::is_directory(plan.dir)) {
+    throw InputError(plan.dir.string(), "", "not a directory: give the plan directory (rcsim campaign plan -o DIR)");
+  }
   if (!std::filesystem::exists(file)) throw InputError(file, "", "no campaign plan here (rcsim campaign plan writes it)");
   const nlohmann::json doc = parse_json_file(file);
   const JsonField root(doc, file, "");

@@ -246,7 +246,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("RECORDING_DIR", args->recordings, "recordings (rcsim-recording); default: every one in ./recordings_synthetic");
   cmd->add_option("--db", args->db_path, "report database (rcsim-report) to store the bench in; created if missing");
   cmd->add_option("--seed", args->seed, "seed of the model (the reference's are seed + 1 and seed + 2)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   cmd->add_option("--levels", args->levels, std::string("comma-separated model levels: ") + std::string(kFidelityNames) + ", or none")
       ->capture_default_str();

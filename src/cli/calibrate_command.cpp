@@ -195,7 +195,7 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("--fit", args->fit, std::string("comma-separated parameter groups: ") + std::string(replay::kParameterGroupNames))
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of the model's random draws during the search")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   cmd->add_option("--initial-step-db", args->initial_step_db, "first search step")
       ->check(CLI::Range(0.01, 40.0))

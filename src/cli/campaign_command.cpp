@@ -66,6 +66,10 @@ void run_plan(const PlanArgs& args) {
                            "share)\n",
                            manifest.name, manifest.recordings.size(), duration_text(total_s), plan.shards.size(),
                            duration_text(longest_s), longest_s / (total_s / static_cast<double>(plan.shards.size())));
+  if (static_cast<std::size_t>(args.shards) > plan.shards.size()) {
+    std::cout << fmt::format("  ({} shards asked for; {} recordings make {}: a shard holds one recording at least)\n", args.shards,
+                             manifest.recordings.size(), plan.shards.size());
+  }
   for (const auto& s : plan.shards) {
     std::cout << fmt::format("  shard {}: {} recordings, {}\n", s.index, s.recordings.size(), duration_text(s.duration_s));
   }
@@ -83,7 +87,10 @@ void run_submit(const SubmitArgs& args) {
   std::string out;
   const int status = run_captured(argv, out);
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  if (status != 0) throw std::runtime_error(fmt::format("{} failed (exit status {}): {}", args.sbatch, status, out));
+  if (status != 0) {
+    throw std::runtime_error(fmt::format("{} failed (exit status {}){}", args.sbatch, status,
+                                         out.empty() ? "; its message is above" : ": " + out));
+  }
   const std::string job_id = out.substr(0, out.find(';'));  // --parsable: "id" or "id;cluster"
   if (job_id.empty() || job_id.find_first_not_of("0123456789") != std::string::npos) {
     throw std::runtime_error(fmt::format("{} printed '{}', not a job id", args.sbatch, out));
@@ -188,7 +195,9 @@ void add_campaign_command(CLI::App& app) {
   p->add_option("MANIFEST", plan->manifest, "campaign manifest (rcsim-campaign, schemas/campaign.md)")
       ->required()
       ->check(CLI::ExistingFile);
-  p->add_option("--shards", plan->shards, "number of shards (Slurm array tasks)")->check(CLI::Range(1, 100000))->capture_default_str();
+  p->add_option("--shards", plan->shards, "number of shards (Slurm array tasks); at most one per recording")
+      ->required()
+      ->check(CLI::Range(1, 100000));
   p->add_option("-o,--output", plan->dir, "plan directory (created): plan.json, campaign.sbatch, shards/, logs/")->required();
   p->add_option("--rcsim", plan->rcsim, "the rcsim executable the batch script runs (default: this one)");
   p->callback([plan] { run_plan(*plan); });
@@ -214,7 +223,7 @@ void add_campaign_command(CLI::App& app) {
   auto shard = std::make_shared<RunShardArgs>();
   auto* r = cmd->add_subcommand("run-shard", "replay one shard into its report (what each array task runs); restartable");
   r->add_option("PLAN_DIR", shard->dir, "plan directory")->required();
-  r->add_option("--shard", shard->shard, "the shard (the array task id)")->required()->check(CLI::NonNegativeNumber);
+  r->add_option("--shard", shard->shard, "the shard (the array task id)")->required()->check(kNonNegative);
   r->callback([shard] { run_one_shard(*shard); });
 }
 

@@ -109,7 +109,7 @@ void add_listen_command(CLI::App& app) {
   cmd->add_option("--truth-output", args->truth_output, "Write the ground truth (ego and object boxes) to this CSV file");
   cmd->add_option("--pcap", args->pcap, "Write every datagram received to this pcap file (for Wireshark/tshark)");
   cmd->add_option("--idle-timeout-s", args->idle_timeout_s, "End after this long without a datagram (0: never)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   cmd->add_flag("--keep-going", args->keep_going, "Do not end at the end-of-stream datagram");
   cmd->callback([args] { run_listen(*args); });
 }

@@ -209,7 +209,7 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("RECORDING_DIR", args->recording_dir, "recording directory (rcsim-recording)")->required();
   cmd->add_option("--db", args->db_path, "report database (rcsim-report, SQLite); created if missing")->required();
   cmd->add_option("--seed", args->seed, "seed of the simulation's random draws")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print the run's summary as JSON");
   cmd->add_option("--fidelity", args->fidelity,

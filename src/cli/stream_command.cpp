@@ -98,18 +98,18 @@ void add_stream_command(CLI::App& app) {
   cmd->add_flag("--no-noise", args->no_noise, "Turn every random draw off");
   add_fidelity_option(*cmd, args->fidelity);
   cmd->add_option("--wait-clients", args->wait_clients, "Hold the first cycle until this many clients have subscribed")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   cmd->add_option("--client-timeout-s", args->client_timeout_s, "Drop a client not heard from for this long")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--max-clients", args->max_clients, "Most clients subscribed at once")->capture_default_str();
   cmd->add_option("--late-ms", args->late_ms, "A cycle sent later than this after its deadline counts as late")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   cmd->add_option("--ttl", args->ttl, "Multicast hop limit")->check(CLI::Range(0, 255))->capture_default_str();
   cmd->add_option("--multicast-interface", args->multicast_interface, "IPv4 address of the interface multicast leaves from");
   cmd->add_option("--from-cycle", args->from_cycle, "First cycle to send (earlier ones are simulated, not sent)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   cmd->add_flag("--hold", args->hold, "After the last cycle keep the control port open (clients may seek back); stop with Ctrl-C");
   cmd->add_option("--queue-cycles", args->queue_cycles, "How many cycles the simulation may run ahead of the schedule")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))

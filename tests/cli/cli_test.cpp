@@ -95,8 +95,29 @@ TEST_F(Cli, ModelsListsTheLibrary) {
 
 TEST_F(Cli, UnknownLevelIsRefused) {
   const auto r = run("simulate " + kExamples + "front_approach.json --level raw");
-  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--level"), std::string::npos) << r.output;
+}
+
+// README's exit statuses: a wrong option or value is bad input, 2, whatever CLI11 found (it
+// numbers its errors 104 to 114); --help and --version are 0.
+TEST_F(Cli, EveryCommandLineErrorIsExitStatusTwoWithAShortMessage) {
+  const std::map<std::string, std::string> refused = {
+      {"replay x --db y --seed -1", "--seed: must be 0 or more, got -1"},
+      {"campaign run-local x -j abc", "--jobs"},
+      {"campaign plan " + kExamples + "front_approach.json -o d", "--shards is required"},
+      {"simulate " + kExamples + "front_approach.json -o a -o b", "--output"},
+      {"listen --port 99999", "--port"},
+      {"simulate " + kExamples + "front_approach.json --no-such-option", "--no-such-option"},
+      {"no-such-command", "unknown command 'no-such-command'"}};
+  for (const auto& [args, message] : refused) {
+    const auto r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << ": " << r.output;
+    EXPECT_LT(r.output.size(), 400u) << args << ": " << r.output;
+  }
+  EXPECT_EQ(run("--help").exit_code, 0);
+  EXPECT_EQ(run("--version").exit_code, 0);
 }
 
 

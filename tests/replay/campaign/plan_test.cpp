@@ -85,14 +85,39 @@ TEST_F(PlanTest, WritesPlanAndBatchScriptAndReadsThemBack) {
     EXPECT_DOUBLE_EQ(back.shards[s].duration_s, plan.shards[s].duration_s);
   }
   EXPECT_EQ(back.shard_report(1), dir_ / "plan" / "shards" / "shard-0001.sqlite");
-  // A second plan into the same directory is refused: its shard reports would mix.
+  // A second plan into the same directory is refused: its shard reports would mix. So is a
+  // directory holding other files, and read_plan says what is wrong with a path that is no plan.
   EXPECT_THROW(write_plan(manifest, 2, dir_ / "plan", "/opt/rcsim/bin/rcsim"), InputError);
+  std::filesystem::create_directories(dir_ / "busy");
+  std::ofstream(dir_ / "busy" / "notes.txt") << "mine";
+  try {
+    write_plan(manifest, 2, dir_ / "busy", "/opt/rcsim/bin/rcsim");
+    ADD_FAILURE() << "a non-empty directory was planned into";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not an empty directory"), std::string::npos) << e.what();
+  }
+  const auto read_error = [](const std::filesystem::path& dir) {
+    try {
+      read_plan(dir);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(read_error(dir_ / "nothing").find("no such plan directory"), std::string::npos);
+  EXPECT_NE(read_error(dir_ / "busy" / "notes.txt").find("not a directory"), std::string::npos);
+  EXPECT_NE(read_error(dir_ / "busy").find("no campaign plan here"), std::string::npos);
 }
 
 TEST_F(PlanTest, BadManifestsNameTheFileAndField) {
   EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "no_such_*").string() + R"("])").find("recordings[0]: "),
             std::string::npos);
   EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "no_such_*").string() + R"("])").find("matches no recording"),
+            std::string::npos);
+  // Under a directory that does not exist; a relative pattern says what it is relative to.
+  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "no_such_dir" / "*").string() + R"("])").find("a directory in it is missing"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": ["no_such_*"])").find("relative to the manifest's directory " + dir_.string()),
             std::string::npos);
   EXPECT_NE(error_of(R"("recordings": [")" + kBundled.string() + R"("])").find("not a recording directory"),
             std::string::npos);
