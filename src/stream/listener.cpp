@@ -386,11 +386,13 @@ ListenSummary Listener::run() {
 
 std::string ListenSummary::line() const {
   std::string text = fmt::format(
-      "rcsim listen: {}{} datagrams ({} bytes) from {} source(s), {} messages ({} reassembled from fragments), "
+      "rcsim listen: {}{} datagrams ({} bytes{}) from {} source(s), {} messages ({} reassembled from fragments), "
       "{} target lists, {} rows, {} ground truth; {} lost, {} duplicates, {} reordered, {} incomplete, {} malformed",
-      interrupted ? "stopped, " : idle ? "idle, " : "", datagrams, bytes, sources, messages, fragmented_messages, target_lists,
-      rows, truth_messages, lost, duplicates, reordered, incomplete, malformed);
-  if (late_flagged > 0) text += fmt::format(", {} late-flagged", late_flagged);
+      interrupted ? "stopped, " : idle ? "idle, " : "", datagrams, bytes,
+      replies > 0 ? fmt::format("; {} of them control replies, outside the stream", replies) : "", sources, messages,
+      fragmented_messages, target_lists, rows, truth_messages, lost, duplicates, reordered, incomplete, malformed);
+  // A late cycle flags each of its messages (every sensor's target list, the ground truth).
+  if (late_flagged > 0) text += fmt::format(", {} late-flagged messages", late_flagged);
   if (senders_forgotten > 0) {
     text += fmt::format(", {} senders forgotten (at most {} tracked, {} MiB)", senders_forgotten,
                         SenderTable<int>::kMaxSenders, SenderTable<int>::kMaxStateBytes >> 20);
