@@ -117,46 +117,36 @@ std::vector<Criterion> read_criteria_file(const std::filesystem::path& path) {
   return parse_criteria(root);
 }
 
-std::vector<Criterion> stored_criteria(SQLite::Database& db) {
+std::vector<CriterionRow> criterion_rows(const std::vector<Criterion>& criteria) {
+  std::vector<CriterionRow> rows;
+  rows.reserve(criteria.size());
+  for (const Criterion& c : criteria) {
+    rows.push_back({c.figure, c.scope == Scope::campaign ? "campaign" : "recording",
+                    std::string(statistic_name(c.statistic)), c.bound == Bound::min ? "min" : "max", c.threshold,
+                    c.pass_if_missing ? "pass" : "fail"});
+  }
+  return rows;
+}
+
+std::vector<Criterion> criteria_from_rows(const std::vector<CriterionRow>& rows) {
   std::vector<Criterion> out;
-  SQLite::Statement q(db, "SELECT figure, scope, statistic, bound, threshold, if_missing FROM criteria ORDER BY criterion");
-  while (q.executeStep()) {
+  for (const CriterionRow& row : rows) {
     Criterion c;
-    c.figure = q.getColumn(0).getString();
-    c.scope = q.getColumn(1).getString() == "campaign" ? Scope::campaign : Scope::recording;
-    c.statistic = statistic_from_name(q.getColumn(2).getString()).value_or(Statistic::value);
-    c.bound = q.getColumn(3).getString() == "min" ? Bound::min : Bound::max;
-    c.threshold = q.getColumn(4).getDouble();
-    c.pass_if_missing = q.getColumn(5).getString() == "pass";
+    c.figure = row.figure;
+    c.scope = row.scope == "campaign" ? Scope::campaign : Scope::recording;
+    c.statistic = statistic_from_name(row.statistic).value_or(Statistic::value);
+    c.bound = row.bound == "min" ? Bound::min : Bound::max;
+    c.threshold = row.threshold;
+    c.pass_if_missing = row.if_missing == "pass";
     out.push_back(c);
   }
   return out;
 }
 
+std::vector<Criterion> stored_criteria(SQLite::Database& db) { return criteria_from_rows(read_criterion_rows(db)); }
+
 void store_criteria(SQLite::Database& db, const std::vector<Criterion>& criteria) {
-  // A savepoint: all or nothing, on its own or within the caller's transaction.
-  db.exec("SAVEPOINT store_criteria");
-  try {
-    db.exec("DELETE FROM criteria");
-    SQLite::Statement insert(db, "INSERT INTO criteria VALUES (?, ?, ?, ?, ?, ?, ?)");
-    for (std::size_t i = 0; i < criteria.size(); ++i) {
-      const Criterion& c = criteria[i];
-      insert.bind(1, static_cast<std::int64_t>(i));
-      insert.bind(2, c.figure);
-      insert.bind(3, c.scope == Scope::campaign ? "campaign" : "recording");
-      insert.bind(4, std::string(statistic_name(c.statistic)));
-      insert.bind(5, c.bound == Bound::min ? "min" : "max");
-      insert.bind(6, c.threshold);
-      insert.bind(7, c.pass_if_missing ? "pass" : "fail");
-      insert.exec();
-      insert.reset();
-    }
-  } catch (...) {
-    db.exec("ROLLBACK TO store_criteria");
-    db.exec("RELEASE store_criteria");
-    throw;
-  }
-  db.exec("RELEASE store_criteria");
+  replace_criterion_rows(db, criterion_rows(criteria));
 }
 
 bool Verdicts::passed() const {

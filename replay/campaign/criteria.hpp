@@ -15,6 +15,7 @@
 
 #include "common/json_reader.hpp"
 #include "replay/campaign/run_figures.hpp"
+#include "replay/store/campaign_store.hpp"
 
 namespace rcsim::replay::campaign {
 
@@ -45,6 +46,10 @@ std::vector<Criterion> read_criteria_file(const std::filesystem::path& path);
 // The criteria stored in a report database (in order), and replacing them.
 std::vector<Criterion> stored_criteria(SQLite::Database& db);
 void store_criteria(SQLite::Database& db, const std::vector<Criterion>& criteria);
+
+// The criteria as the table criteria holds them (replay/store/campaign_store.hpp), and back.
+std::vector<CriterionRow> criterion_rows(const std::vector<Criterion>& criteria);
+std::vector<Criterion> criteria_from_rows(const std::vector<CriterionRow>& rows);
 
 struct CriterionResult {
   std::size_t criterion = 0;  // index into Verdicts::criteria

@@ -1,47 +1,18 @@
 #include "replay/campaign/run_figures.hpp"
 
 #include <cmath>
-#include <cstring>
 #include <functional>
 #include <map>
 #include <stdexcept>
+
+#include "replay/store/campaign_store.hpp"
 
 namespace rcsim::replay::campaign {
 
 namespace {
 
-// One run's row of summaries and the sums of its object_figures; NULL columns are NaN.
-struct RunRecord {
-  double gospa_mean, ospa_mean, gospa_object_mean, ospa_object_mean;
-  double targets_recorded, targets_simulated, targets_matched;
-  double latency_recorded_s, latency_simulated_s, latency_difference_mean_s, latency_pairs, latency_episodes,
-      latency_unconfirmed_recorded, latency_unconfirmed_simulated;
-  double merge_recorded, merge_simulated, merge_matched;
-  double residual_range_rms_m, residual_azimuth_rms_rad, residual_range_rate_rms_mps, residual_amplitude_mean_db;
-  double simulate_cpu_s, wall_s;
-  double in_view, detected_recorded, detected_simulated;
-};
-
-// The query's columns after run_id, recording_name, recording_dir, seed, cycles, cycle_time_s, in
-// the order of RunRecord.
-constexpr const char* kRunQuery = R"SQL(
-SELECT r.run_id, r.recording_name, r.recording_dir, r.seed, r.cycles, r.cycle_time_s,
-  s.gospa_mean, s.ospa_mean, s.gospa_object_mean, s.ospa_object_mean,
-  s.targets_recorded, s.targets_simulated, s.targets_matched,
-  s.latency_recorded_s, s.latency_simulated_s, s.latency_difference_mean_s, s.latency_pairs, s.latency_episodes,
-  s.latency_unconfirmed_recorded, s.latency_unconfirmed_simulated,
-  s.merge_artefacts_recorded, s.merge_artefacts_simulated, s.merge_artefacts_matched,
-  s.residual_range_rms_m, s.residual_azimuth_rms_rad, s.residual_range_rate_rms_mps, s.residual_amplitude_mean_db,
-  s.simulate_cpu_s, s.total_wall_s,
-  f.in_view, f.detected_recorded, f.detected_simulated
-FROM runs r JOIN summaries s USING (run_id)
-LEFT JOIN (SELECT run_id, sum(cycles_in_view) AS in_view, sum(cycles_detected_recorded) AS detected_recorded,
-                  sum(cycles_detected_simulated) AS detected_simulated
-           FROM object_figures GROUP BY run_id) f USING (run_id)
-ORDER BY r.run_id
-)SQL";
-constexpr int kFirstFigureColumn = 6;
-constexpr int kRecordColumns = static_cast<int>(sizeof(RunRecord) / sizeof(double));
+// What a run's figures are computed from (replay/store/campaign_store.hpp); missing values are NaN.
+using RunRecord = RunFigureSources;
 
 using Compute = std::function<double(const RunRecord&)>;
 
@@ -156,22 +127,13 @@ std::vector<RunFigureRow> read_run_figures(SQLite::Database& db, const std::vect
 
   std::vector<RunFigureRow> rows;
   std::map<std::int64_t, std::size_t> row_of;
-  SQLite::Statement query(db, kRunQuery);
-  while (query.executeStep()) {
+  for (const RunRecord& record : read_run_figure_sources(db)) {
     RunFigureRow row;
-    row.run_id = query.getColumn(0).getInt64();
-    row.recording_name = query.getColumn(1).getString();
-    row.recording_dir = query.getColumn(2).getString();
-    row.seed = query.getColumn(3).getInt64();
-    row.duration_s = query.getColumn(4).getDouble() * query.getColumn(5).getDouble();
-    double fields[kRecordColumns];
-    for (int c = 0; c < kRecordColumns; ++c) {
-      const SQLite::Column column = query.getColumn(kFirstFigureColumn + c);
-      fields[c] = column.isNull() ? std::nan("") : column.getDouble();
-    }
-    RunRecord record{};
-    static_assert(sizeof(RunRecord) == sizeof(fields));
-    std::memcpy(&record, fields, sizeof(record));
+    row.run_id = record.run_id;
+    row.recording_name = record.recording_name;
+    row.recording_dir = record.recording_dir;
+    row.seed = record.seed;
+    row.duration_s = record.duration_s;
     row.values.resize(figures.size());
     for (std::size_t i = 0; i < figures.size(); ++i) {
       if (entries[i] == nullptr) continue;
@@ -182,14 +144,13 @@ std::vector<RunFigureRow> read_run_figures(SQLite::Database& db, const std::vect
     rows.push_back(std::move(row));
   }
   if (!distances.empty()) {
-    SQLite::Statement d(db, "SELECT run_id, quantity, wasserstein1, kolmogorov_smirnov FROM distribution_distances");
-    while (d.executeStep()) {
-      const auto run = row_of.find(d.getColumn(0).getInt64());
-      const auto wanted = distances.find(d.getColumn(1).getString());
+    for (const RunDistance& d : read_run_distances(db)) {
+      const auto run = row_of.find(d.run_id);
+      const auto wanted = distances.find(d.quantity);
       if (run == row_of.end() || wanted == distances.end()) continue;
       for (const std::size_t i : wanted->second) {
-        const SQLite::Column value = d.getColumn(figures[i].starts_with(kW1Prefix) ? 2 : 3);
-        if (!value.isNull()) rows[run->second].values[i] = value.getDouble();
+        const std::optional<double>& value = figures[i].starts_with(kW1Prefix) ? d.wasserstein1 : d.kolmogorov_smirnov;
+        if (value) rows[run->second].values[i] = *value;
       }
     }
   }

@@ -1,9 +1,10 @@
 #pragma once
 // The figures a campaign judges and ranks its runs by (schemas/campaign.md, "Figures"): one value
-// per stored run, read from a report database's per-run tables (summaries, object_figures,
-// distribution_distances) in a few queries, whatever the number of runs. A figure is missing
-// (nullopt) where the run has nothing to compute it from: no latency pair, no object in view,
-// nothing recorded, a run stored before the figure existed.
+// per stored run, computed from a report database's per-run tables (summaries, object_figures,
+// distribution_distances), read in a few queries whatever the number of runs
+// (replay/store/campaign_store.hpp). A figure is missing (nullopt) where the run has nothing to
+// compute it from: no latency pair, no object in view, nothing recorded, a run stored before the
+// figure existed.
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>

@@ -8,30 +8,22 @@
 #include "io/recording_stream.hpp"
 #include "model/model_library.hpp"
 #include "replay/run/kill_after_cycles.hpp"
+#include "replay/store/campaign_store.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"
 
 namespace rcsim::replay::campaign {
 
 void claim_report_for_campaign(SQLite::Database& db, const std::string& db_path, const CampaignManifest& manifest) {
-  SQLite::Transaction transaction(db);
-  SQLite::Statement stored(db, "SELECT name FROM campaign");
-  if (stored.executeStep()) {
-    const std::string name = stored.getColumn(0).getString();
-    if (name != manifest.name) {
-      throw InputError(db_path, "campaign", fmt::format("holds the runs of campaign '{}', not '{}'", name, manifest.name));
-    }
-    if (stored_criteria(db) != manifest.criteria) {
-      throw InputError(db_path, "criteria", "holds other criteria than the campaign's manifest; plan into a new directory");
-    }
-    return;
+  const auto stored = claim_campaign(db, manifest.name, manifest.document.dump(), criterion_rows(manifest.criteria));
+  if (!stored) return;  // claimed now
+  if (stored->name != manifest.name) {
+    throw InputError(db_path, "campaign", fmt::format("holds the runs of campaign '{}', not '{}'", stored->name,
+                                                      manifest.name));
   }
-  SQLite::Statement insert(db, "INSERT INTO campaign (name, manifest) VALUES (?, ?)");
-  insert.bind(1, manifest.name);
-  insert.bind(2, manifest.document.dump());
-  insert.exec();
-  store_criteria(db, manifest.criteria);
-  transaction.commit();
+  if (criteria_from_rows(stored->criteria) != manifest.criteria) {
+    throw InputError(db_path, "criteria", "holds other criteria than the campaign's manifest; plan into a new directory");
+  }
 }
 
 ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log) {

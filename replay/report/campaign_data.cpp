@@ -3,26 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "replay/store/campaign_store.hpp"
+
 namespace rcsim::replay::report {
-
-namespace {
-
-// The campaign's name, empty without one. The table exists in every database opened (schema v5).
-std::string campaign_name(SQLite::Database& db) {
-  SQLite::Statement q(db, "SELECT name FROM campaign LIMIT 1");
-  return q.executeStep() ? q.getColumn(0).getString() : std::string();
-}
-
-// The quantities of the table distribution_distances with their units, in the order they were
-// first stored.
-std::vector<std::pair<std::string, std::string>> distance_quantities(SQLite::Database& db) {
-  std::vector<std::pair<std::string, std::string>> out;
-  SQLite::Statement q(db, "SELECT quantity, min(unit) FROM distribution_distances GROUP BY quantity ORDER BY min(rowid)");
-  while (q.executeStep()) out.emplace_back(q.getColumn(0).getString(), q.getColumn(1).getString());
-  return out;
-}
-
-}  // namespace
 
 std::vector<double> CampaignData::sorted_values(std::size_t figure) const {
   std::vector<double> values;
@@ -42,17 +25,17 @@ std::optional<std::size_t> CampaignData::figure_index(const std::string& figure)
 }
 
 bool is_campaign_database(SQLite::Database& db) {
-  return !campaign_name(db).empty() || db.execAndGet("SELECT count(*) FROM criteria").getInt64() > 0;
+  return !read_campaign_name(db).value_or("").empty() || count_criterion_rows(db) > 0;
 }
 
 CampaignData read_campaign_data(SQLite::Database& db) {
   CampaignData data;
-  data.name = campaign_name(db);
+  data.name = read_campaign_name(db).value_or("");
   const std::vector<campaign::Criterion> criteria = campaign::stored_criteria(db);
 
   // Every candidate figure, then those some run has or a criterion names.
   std::vector<campaign::FigureInfo> candidates = campaign::figure_catalogue();
-  for (const auto& [quantity, unit] : distance_quantities(db)) {
+  for (const auto& [quantity, unit] : read_distance_quantities(db)) {
     for (const char* prefix : {"wasserstein1.", "kolmogorov_smirnov."}) {
       auto info = campaign::find_figure(prefix + quantity);
       if (!info) continue;

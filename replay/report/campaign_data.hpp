@@ -1,9 +1,10 @@
 #pragma once
 // What the campaign overview of `rcsim report` reads (docs/report.md, "Campaign report"): every
 // run's figures (replay/campaign/run_figures.hpp: a few queries, whatever the number of runs), the
-// verdicts of the stored criteria (replay/campaign/criteria.hpp), the campaign's name, and the
-// figures the overview ranks and plots: those of the catalogue and the distribution distances that
-// some run has, and every criterion's figure. Text fields are as stored (unescaped).
+// verdicts of the stored criteria (replay/campaign/criteria.hpp), the campaign's name
+// (replay/store/campaign_store.hpp), and the figures the overview ranks and plots: those of the
+// catalogue and the distribution distances that some run has, and every criterion's figure. Text
+// fields are as stored (unescaped).
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
