@@ -1,10 +1,12 @@
 #include "replay/campaign/run_figures.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <stdexcept>
 
+#include "replay/run/run_accumulators.hpp"
 #include "replay/store/campaign_store.hpp"
 
 namespace rcsim::replay::campaign {
@@ -93,7 +95,10 @@ std::optional<FigureInfo> find_figure(std::string_view name) {
     if (e.info.name == name) return e.info;
   }
   for (const auto prefix : {kW1Prefix, kKsPrefix}) {
-    if (name.starts_with(prefix) && name.size() > prefix.size()) {
+    const std::string_view quantity = name.substr(std::min(name.size(), prefix.size()));
+    const bool known = std::any_of(kComparedQuantities.begin(), kComparedQuantities.end(),
+                                   [quantity](const ComparedQuantity& q) { return q.name == quantity; });
+    if (name.starts_with(prefix) && known) {
       const bool w1 = prefix == kW1Prefix;
       return FigureInfo{std::string(name), w1 ? "of the quantity" : "1",
                         std::string(w1 ? "Wasserstein-1 (area metric) between recorded and simulated "
@@ -108,7 +113,9 @@ std::optional<FigureInfo> find_figure(std::string_view name) {
 std::string figure_names() {
   std::string out;
   for (const auto& e : catalogue()) out += (out.empty() ? "" : ", ") + e.info.name;
-  return out + ", wasserstein1.QUANTITY, kolmogorov_smirnov.QUANTITY";
+  std::string quantities;
+  for (const ComparedQuantity& q : kComparedQuantities) quantities += (quantities.empty() ? "" : ", ") + std::string(q.name);
+  return out + ", wasserstein1.QUANTITY, kolmogorov_smirnov.QUANTITY (QUANTITY: " + quantities + ")";
 }
 
 std::vector<RunFigureRow> read_run_figures(SQLite::Database& db, const std::vector<std::string>& figures) {

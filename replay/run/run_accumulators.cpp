@@ -86,20 +86,14 @@ void RunAccumulators::finish(ReplaySummary& summary) {
   summary.residual_object_range_rms_m = std::sqrt(object_range_sq_m2_ / m_object);
   summary.residual_object_azimuth_rms_rad = std::sqrt(object_azimuth_sq_rad2_ / m_object);
 
-  const auto distance = [](const metrics::SampleSummary& a, const metrics::SampleSummary& b) {
-    return metrics::distribution_distance(a, b);
-  };
-  summary.distances.push_back({"range", "m", distance(range_m_[0], range_m_[1])});
-  summary.distances.push_back({"azimuth", "rad", distance(azimuth_rad_[0], azimuth_rad_[1])});
-  summary.distances.push_back({"range_rate", "m/s", distance(rate_mps_[0], rate_mps_[1])});
-  summary.distances.push_back({"amplitude", "dB", distance(amplitude_db_[0], amplitude_db_[1])});
-  summary.distances.push_back({"targets_per_cycle", "1", distance(count_[0], count_[1])});
-  summary.distances.push_back(
-      {"background_range", "m", distance(background_range_m_[0], background_range_m_[1])});
-  summary.distances.push_back(
-      {"background_azimuth", "rad", distance(background_azimuth_rad_[0], background_azimuth_rad_[1])});
-  summary.distances.push_back(
-      {"background_targets_per_cycle", "1", distance(background_count_[0], background_count_[1])});
+  // Each of kComparedQuantities, in its order: [0] recorded, [1] simulated.
+  const std::array<const Samples*, kComparedQuantities.size()> samples = {
+      range_m_,  azimuth_rad_,        rate_mps_,         amplitude_db_, count_, background_range_m_,
+      background_azimuth_rad_, background_count_};
+  for (std::size_t q = 0; q < kComparedQuantities.size(); ++q) {
+    summary.distances.push_back({std::string(kComparedQuantities[q].name), std::string(kComparedQuantities[q].unit),
+                                 metrics::distribution_distance(samples[q][0], samples[q][1])});
+  }
 }
 
 }  // namespace rcsim::replay

@@ -3,12 +3,28 @@
 // counts, GOSPA and its parts, residuals of the assigned pairs, merge artefacts, and the samples
 // of the per-target quantities for the distribution distances (bounded: metrics/sample_summary.hpp); the targets of each class, GOSPA
 // on the object targets, and the background's samples (range, azimuth, targets per cycle).
+#include <array>
+#include <string_view>
 #include <vector>
 
 #include "metrics/sample_summary.hpp"
 #include "replay/run/replay_run.hpp"
 
 namespace rcsim::replay {
+
+// The quantities whose recorded and simulated distributions every run compares (table
+// distribution_distances; the criteria's wasserstein1.Q and kolmogorov_smirnov.Q), in order.
+struct ComparedQuantity {
+  std::string_view name, unit;
+};
+inline constexpr std::array<ComparedQuantity, 8> kComparedQuantities = {{{"range", "m"},
+                                                                        {"azimuth", "rad"},
+                                                                        {"range_rate", "m/s"},
+                                                                        {"amplitude", "dB"},
+                                                                        {"targets_per_cycle", "1"},
+                                                                        {"background_range", "m"},
+                                                                        {"background_azimuth", "rad"},
+                                                                        {"background_targets_per_cycle", "1"}}};
 
 class RunAccumulators {
  public:

@@ -35,11 +35,12 @@ class CriteriaTest : public rcsim::testing::ScratchDirTest {
 };
 
 TEST_F(CriteriaTest, APassAFailAndAMissingFigure) {
+  // wasserstein1.background_range is missing: the synthetic drives have no background to compare.
   const double higher = std::max(gospa_[0], gospa_[1]), lower = std::min(gospa_[0], gospa_[1]);
   const auto criteria = parse(R"({"criteria": [
       {"figure": "gospa_mean_m", "max": )" + std::to_string(higher + 1.0) + R"(},
-      {"figure": "wasserstein1.no_such_quantity", "max": 1},
-      {"figure": "wasserstein1.no_such_quantity", "max": 1, "if_missing": "pass"}]})");
+      {"figure": "wasserstein1.background_range", "max": 1},
+      {"figure": "wasserstein1.background_range", "max": 1, "if_missing": "pass"}]})");
   ASSERT_EQ(criteria.size(), 3u);
   Verdicts v = judge(*db_, criteria);
   ASSERT_EQ(v.runs.size(), 2u);
@@ -55,6 +56,13 @@ TEST_F(CriteriaTest, APassAFailAndAMissingFigure) {
   EXPECT_EQ(v.runs_failed, 2);
   EXPECT_FALSE(v.passed());
   EXPECT_NE(describe_failure(criteria[1], v.runs[0].results[1]).find("missing"), std::string::npos);
+  // A quantity no run compares is no figure: refused with the known ones named.
+  try {
+    parse(R"({"criteria": [{"figure": "wasserstein1.rang", "max": 1}]})");
+    ADD_FAILURE() << "wasserstein1.rang was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("QUANTITY: range, azimuth, range_rate"), std::string::npos) << e.what();
+  }
 
   // A threshold between the two runs: exactly the worse run fails, with its value.
   v = judge(*db_, parse(R"({"criteria": [{"figure": "gospa_mean_m", "max": )" +
