@@ -10,19 +10,15 @@
 //     the file is set to WAL like every report, closed, fsynced and renamed over the output, and
 //     the directory fsynced.
 // Until the rename the output is untouched, so a refusal, a failure or a kill at any moment leaves
-// it as it was; a later merge removes the temporary files of merges that died.
+// it as it was; a later merge removes the temporary files of merges that died. The files
+// themselves (the temporary output, syncs, read-only URIs) are handled in report_merge_files.cpp.
 #include "replay/store/report_merge.hpp"
 
 #include <SQLiteCpp/Backup.h>
 #include <fcntl.h>
-#include <signal.h>
 #include <sqlite3.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <array>
-#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -35,6 +31,7 @@
 #include <stdexcept>
 
 #include "common/input_error.hpp"
+#include "replay/store/report_merge_files.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"
 
@@ -43,6 +40,13 @@ namespace rcsim::replay {
 namespace {
 
 namespace fs = std::filesystem;
+using merge_files::file_state;
+using merge_files::FileState;
+using merge_files::fsync_path;
+using merge_files::read_only_uri;
+using merge_files::remove_stale_temporaries;
+using merge_files::temporary_path;
+using merge_files::TemporaryDatabase;
 
 const std::set<std::string> kBenchTables{"bench_runs", "bench_rows"};
 const std::set<std::string> kCampaignTables{"campaign", "criteria"};
@@ -103,86 +107,6 @@ std::string row_display(SQLite::Statement& q) {
   std::vector<std::string> values;
   for (int c = 0; c < q.getColumnCount(); ++c) values.push_back(display(q.getColumn(c)));
   return join(values, " ");
-}
-
-// The name of the rcsim executable's host, for the temporary file's name: on a shared filesystem
-// a merge judges only the temporary files of its own host by their pid.
-std::string host_name() {
-  std::array<char, 256> name{};
-  if (::gethostname(name.data(), name.size() - 1) != 0) return "host";
-  std::string host(name.data());
-  for (char& c : host) {
-    if (c == '/' || c == '-') c = '_';
-  }
-  return host.empty() ? "host" : host;
-}
-
-fs::path temporary_path(const fs::path& output) {
-  return output.parent_path() / fmt::format(".{}.merge-{}-{}.tmp", output.filename().string(), host_name(), ::getpid());
-}
-
-void remove_with_companions(const fs::path& db) {
-  std::error_code ignored;
-  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(db.string() + suffix, ignored);
-}
-
-// Removes the temporary files `.NAME.merge-HOST-PID.tmp` (and their -wal, -shm, -journal) of
-// merges into this output on this host whose process is gone. Returns how many it removed.
-int remove_stale_temporaries(const fs::path& output) {
-  const fs::path dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  const std::string prefix = fmt::format(".{}.merge-{}-", output.filename().string(), host_name());
-  int removed = 0;
-  std::error_code error;
-  std::vector<fs::path> stale;
-  for (const auto& entry : fs::directory_iterator(dir, error)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string rest = name.substr(prefix.size());  // PID.tmp
-    const std::size_t dot = rest.find(".tmp");
-    if (dot == 0 || dot == std::string::npos || rest.substr(0, dot).find_first_not_of("0123456789") != std::string::npos ||
-        rest.size() != dot + 4 || dot > 9) {
-      continue;  // a companion (-wal, -shm) goes with its database, or not ours
-    }
-    const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dot)));
-    // Our own pid: left by an earlier process that had it, since this one has not made its file yet.
-    const bool alive = pid != ::getpid() && (::kill(pid, 0) == 0 || errno == EPERM);
-    if (!alive) stale.push_back(entry.path());
-  }
-  for (const fs::path& path : stale) {
-    remove_with_companions(path);
-    ++removed;
-  }
-  return removed;
-}
-
-void fsync_path(const fs::path& path, int flags, const std::string& name_for_errors) {
-  const int fd = ::open(path.c_str(), flags);
-  if (fd < 0 || ::fsync(fd) != 0) {
-    const int error = errno;
-    if (fd >= 0) ::close(fd);
-    throw InputError(name_for_errors, "", fmt::format("cannot sync {}: {}", path.string(), std::strerror(error)));
-  }
-  ::close(fd);
-}
-
-// The `file:` URI that opens an input read-only, so that it is never written. A report is in WAL
-// mode; a read-only connection to it makes an empty -wal and -shm beside it where there are none,
-// and cannot remove them. A shard with no -wal was closed by its last writer and has nobody
-// writing it: it is read as immutable, leaving nothing behind (and readable from a read-only
-// directory). One with a -wal (a writer killed after a commit, or still at work) is read with its
-// WAL.
-std::string read_only_uri(const std::string& path) {
-  std::error_code error;
-  const bool has_wal = fs::exists(path + "-wal", error);
-  std::string uri = "file:";
-  for (const unsigned char c : fs::absolute(path).lexically_normal().string()) {
-    if (std::isalnum(c) || c == '/' || c == '.' || c == '_' || c == '-' || c == '~') {
-      uri += static_cast<char>(c);
-    } else {
-      uri += fmt::format("%{:02X}", c);
-    }
-  }
-  return uri + (has_wal ? "?mode=ro" : "?mode=ro&immutable=1");
 }
 
 enum class Header { empty, report };
@@ -575,49 +499,6 @@ class MergeTarget {
   SQLite::Database& db_;
   ReportTables tables_;
   std::map<std::string, std::vector<std::string>> columns_;
-};
-
-// The output on disk, to see before the rename that nothing changed it meanwhile (a replay into
-// it, another merge): their runs would be lost with the old file.
-struct FileState {
-  bool exists = false;
-  dev_t device = 0;
-  ino_t inode = 0;
-  off_t size = 0;
-  long long mtime_ns = 0;
-  bool wal_written = false;  // its -wal holds frames (ours was checkpointed and truncated)
-  bool operator==(const FileState&) const = default;
-};
-
-FileState file_state(const fs::path& path) {
-  FileState state;
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return state;
-  state.exists = true;
-  state.device = st.st_dev;
-  state.inode = st.st_ino;
-  state.size = st.st_size;
-  state.mtime_ns = static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec;
-  struct stat wal {};
-  state.wal_written = ::stat((path.string() + "-wal").c_str(), &wal) == 0 && wal.st_size > 0;
-  return state;
-}
-
-// The temporary output, removed unless it was renamed into place.
-class TemporaryDatabase {
- public:
-  explicit TemporaryDatabase(fs::path path) : path_(std::move(path)) { remove_with_companions(path_); }
-  ~TemporaryDatabase() {
-    if (!kept_) remove_with_companions(path_);
-  }
-  TemporaryDatabase(const TemporaryDatabase&) = delete;
-  TemporaryDatabase& operator=(const TemporaryDatabase&) = delete;
-  const fs::path& path() const { return path_; }
-  void renamed() { kept_ = true; }
-
- private:
-  fs::path path_;
-  bool kept_ = false;
 };
 
 // Nothing to add (every run a duplicate, every bench there, the campaign too): the output is left
