@@ -120,15 +120,24 @@ nlohmann::ordered_json result_json(const replay::MergeResult& r) {
           {"duplicate_runs", duplicates}};
 }
 
-// The merge itself, and what it says: the verdicts judge the result afterwards.
-replay::MergeResult run_merge(const MergeArgs& args) {
-  replay::MergeResult result = replay::merge_reports(args.inputs, args.output);
+// The criteria read first (a bad file merges nothing), the merge, then every run of the merged
+// report judged by its criteria (or FILE's) and the campaign criteria over all of them: printed
+// after the merge's lines, or as the JSON's "verdicts"; exit status 3 if anything failed.
+void run_merge(MergeArgs& args) {
+  read_verdict_criteria(args.verdicts);
+  const replay::MergeResult result = replay::merge_reports(args.inputs, args.output);
+  if (!args.json) print_text(result);
+  const auto db = replay::open_report_database(result.output, false);
+  const std::string suite = result.campaign.empty() ? std::filesystem::path(result.output).stem().string() : result.campaign;
+  const auto verdicts = judge_runs(*db, args.verdicts, std::nullopt, suite);
   if (args.json) {
-    std::cout << result_json(result).dump(2) << '\n';
-  } else {
-    print_text(result);
+    auto json = result_json(result);
+    json["verdicts"] = verdicts_json(verdicts);
+    std::cout << json.dump(2) << '\n';
+  } else if (verdicts) {
+    print_verdicts(std::cout, *verdicts);
   }
-  return result;
+  throw_if_failed(verdicts);
 }
 
 }  // namespace
@@ -140,16 +149,9 @@ void add_merge_command(CLI::App& app) {
   cmd->add_option("SHARD", args->inputs, "report databases to merge (rcsim-report, read only)")->required();
   cmd->add_option("-o,--output", args->output, "the merged report database; created if missing, else its runs kept")
       ->required();
-  cmd->add_flag("--json", args->json, "print the merge's summary as JSON (the verdicts then go to stderr)");
+  cmd->add_flag("--json", args->json, "print the merge's summary and its verdicts as JSON");
   add_verdict_options(*cmd, args->verdicts);
-  cmd->callback([args] {
-    const replay::MergeResult result = run_merge(*args);
-    // Every run of the merged report judged by its criteria (--criteria replaces them), and the
-    // campaign criteria over all of them; exit status 3 if anything failed.
-    const auto db = replay::open_report_database(result.output, false);
-    const std::string suite = result.campaign.empty() ? std::filesystem::path(result.output).stem().string() : result.campaign;
-    conclude_with_verdicts(*db, args->verdicts, std::nullopt, suite, args->json ? std::cerr : std::cout);
-  });
+  cmd->callback([args] { run_merge(*args); });
 }
 
 }  // namespace rcsim::cli

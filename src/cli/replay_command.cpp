@@ -167,7 +167,8 @@ class PrintImportWarnings final : public replay::ReplaySink {
   std::size_t seen_ = 0;
 };
 
-void run_replay(const ReplayArgs& args) {
+void run_replay(ReplayArgs& args) {
+  read_verdict_criteria(args.verdicts);  // a bad criteria file is refused before the replay
   // The header only: the rows are read as the replay goes (replay_recording_dir).
   Recording recording = read_recording_header(args.recording_dir);
   replay::ReplayOptions options;
@@ -183,8 +184,12 @@ void run_replay(const ReplayArgs& args) {
   replay::KillAfterCycles killer(writer);  // only with RCSIM_TEST_KILL_AFTER_CYCLES set
   PrintImportWarnings sink(killer);
   const replay::ReplaySummary summary = replay::replay_recording_dir(args.recording_dir, options, sink);
+  // The run judged by the criteria (--criteria, else the report's own): per-recording ones only.
+  const auto verdicts = judge_runs(*db, args.verdicts, writer.run_id(), recording.name);
   if (args.json) {
-    std::cout << summary_json(writer.run_id(), recording, summary).dump(2) << '\n';
+    auto json = summary_json(writer.run_id(), recording, summary);
+    json["verdicts"] = verdicts_json(verdicts);
+    std::cout << json.dump(2) << '\n';
   } else {
     std::cout << fmt::format(
         "run {}: {} ({} cycles, {} sensors): {} recorded / {} simulated targets, GOSPA mean {:.3f} m, "
@@ -197,8 +202,8 @@ void run_replay(const ReplayArgs& args) {
         args.db_path);
     print_class_figures(summary, recording.sensors.size());
   }
-  // The run judged by the criteria (--criteria, else the report's own): per-recording ones only.
-  conclude_with_verdicts(*db, args.verdicts, writer.run_id(), recording.name, args.json ? std::cerr : std::cout);
+  if (verdicts && !args.json) print_verdicts(std::cout, *verdicts);
+  throw_if_failed(verdicts);
 }
 
 }  // namespace

@@ -3,69 +3,120 @@
 #include <algorithm>
 #include <fmt/format.h>
 
-#include "replay/campaign/criteria.hpp"
 #include "replay/campaign/junit.hpp"
+#include "replay/store/campaign_store.hpp"
 
 namespace rcsim::cli {
 
 namespace {
 
+using namespace replay::campaign;
+
 constexpr std::size_t kMaxPrintedFailures = 50;
+
+std::string plural(std::size_t n, const char* one, const char* many) { return fmt::format("{} {}", n, n == 1 ? one : many); }
+
+std::size_t campaign_failures(const Verdicts& v) {
+  return static_cast<std::size_t>(std::count_if(v.campaign.begin(), v.campaign.end(), [](const auto& r) { return !r.passed; }));
+}
+
+std::string failed_criteria(const Verdicts& v, const RunVerdict& r) {
+  std::string failed;
+  for (const CriterionResult& c : r.results) {
+    if (!c.passed) failed += (failed.empty() ? "" : "; ") + describe_failure(v.criteria[c.criterion], c);
+  }
+  return failed;
+}
+
+nlohmann::ordered_json result_json(const Verdicts& v, const CriterionResult& c) {
+  return {{"criterion", c.criterion},
+          {"figure", v.criteria[c.criterion].figure},
+          {"value", c.value ? nlohmann::ordered_json(*c.value) : nlohmann::ordered_json()},
+          {"passed", c.passed},
+          {"text", describe_failure(v.criteria[c.criterion], c)}};
+}
 
 }  // namespace
 
 void add_verdict_options(CLI::App& cmd, VerdictArgs& args) {
   cmd.add_option("--criteria", args.criteria_file,
-                 "pass/fail criteria (rcsim-criteria or rcsim-campaign file, schemas/campaign.md); stored in the "
-                 "report, replacing its criteria; exit status 3 if a criterion fails")
+                 "pass/fail criteria (rcsim-criteria or rcsim-campaign file, schemas/campaign.md), read before any "
+                 "work; stored in a report of no campaign, replacing its criteria; exit status 3 if a criterion fails")
       ->check(CLI::ExistingFile);
   cmd.add_option("--junit", args.junit_path, "write the verdicts as JUnit XML to this file");
 }
 
-void conclude_with_verdicts(SQLite::Database& db, const VerdictArgs& args, std::optional<std::int64_t> only_run,
-                            const std::string& suite, std::ostream& out) {
-  using namespace replay::campaign;
+void read_verdict_criteria(VerdictArgs& args) {
+  if (!args.criteria_file.empty()) args.file_criteria = read_criteria_file(args.criteria_file);
+}
+
+std::optional<Verdicts> judge_runs(SQLite::Database& db, const VerdictArgs& args, std::optional<std::int64_t> only_run,
+                                   const std::string& suite) {
   std::vector<Criterion> criteria;
-  if (!args.criteria_file.empty()) {
-    criteria = read_criteria_file(args.criteria_file);
-    store_criteria(db, criteria);
+  if (args.file_criteria) {
+    criteria = *args.file_criteria;
+    if (!replay::read_campaign_name(db)) store_criteria(db, criteria);
   } else {
     criteria = stored_criteria(db);
   }
-  if (criteria.empty() && args.junit_path.empty()) return;  // nothing to judge or to write
-  const Verdicts verdicts = judge(db, criteria, only_run);
+  if (criteria.empty() && args.junit_path.empty()) return std::nullopt;  // nothing to judge or to write
+  Verdicts verdicts = judge(db, criteria, only_run);
   if (!args.junit_path.empty()) write_junit(args.junit_path, verdicts, suite);
-  if (criteria.empty()) return;
+  if (criteria.empty()) return std::nullopt;
+  return verdicts;
+}
 
+void print_verdicts(std::ostream& out, const Verdicts& v) {
   const std::size_t per_run = static_cast<std::size_t>(std::count_if(
-      criteria.begin(), criteria.end(), [](const Criterion& c) { return c.scope == Scope::recording; }));
-  out << fmt::format("verdicts: {} of {} runs passed {} criteria per recording; {} of {} campaign criteria passed\n",
-                     verdicts.runs.size() - static_cast<std::size_t>(verdicts.runs_failed), verdicts.runs.size(), per_run,
-                     std::count_if(verdicts.campaign.begin(), verdicts.campaign.end(), [](const auto& r) { return r.passed; }),
-                     verdicts.campaign.size());
+      v.criteria.begin(), v.criteria.end(), [](const Criterion& c) { return c.scope == Scope::recording; }));
+  out << fmt::format("verdicts: {} of {} passed {} per recording; {} of {} passed\n",
+                     v.runs.size() - static_cast<std::size_t>(v.runs_failed), plural(v.runs.size(), "run", "runs"),
+                     plural(per_run, "criterion", "criteria"), v.campaign.size() - campaign_failures(v),
+                     plural(v.campaign.size(), "campaign criterion", "campaign criteria"));
   std::size_t printed = 0;
-  for (const RunVerdict& r : verdicts.runs) {
+  for (const RunVerdict& r : v.runs) {
     if (r.passed) continue;
     if (printed++ == kMaxPrintedFailures) {
       out << fmt::format("  ... {} more failed runs (rcsim report shows them all)\n",
-                         static_cast<std::size_t>(verdicts.runs_failed) - kMaxPrintedFailures);
+                         static_cast<std::size_t>(v.runs_failed) - kMaxPrintedFailures);
       break;
     }
-    std::string failed;
+    out << fmt::format("  FAIL run {}: {} (seed {}): {}\n", r.run_id, r.recording_name, r.seed, failed_criteria(v, r));
+  }
+  for (const CriterionResult& c : v.campaign) {
+    out << fmt::format("  {} campaign: {}\n", c.passed ? "pass" : "FAIL", describe_failure(v.criteria[c.criterion], c));
+  }
+}
+
+nlohmann::ordered_json verdicts_json(const std::optional<Verdicts>& verdicts) {
+  if (!verdicts) return nullptr;
+  const Verdicts& v = *verdicts;
+  nlohmann::ordered_json criteria = nlohmann::ordered_json::array(), failed = nlohmann::ordered_json::array(),
+                         campaign = nlohmann::ordered_json::array();
+  for (const Criterion& c : v.criteria) {
+    criteria.push_back({{"figure", c.figure}, {"scope", c.scope == Scope::recording ? "recording" : "campaign"}, {"text", c.text()}});
+  }
+  for (const RunVerdict& r : v.runs) {
+    if (r.passed) continue;
+    nlohmann::ordered_json results = nlohmann::ordered_json::array();
     for (const CriterionResult& c : r.results) {
-      if (!c.passed) failed += (failed.empty() ? "" : "; ") + describe_failure(criteria[c.criterion], c);
+      if (!c.passed) results.push_back(result_json(v, c));
     }
-    out << fmt::format("  FAIL run {}: {} (seed {}): {}\n", r.run_id, r.recording_name, r.seed, failed);
+    failed.push_back({{"run_id", r.run_id}, {"recording", r.recording_name}, {"seed", r.seed}, {"failed", results}});
   }
-  for (const CriterionResult& c : verdicts.campaign) {
-    out << fmt::format("  {} campaign: {}\n", c.passed ? "pass" : "FAIL", describe_failure(criteria[c.criterion], c));
-  }
-  if (!verdicts.passed()) {
-    throw VerdictsFailed(fmt::format("{} of {} runs and {} campaign criteria failed", verdicts.runs_failed,
-                                     verdicts.runs.size(),
-                                     std::count_if(verdicts.campaign.begin(), verdicts.campaign.end(),
-                                                   [](const auto& r) { return !r.passed; })));
-  }
+  for (const CriterionResult& c : v.campaign) campaign.push_back(result_json(v, c));
+  return {{"passed", v.passed()},
+          {"runs", v.runs.size()},
+          {"runs_failed", v.runs_failed},
+          {"criteria", criteria},
+          {"failed_runs", failed},
+          {"campaign", campaign}};
+}
+
+void throw_if_failed(const std::optional<Verdicts>& verdicts) {
+  if (!verdicts || verdicts->passed()) return;
+  throw VerdictsFailed(fmt::format("{} of {} and {} failed", verdicts->runs_failed, plural(verdicts->runs.size(), "run", "runs"),
+                                   plural(campaign_failures(*verdicts), "campaign criterion", "campaign criteria")));
 }
 
 }  // namespace rcsim::cli

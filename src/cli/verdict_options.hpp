@@ -1,15 +1,19 @@
 #pragma once
 // --criteria FILE and --junit FILE (rcsim replay, rcsim merge): the runs judged by the criteria
-// (replay/campaign/criteria.hpp), the failures printed, JUnit written, and the exit status 3 when
-// anything failed (README, "Exit status").
+// (replay/campaign/criteria.hpp), the failures printed (or given as JSON), JUnit written, and
+// the exit status 3 when anything failed (README, "Exit status").
 #include <CLI/CLI.hpp>
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "replay/campaign/criteria.hpp"
 
 namespace rcsim::cli {
 
@@ -23,15 +27,27 @@ inline constexpr int kExitVerdictsFailed = 3;
 struct VerdictArgs {
   std::string criteria_file;
   std::string junit_path;
+  std::optional<std::vector<replay::campaign::Criterion>> file_criteria;  // read by read_verdict_criteria
 };
 
 void add_verdict_options(CLI::App& cmd, VerdictArgs& args);
 
-// Judges the runs of `db` (all, or `only_run`) by the criteria: those of --criteria FILE, which
-// then replace the database's, else the database's own. Prints the verdicts, writes --junit, and
-// throws VerdictsFailed if a run or a campaign criterion failed. Without criteria nothing is
-// judged (JUnit then lists every run as passed).
-void conclude_with_verdicts(SQLite::Database& db, const VerdictArgs& args, std::optional<std::int64_t> only_run,
-                            const std::string& suite, std::ostream& out);
+// Reads --criteria FILE before the command does its work: a bad file is refused (exit status
+// 2, file and field named) before anything is replayed, merged or written.
+void read_verdict_criteria(VerdictArgs& args);
+
+// Judges the runs of `db` (all, or `only_run`) by the criteria of --criteria FILE, else by the
+// database's own, and writes --junit. FILE's criteria are stored in a report that belongs to no
+// campaign (replacing its criteria, so that rcsim report shows them); a campaign's report keeps
+// its manifest's, and FILE judges this once. Nothing to judge and no JUnit: nullopt.
+std::optional<replay::campaign::Verdicts> judge_runs(SQLite::Database& db, const VerdictArgs& args,
+                                                     std::optional<std::int64_t> only_run, const std::string& suite);
+
+// The verdicts as text (failed runs, at most 50, and every campaign criterion) and as JSON.
+void print_verdicts(std::ostream& out, const replay::campaign::Verdicts& verdicts);
+nlohmann::ordered_json verdicts_json(const std::optional<replay::campaign::Verdicts>& verdicts);
+
+// Throws VerdictsFailed if a run or a campaign criterion failed.
+void throw_if_failed(const std::optional<replay::campaign::Verdicts>& verdicts);
 
 }  // namespace rcsim::cli

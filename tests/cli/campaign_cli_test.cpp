@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <fstream>
 #include <map>
 #include <set>
@@ -63,7 +64,9 @@ TEST_F(CampaignCli, RunLocalThenMergeEqualsASerialReplay) {
   ASSERT_EQ(merged.size(), kRecordings.size());
   EXPECT_EQ(merged, serial);  // figure for figure, bit for bit
 
-  EXPECT_NE(merge.output.find("verdicts: 4 of 4 runs passed 1 criteria per recording"), std::string::npos) << merge.output;
+  EXPECT_NE(merge.output.find("verdicts: 4 of 4 runs passed 1 criterion per recording; 0 of 0 campaign criteria passed"),
+            std::string::npos)
+      << merge.output;
 
   // Judged again by stricter criteria: every run fails, exit status 3, JUnit lists the failures.
   std::ofstream(dir_ / "strict.json") << R"({"format": "rcsim-criteria", "version": 1, "criteria": [
@@ -74,6 +77,26 @@ TEST_F(CampaignCli, RunLocalThenMergeEqualsASerialReplay) {
   EXPECT_NE(strict.output.find("0 of 4 runs passed"), std::string::npos) << strict.output;
   EXPECT_NE(strict.output.find("pass campaign: max gospa_mean_m = "), std::string::npos) << strict.output;
   EXPECT_NE(read_file(dir_ / "junit.xml").find(R"(tests="5" failures="4")"), std::string::npos);
+
+  // FILE judged that merge only: the campaign's report keeps its manifest's criterion, so merging
+  // the shards again is no refusal (other criteria) but a merge with nothing new, judged as before.
+  const auto again_merged = run_rcsim(fmt::format("merge {0}/shards/shard-0000.sqlite {0}/shards/shard-0001.sqlite -o {1} --json",
+                                                  dir("plan"), dir("campaign.sqlite")));
+  ASSERT_EQ(again_merged.exit_code, 0) << again_merged.output;
+  const auto json = nlohmann::json::parse(again_merged.output.substr(again_merged.output.find('{')));
+  EXPECT_EQ(json["added"], 0);
+  EXPECT_EQ(json["criteria"], 1);
+  EXPECT_EQ(json["verdicts"]["passed"], true);
+  EXPECT_EQ(json["verdicts"]["runs"], 4);
+  EXPECT_EQ(json["verdicts"]["criteria"][0]["text"], "gospa_mean_m <= 100");
+
+  // A bad criteria file is refused before anything is merged: no output is made.
+  std::ofstream(dir_ / "bad.json") << R"({"format": "rcsim-criteria", "version": 1, "criteria": [{"figure": "gospa", "max": 1}]})";
+  const auto bad = run_rcsim(fmt::format("merge {0}/shards/shard-0000.sqlite -o {1} --criteria {2}", dir("plan"),
+                                         dir("never.sqlite"), dir("bad.json")));
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("bad.json: criteria[0].figure: unknown figure 'gospa'"), std::string::npos) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "never.sqlite"));
 
   // Run again: every shard finds its runs stored and replays nothing.
   const auto again = run_rcsim(fmt::format("campaign run-shard {} --shard 0", dir("plan")));
@@ -126,9 +149,18 @@ TEST_F(CampaignCli, ReplayCriteriaExitStatusAndJunit) {
                                   criteria.string()))
                 .exit_code,
             0);
+  // A file that is no criteria document is refused before the replay: no third run is stored.
   const auto bad = run_rcsim(fmt::format("replay {} --db {} --criteria {}", (kBundled / "front_approach").string(),
                                          dir("r.sqlite"), (dir_ / "r.sqlite").string()));
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  SQLite::Database db(dir("r.sqlite"));
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM runs").getInt(), 2);
+  // --json carries the verdicts.
+  const auto json = run_rcsim(fmt::format("replay {} --db {} --json", (kBundled / "front_approach").string(), dir("r.sqlite")));
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  const auto summary = nlohmann::json::parse(json.output.substr(json.output.find('{')));
+  EXPECT_EQ(summary["verdicts"]["passed"], true);
+  EXPECT_EQ(summary["verdicts"]["criteria"][0]["text"], "gospa_mean_m <= 1000");
 }
 
 }  // namespace
