@@ -20,7 +20,6 @@ std::set<std::string> stored_dirs(const fs::path& report) {
   if (!fs::exists(report)) return out;
   SQLite::Database db(report.string(), SQLite::OPEN_READONLY);
   db.setBusyTimeout(5000);
-  if (db.execAndGet("SELECT count(*) FROM sqlite_schema WHERE name = 'runs'").getInt() == 0) return out;
   for (const std::string& dir : stored_recording_dirs(db)) out.insert(fs::path(dir).lexically_normal().string());  // absolute
   return out;
 }

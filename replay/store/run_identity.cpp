@@ -37,6 +37,7 @@ std::map<std::int64_t, RunIdentity> stored_run_identities(SQLite::Database& db) 
 
 std::vector<std::string> stored_recording_dirs(SQLite::Database& db) {
   std::vector<std::string> out;
+  if (!db.tableExists("runs")) return out;  // a shard report created, its schema not yet written
   SQLite::Statement runs(db, "SELECT recording_dir FROM runs ORDER BY run_id");
   while (runs.executeStep()) out.push_back(runs.getColumn(0).getString());
   return out;

@@ -33,7 +33,8 @@ struct RunIdentity {
 std::map<std::int64_t, RunIdentity> stored_run_identities(SQLite::Database& db);
 
 // The recording directory of every run stored, as given to the replay (`rcsim campaign status`
-// finds a plan's recordings in its shard reports by them, without reading the recordings).
+// finds a plan's recordings in its shard reports by them, without reading the recordings); none
+// in a database without the table runs.
 std::vector<std::string> stored_recording_dirs(SQLite::Database& db);
 
 // The identity the run of a recording will have, known before it runs: from its header, the
