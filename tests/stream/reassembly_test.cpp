@@ -40,7 +40,7 @@ TargetListMessage many_targets(std::size_t n, std::uint32_t cycle) {
   m.sensor_index = 1;
   m.sensor_id = "front_right";
   for (std::size_t i = 0; i < n; ++i) {
-    m.targets.push_back({static_cast<std::int32_t>(i), 0.1 * static_cast<double>(i), 0.001 * static_cast<double>(i), -1.0, 3.0});
+    m.targets.push_back({static_cast<std::int32_t>(i), 0.1 * static_cast<double>(i), 0.001 * static_cast<double>(i % 3000), -1.0, 3.0});
   }
   return m;
 }
