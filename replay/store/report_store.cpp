@@ -147,6 +147,13 @@ void to_stored(const std::vector<ComparedTarget>& list, std::vector<StoredTarget
 
 }  // namespace
 
+void create_report_schema(SQLite::Database& db) {
+  db.exec(kReportSchemaSql);
+  upgrade_from(db, 1);
+  db.exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
+  db.exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
+}
+
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create) {
   if (!create && !std::filesystem::exists(path)) throw InputError(path, "", "no such report database");
   std::unique_ptr<SQLite::Database> db;
@@ -161,10 +168,7 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
       if (!create) throw InputError(path, "", "the database is empty: no replay has been stored in it");
       db->exec("PRAGMA journal_mode = WAL");  // persistent: readers never block the writer
       SQLite::Transaction transaction(*db);
-      db->exec(kReportSchemaSql);
-      upgrade_from(*db, 1);
-      db->exec(fmt::format("PRAGMA application_id = {}", kReportApplicationId));
-      db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
+      create_report_schema(*db);
       transaction.commit();
     } else if (application_id != kReportApplicationId) {
       throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",

@@ -28,6 +28,10 @@ inline constexpr int kReportSchemaVersion = 5;
 // `full`), and the rows of `cycles`, `targets` and `object_states` are converted into blocks.
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
 
+// Writes a new report's schema (its tables, application_id and user_version) into an empty
+// database, within the caller's transaction (`rcsim merge` fills it in the same one).
+void create_report_schema(SQLite::Database& db);
+
 // The run's `parameters` (schemas/report-database.md): the metric and import parameters with their
 // sources, and the effects actually simulated.
 nlohmann::ordered_json run_parameters_json(const ReplayOptions& options, const Effects& effects);
