@@ -3,8 +3,10 @@
 // databases, a campaign's shards, copied into one. Runs get new ids in the output; a run whose
 // identity (run_identity.hpp) is already in the output, or earlier in the merge, is a duplicate
 // and is not copied again, so merging the same shards twice changes nothing. The inputs are only
-// read. The output is built in a temporary file beside it and renamed over it: a merge that fails
-// or is killed leaves the output as it was.
+// read. An existing output is written in one transaction holding its write lock from before it is
+// read; a missing one is built in a temporary file beside it and moved into place if no output
+// appeared meanwhile. A merge that fails or is killed leaves the output as it was, and a process
+// writing the output during a merge loses nothing.
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
@@ -72,7 +74,8 @@ struct MergeResult {
 // Merges the inputs, in order, into the output (created if missing). Refuses, naming the file,
 // an input or output that is missing, not SQLite, empty, not an rcsim report, or of another
 // schema version than kReportSchemaVersion; and inputs whose campaign or criteria disagree with
-// each other or with the output's. Any refusal or failure leaves the output as it was.
+// each other or with the output's. Any refusal or failure leaves the output as it was. Waits up to
+// 60 s for another process's write into the output (a replay, another merge) to end.
 MergeResult merge_reports(const std::vector<std::string>& inputs, const std::string& output);
 
 }  // namespace rcsim::replay

@@ -3,7 +3,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/stat.h>
+#include <stdio.h>
 #include <unistd.h>
 
 #include <array>
@@ -96,18 +96,24 @@ std::string read_only_uri(const std::string& path) {
   return uri + (has_wal ? "?mode=ro" : "?mode=ro&immutable=1");
 }
 
-FileState file_state(const fs::path& path) {
-  FileState state;
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return state;
-  state.exists = true;
-  state.device = st.st_dev;
-  state.inode = st.st_ino;
-  state.size = st.st_size;
-  state.mtime_ns = static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec;
-  struct stat wal {};
-  state.wal_written = ::stat((path.string() + "-wal").c_str(), &wal) == 0 && wal.st_size > 0;
-  return state;
+void install_new(const fs::path& temporary, const fs::path& output) {
+  int error = ::renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, output.c_str(), RENAME_NOREPLACE) == 0 ? 0 : errno;
+  if (error == EINVAL || error == ENOSYS) {
+    // A filesystem without RENAME_NOREPLACE: link() refuses an existing name as well.
+    error = ::link(temporary.c_str(), output.c_str()) == 0 ? 0 : errno;
+    if (error == 0) ::unlink(temporary.c_str());
+  }
+  if (error == EEXIST) {
+    throw InputError(output.string(), "", "created by another process while the merge built it (it did not exist when "
+                                          "the merge began): left as it is, nothing merged; merge again to add the "
+                                          "runs to it");
+  }
+  if (error != 0) {
+    throw InputError(output.string(), "", fmt::format("cannot move the merged report into place: {}",
+                                                      std::strerror(error)));
+  }
+  fsync_path(output.parent_path().empty() ? fs::path(".") : output.parent_path(), O_RDONLY | O_DIRECTORY,
+             output.string());
 }
 
 TemporaryDatabase::TemporaryDatabase(fs::path path) : path_(std::move(path)) { remove_with_companions(path_); }

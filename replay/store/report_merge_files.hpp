@@ -1,9 +1,7 @@
 #pragma once
 // The files of `rcsim merge` (report_merge.cpp), apart from what is in them: the temporary output
-// `.NAME.merge-HOST-PID.tmp` built beside the output and renamed over it, the leftovers of merges
-// that died, syncs, the read-only URI an input is opened by, and the output's state on disk.
-#include <sys/types.h>
-
+// `.NAME.merge-HOST-PID.tmp` a new report is built in beside the output and moved into place, the
+// leftovers of merges that died, syncs, and the read-only URI an input is opened by.
 #include <filesystem>
 #include <string>
 
@@ -29,21 +27,14 @@ void fsync_path(const std::filesystem::path& path, int flags, const std::string&
 // WAL.
 std::string read_only_uri(const std::string& path);
 
-// The output on disk, to see before the rename that nothing changed it meanwhile (a replay into
-// it, another merge): their runs would be lost with the old file.
-struct FileState {
-  bool exists = false;
-  dev_t device = 0;
-  ino_t inode = 0;
-  off_t size = 0;
-  long long mtime_ns = 0;
-  bool wal_written = false;  // its -wal holds frames (ours was checkpointed and truncated)
-  bool operator==(const FileState&) const = default;
-};
-FileState file_state(const std::filesystem::path& path);
+// Moves the finished temporary output to `output`, which must not exist: an output that another
+// process created meanwhile (a replay into it) is never replaced, but refused naming it. Then
+// syncs the directory, so that the new name survives a power loss. renameat2(RENAME_NOREPLACE),
+// or link() and unlink() on a filesystem without it.
+void install_new(const std::filesystem::path& temporary, const std::filesystem::path& output);
 
 // The temporary output (with its -wal, -shm, -journal), removed on construction and again on
-// destruction unless it was renamed into place.
+// destruction unless it was moved into place.
 class TemporaryDatabase {
  public:
   explicit TemporaryDatabase(std::filesystem::path path);
@@ -51,7 +42,7 @@ class TemporaryDatabase {
   TemporaryDatabase(const TemporaryDatabase&) = delete;
   TemporaryDatabase& operator=(const TemporaryDatabase&) = delete;
   const std::filesystem::path& path() const { return path_; }
-  void renamed() { kept_ = true; }
+  void installed() { kept_ = true; }
 
  private:
   std::filesystem::path path_;

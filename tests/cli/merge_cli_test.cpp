@@ -1,14 +1,18 @@
 // `rcsim merge` as a user runs it (docs/merge.md): a line per shard, per duplicate and a total,
-// --json, refusals with exit status 2 naming the file; and atomicity under SIGKILL at random
-// moments: the output is always the old report or the complete new one, never anything between.
+// --json, refusals with exit status 2 naming the file; atomicity under SIGKILL at random moments
+// (the output is always the old report or the complete new one, never anything between); and
+// other processes writing the output during a merge: nothing they write is lost or replaced.
 #include <gtest/gtest.h>
 
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
+#include <sqlite3.h>
+#include <sys/wait.h>
 
 #include <chrono>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -186,6 +190,46 @@ bool has_merge_file(const fs::path& dir) {
   return false;
 }
 
+// The output made a copy of `from`, or removed if `from` is empty; first its -wal and -shm (of a
+// merge killed inside its transaction, or of a reader) go, so that none is read with another file.
+void put_output(const fs::path& from, const fs::path& out) {
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(out.string() + suffix);
+  if (!from.empty()) fs::copy_file(from, out);
+}
+
+// Whether the child has ended, without reaping it (Child::wait does).
+bool ended(const Child& child) {
+  siginfo_t info{};
+  return ::waitid(P_PID, static_cast<id_t>(child.pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == child.pid;
+}
+
+// Waits until the merge holds the output's write lock (a BEGIN IMMEDIATE from here finds it busy):
+// true then; false if the merge ended first.
+bool wait_for_the_merges_lock(const fs::path& out, const Child& merge) {
+  SQLite::Database probe(out.string(), SQLite::OPEN_READWRITE);  // busy timeout 0: never waits
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!ended(merge) && std::chrono::steady_clock::now() < give_up) {
+    try {
+      probe.exec("BEGIN IMMEDIATE");
+      probe.exec("ROLLBACK");
+    } catch (const SQLite::Exception& e) {
+      if (e.getErrorCode() == SQLITE_BUSY) return true;
+      throw;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
+// A write into the output, as a replay's: it waits for a lock up to 60 s.
+void write_name(const fs::path& out, const std::string& name) {
+  SQLite::Database writer(out.string(), SQLite::OPEN_READWRITE);
+  writer.setBusyTimeout(60000);
+  SQLite::Statement update(writer, "UPDATE runs SET recording_name = ? WHERE run_id = 1");
+  update.bind(1, name);
+  update.exec();
+}
+
 // A report of one full run (the old output) and a shard of 24 full runs to merge into it: a merge
 // of a few hundred milliseconds, long enough to be interrupted.
 class MergeCliAtomicity : public ::testing::Test {
@@ -205,9 +249,10 @@ class MergeCliAtomicity : public ::testing::Test {
   static fs::path old_report() { return *dir_ / "old.sqlite"; }
   static fs::path shard() { return *dir_ / "b.sqlite"; }
 
-  // The merged report, made by a merge left alone, and how long that took.
-  static std::pair<ReportContent, long> merged(const fs::path& out) {
-    fs::copy_file(old_report(), out, fs::copy_options::overwrite_existing);
+  // The merged report, made by a merge left alone into a copy of the old report (or, `into_old`
+  // false, into a missing output), and how long that took.
+  static std::pair<ReportContent, long> merged(const fs::path& out, bool into_old = true) {
+    put_output(into_old ? old_report() : fs::path(), out);
     const auto start = std::chrono::steady_clock::now();
     const auto r = run_rcsim(fmt::format("merge {} -o {}", shard().string(), out.string()));
     const long ms =
@@ -221,8 +266,9 @@ class MergeCliAtomicity : public ::testing::Test {
 
 fs::path* MergeCliAtomicity::dir_ = nullptr;
 
-// SIGKILL at random moments of a merge into an existing report, 30 times: afterwards the output
-// is, every time, either the report as it was or the complete merged one, and passes SQLite's
+// SIGKILL at random moments of a merge, 30 times into an existing report (written in place, in one
+// transaction) and 10 times into a missing one (built in a temporary file): afterwards the output
+// is, every time, the report as it was (or none) or the complete merged one, and passes SQLite's
 // integrity check; the next merge clears the killed ones' temporary files.
 TEST_F(MergeCliAtomicity, AMergeKilledAtAnyMomentLeavesTheOldOrTheNewReport) {
   const fs::path work = testing::fresh_scratch_dir("merge_cli_kill");
@@ -233,14 +279,16 @@ TEST_F(MergeCliAtomicity, AMergeKilledAtAnyMomentLeavesTheOldOrTheNewReport) {
   // The kills spread over the faster of two merges (a busy machine slows one or the other, and
   // the first also warms the page cache), so that most land inside a merge.
   const long merge_ms = std::min(first_ms, merged(out).second);
+  const auto [fresh_state, fresh_ms] = merged(out, false);
   std::mt19937_64 rng(20);
-  std::uniform_int_distribution<long> delay_ms(0, std::max<long>(2, 5 * merge_ms / 4));
-  constexpr int kKills = 30;
-  int killed = 0, finished = 0, old_seen = 0, new_seen = 0;
-  for (int i = 0; i < kKills; ++i) {
-    fs::copy_file(old_report(), out, fs::copy_options::overwrite_existing);
+  constexpr int kKillsInPlace = 30, kKillsNew = 10;
+  int killed = 0, finished = 0, old_seen = 0, new_seen = 0, none_seen = 0, fresh_seen = 0;
+  for (int i = 0; i < kKillsInPlace + kKillsNew; ++i) {
+    const bool in_place = i < kKillsInPlace;
+    put_output(in_place ? old_report() : fs::path(), out);
     Child child = spawn({RCSIM_BINARY, "merge", shard().string(), "-o", out.string()}, work / "out", work / "err");
     ASSERT_GT(child.pid, 0);
+    std::uniform_int_distribution<long> delay_ms(0, std::max<long>(2, 5 * (in_place ? merge_ms : fresh_ms) / 4));
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
     ::kill(child.pid, SIGKILL);
     const int status = child.wait(std::chrono::seconds(60));
@@ -250,83 +298,164 @@ TEST_F(MergeCliAtomicity, AMergeKilledAtAnyMomentLeavesTheOldOrTheNewReport) {
       ASSERT_EQ(status, 128 + SIGKILL) << stream::testing::read_file(work / "err");
       ++killed;
     }
+    if (!in_place && !fs::exists(out)) {
+      EXPECT_NE(status, 0) << "kill " << i << ": a merge that finished left no report";
+      ++none_seen;
+      continue;
+    }
     const ReportContent now = content(out);
     ASSERT_EQ(now.integrity, "ok") << "kill " << i;
-    const bool is_old = now.rows == old_state.rows, is_new = now.rows == new_state.rows;
+    const bool is_old = in_place && now.rows == old_state.rows;
+    const bool is_new = now.rows == (in_place ? new_state : fresh_state).rows;
     ASSERT_TRUE(is_old || is_new) << "kill " << i << " after a merge of " << merge_ms << " ms left something between";
     if (status == 0) {
       EXPECT_TRUE(is_new) << "kill " << i << ": a merge that finished left the old report";
     }
     old_seen += is_old;
-    new_seen += is_new;
+    new_seen += in_place && is_new;
+    fresh_seen += !in_place && is_new;
   }
-  EXPECT_GE(killed, kKills / 3) << "the kills must land inside merges to test anything";
+  EXPECT_GE(killed, (kKillsInPlace + kKillsNew) / 3) << "the kills must land inside merges to test anything";
   EXPECT_GT(old_seen, 0);
   // The killed merges' temporary files go with the next merge, which then adds the runs.
+  put_output(old_report(), out);
   const auto r = run_rcsim(fmt::format("merge {} -o {}", shard().string(), out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(content(out).rows, new_state.rows);
-  for (const auto& e : fs::directory_iterator(work)) {
-    EXPECT_EQ(e.path().filename().string().find(".merge-"), std::string::npos) << e.path();
-  }
-  std::cout << "[ figures  ] " << kKills << " kills over a " << merge_ms << " ms merge of 24 full runs: " << killed
-            << " killed, " << finished << " finished first; the old report left " << old_seen << " times, the new "
-            << new_seen << " times, never anything else\n";
+  EXPECT_FALSE(has_merge_file(work));
+  std::cout << "[ figures  ] " << kKillsInPlace << " kills over a " << merge_ms
+            << " ms merge of 24 full runs into a report: the old report left " << old_seen << " times, the new "
+            << new_seen << " times; " << kKillsNew << " over a " << fresh_ms << " ms merge into none: no report "
+            << none_seen << " times, the new " << fresh_seen << " times; " << killed << " killed, " << finished
+            << " finished first, never anything else\n";
   fs::remove_all(work);
 }
 
-// Something writing the output while a merge runs (a replay into it): its write is never lost.
-// Either it came before the merge read the output, or after its rename, and is in the merged
-// report; or the merge notices the change before its rename and refuses, status 2, leaving the
-// output with the write. Half the writes come at random moments, half once the merge is building
-// its temporary file (those it must refuse).
+// Something writing the output while a merge runs into it: its write is never lost, and the merge
+// succeeds. The merge holds the output's write lock from before it reads the output until it
+// commits: a writer waits for the merge, or the merge for the writer, and the merged report holds
+// both. Writes at random moments; once the merge holds the lock; from a writer whose transaction
+// is open when the merge starts; and by `rcsim replay --db` into the output.
 TEST_F(MergeCliAtomicity, AWriteIntoTheOutputDuringAMergeIsNeverLost) {
   const fs::path work = testing::fresh_scratch_dir("merge_cli_writer");
   const fs::path out = work / "campaign.sqlite";
   const long merge_ms = merged(out).second;
   std::mt19937_64 rng(7);
   std::uniform_int_distribution<long> delay_ms(0, std::max<long>(2, merge_ms));
-  int refused = 0, merged_with_it = 0;
-  for (int i = 0; i < 8; ++i) {
-    fs::copy_file(old_report(), out, fs::copy_options::overwrite_existing);
+  enum class Writer { at_random, under_the_merges_lock, open_before_the_merge, replay };
+  constexpr int kWrites = 12;
+  int under_lock = 0, merge_waited = 0;
+  for (int i = 0; i < kWrites; ++i) {
+    const auto writer = static_cast<Writer>(i % 4);
+    const std::string name = fmt::format("written {}", i);
+    const int seed = 100 + i;
+    put_output(old_report(), out);
+    std::optional<SQLite::Database> early;
+    if (writer == Writer::open_before_the_merge) {
+      early.emplace(out.string(), SQLite::OPEN_READWRITE);
+      early->exec("BEGIN IMMEDIATE");
+      early->exec(fmt::format("UPDATE runs SET recording_name = '{}' WHERE run_id = 1", name));
+    }
     Child child = spawn({RCSIM_BINARY, "merge", shard().string(), "-o", out.string()}, work / "out", work / "err");
     ASSERT_GT(child.pid, 0);
-    if (i % 2 == 0) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
-    } else {
-      // Once the merge builds its temporary file: it has read the output, and not renamed yet.
-      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-      while (!has_merge_file(work) && std::chrono::steady_clock::now() < give_up) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    int replay_status = 0;
+    std::string replay_output;
+    switch (writer) {
+      case Writer::at_random:
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+        write_name(out, name);
+        break;
+      case Writer::under_the_merges_lock:
+        under_lock += wait_for_the_merges_lock(out, child);
+        write_name(out, name);
+        break;
+      case Writer::open_before_the_merge:
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+        EXPECT_FALSE(ended(child)) << "write " << i << ": the merge ended while another process held the lock";
+        merge_waited += !ended(child);
+        early->exec("COMMIT");
+        early.reset();
+        break;
+      case Writer::replay: {
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+        const auto r = run_rcsim(fmt::format("replay {}two_in_one_cell --db {} --seed {} --store summary", kRecordings,
+                                             out.string(), seed));
+        replay_status = r.exit_code;
+        replay_output = r.output;
+        break;
       }
     }
-    const std::string name = fmt::format("written {}", i);
-    {
-      SQLite::Database writer(out.string(), SQLite::OPEN_READWRITE);
-      writer.setBusyTimeout(10000);
-      SQLite::Statement update(writer, "UPDATE runs SET recording_name = ? WHERE run_id = 1");
-      update.bind(1, name);
-      update.exec();
-    }
-    const int status = child.wait(std::chrono::seconds(60));
+    const int status = child.wait(std::chrono::seconds(120));
     const std::string err = stream::testing::read_file(work / "err");
+    EXPECT_EQ(status, 0) << "write " << i << ": " << err;
     SQLite::Database db(out.string(), SQLite::OPEN_READONLY);
-    EXPECT_EQ(db.execAndGet("SELECT recording_name FROM runs WHERE run_id = 1").getString(), name)
-        << "write " << i << " lost; merge status " << status << ": " << err;
+    EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
     const long long runs = db.execAndGet("SELECT count(*) FROM runs").getInt64();
-    if (status == 0) {
-      ++merged_with_it;
-      EXPECT_EQ(runs, 25);
+    if (writer == Writer::replay) {
+      EXPECT_EQ(replay_status, 0) << replay_output;
+      EXPECT_EQ(runs, 26) << "write " << i << ": the replay's run and the merge's 24";
+      SQLite::Statement q(db, "SELECT count(*) FROM runs WHERE recording_name = 'two_in_one_cell' AND seed = ?");
+      q.bind(1, seed);
+      ASSERT_TRUE(q.executeStep());
+      EXPECT_EQ(q.getColumn(0).getInt(), 1) << "write " << i << ": the replay's run lost; merge status " << status;
     } else {
-      ++refused;
-      EXPECT_EQ(status, 2) << err;
-      EXPECT_NE(err.find(out.string() + ": changed while it was being merged into"), std::string::npos) << err;
-      EXPECT_EQ(runs, 1);
+      EXPECT_EQ(db.execAndGet("SELECT recording_name FROM runs WHERE run_id = 1").getString(), name)
+          << "write " << i << " lost; merge status " << status << ": " << err;
+      EXPECT_EQ(runs, 25);
     }
   }
-  EXPECT_GT(refused, 0) << "writes during the merge";
-  std::cout << "[ figures  ] 8 writes during " << merge_ms << " ms merges: " << refused << " merges refused, "
-            << merged_with_it << " took the write in\n";
+  EXPECT_GT(under_lock, 0) << "writes while the merge held the lock";
+  std::cout << "[ figures  ] " << kWrites << " writes during " << merge_ms << " ms merges, every one kept and every "
+            << "merge complete; " << under_lock << " of " << kWrites / 4 << " writes came while the merge held the "
+            << "lock, " << merge_waited << " merges waited for a writer's lock\n";
+  fs::remove_all(work);
+}
+
+// A merge into a missing output builds it in a temporary file; an output that another process
+// creates meanwhile (a replay into it) is never replaced: the merge refuses, status 2, naming it,
+// and the next merge adds the runs to it. The merge is stopped (SIGSTOP) once its temporary file
+// is there, the output created, and the merge continued.
+TEST_F(MergeCliAtomicity, AnOutputCreatedDuringAMergeIntoAMissingOneIsNeverReplaced) {
+  const fs::path work = testing::fresh_scratch_dir("merge_cli_appeared");
+  const fs::path out = work / "campaign.sqlite";
+  int caught = 0, too_late = 0;
+  for (int attempt = 0; attempt < 10 && caught < 3; ++attempt) {
+    put_output({}, out);
+    Child child = spawn({RCSIM_BINARY, "merge", shard().string(), "-o", out.string()}, work / "out", work / "err");
+    ASSERT_GT(child.pid, 0);
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!has_merge_file(work) && !ended(child) && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ::kill(child.pid, SIGSTOP);
+    if (fs::exists(out) || !has_merge_file(work)) {  // it had moved its file into place already
+      ::kill(child.pid, SIGCONT);
+      EXPECT_EQ(child.wait(std::chrono::seconds(60)), 0);
+      ++too_late;
+      continue;
+    }
+    replay("two_in_one_cell", out, 7);
+    const std::string created = content(out).rows;
+    ::kill(child.pid, SIGCONT);
+    const int status = child.wait(std::chrono::seconds(60));
+    const std::string err = stream::testing::read_file(work / "err");
+    EXPECT_EQ(status, 2) << err;
+    EXPECT_NE(err.find("rcsim: error: " + out.string() + ": created by another process while the merge built it"),
+              std::string::npos)
+        << err;
+    EXPECT_EQ(content(out).rows, created) << "the output created meanwhile was replaced";
+    EXPECT_FALSE(has_merge_file(work)) << "the temporary file stays behind";
+    ++caught;
+  }
+  EXPECT_GT(caught, 0) << "every merge was done before it was stopped";
+  // Merged again, its runs go into the output that appeared.
+  const auto r = run_rcsim(fmt::format("merge {} -o {}", shard().string(), out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  SQLite::Database db(out.string(), SQLite::OPEN_READONLY);
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM runs").getInt64(), 25);
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM runs WHERE seed = 7").getInt64(), 1);
+  std::cout << "[ figures  ] " << caught << " outputs created during a merge into none, none replaced; " << too_late
+            << " merges done before they were stopped\n";
   fs::remove_all(work);
 }
 

@@ -2,22 +2,27 @@
 // what one serial replay stores, figure for figure; a second merge of the same shards changes
 // nothing; duplicates are reported, and figures that differ between them; inputs of another
 // schema version, of another program or of another campaign are refused naming the file, the
-// output left as it was; inputs are never written; benches are copied once; the temporary files
-// of killed merges are removed.
+// output left as it was; inputs are never written; benches are copied once; an existing output is
+// written in place, in one transaction that waits for another writer; the temporary files of
+// killed merges are removed.
 #include "replay/store/report_merge.hpp"
 
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <thread>
 
 #include "cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
@@ -214,8 +219,15 @@ TEST_F(ReportMerge, MergingTheSameShardsAgainChangesNothing) {
   const fs::path out = dir_ / "campaign.sqlite";
   const std::vector<std::string> inputs{shard("a.sqlite"), shard("b.sqlite")};
   merge_reports(inputs, out.string());
-  const std::string first = dump(out);
+  const std::string bytes = testing::read_file(out), first = dump(out);
+  const auto modified = fs::last_write_time(out);
   const MergeResult again = merge_reports(inputs, out.string());
+  // Nothing new: the file is not written at all (and no -wal left; a read-only connection, as
+  // dump's, would leave one).
+  EXPECT_FALSE(fs::exists(out.string() + "-wal"));
+  EXPECT_FALSE(fs::exists(out.string() + "-shm"));
+  EXPECT_EQ(testing::read_file(out), bytes);
+  EXPECT_EQ(fs::last_write_time(out), modified);
   EXPECT_EQ(dump(out), first);
   EXPECT_TRUE(again.output_existed);
   EXPECT_EQ(again.runs_before, 4);
@@ -376,6 +388,93 @@ TEST_F(ReportMerge, AnExistingOutputsWalIsTakenIn) {
   EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
 }
 
+ino_t inode(const fs::path& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 ? st.st_ino : 0;
+}
+
+TEST_F(ReportMerge, AnExistingOutputIsWrittenInPlaceInOneTransaction) {
+  const fs::path out = dir_ / "campaign.sqlite";
+  merge_reports({shard("a.sqlite")}, out.string());
+  fs::permissions(out, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  const ino_t before = inode(out);
+  const MergeResult r = merge_reports({shard("b.sqlite")}, out.string());
+  EXPECT_TRUE(r.output_existed);
+  EXPECT_EQ(r.runs_before, 2);
+  EXPECT_EQ(r.runs_after, 4);
+  EXPECT_EQ(inode(out), before) << "the same file, not a copy renamed over it";
+  EXPECT_EQ(fs::status(out).permissions(), fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_FALSE(fs::exists(out.string() + "-wal")) << "checkpointed when the merge closed it";
+  EXPECT_TRUE(merge_files(dir_).empty()) << "no temporary file";
+  SQLite::Database db(out.string(), SQLite::OPEN_READONLY);
+  EXPECT_EQ(db.execAndGet("PRAGMA journal_mode").getString(), "wal");
+  EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM pragma_foreign_key_check").getInt(), 0);
+  // The same as merging both into a new report.
+  merge_reports({shard("a.sqlite"), shard("b.sqlite")}, (dir_ / "at_once.sqlite").string());
+  EXPECT_EQ(dump(out), dump(dir_ / "at_once.sqlite"));
+}
+
+TEST_F(ReportMerge, AnEmptyExistingOutputIsMadeAReportInPlace) {
+  const fs::path out = dir_ / "campaign.sqlite";
+  std::ofstream(out.string()).close();  // as `touch` leaves it
+  const ino_t before = inode(out);
+  const MergeResult r = merge_reports({shard("a.sqlite")}, out.string());
+  EXPECT_FALSE(r.output_existed);
+  EXPECT_EQ(r.runs_after, 2);
+  EXPECT_EQ(inode(out), before);
+  EXPECT_EQ(count(out, "PRAGMA user_version"), kReportSchemaVersion);
+  merge_reports({shard("a.sqlite")}, (dir_ / "new.sqlite").string());
+  EXPECT_EQ(dump(out), dump(dir_ / "new.sqlite"));
+}
+
+// SQLite attaches at most 10 databases and detaches none inside a transaction: the merge into an
+// existing report copies its inputs without ATTACH, all in its one transaction.
+TEST_F(ReportMerge, MoreInputsThanSQLiteAttachesAtOnce) {
+  const fs::path out = dir_ / "campaign.sqlite";
+  merge_reports({shard("a.sqlite")}, out.string());
+  std::vector<std::string> inputs;
+  for (int k = 1; k <= 12; ++k) {
+    inputs.push_back(shard("b.sqlite", fmt::format("b{}.sqlite", k)));
+    exec(inputs.back(), fmt::format("UPDATE runs SET seed = seed + {}", 100 * k));  // other runs
+  }
+  const MergeResult r = merge_reports(inputs, out.string());
+  EXPECT_EQ(r.added(), 24);
+  EXPECT_EQ(r.runs_after, 26);
+  EXPECT_EQ(count(out, "SELECT count(DISTINCT seed) FROM runs"), 25);  // standstill_1m and two_in_one_cell share seed 1
+  EXPECT_EQ(count(out, "SELECT count(*) FROM summaries"), 26);
+}
+
+// The output is read under its write lock: a writer that holds the lock when the merge begins is
+// waited for, and what it commits is in the merged report.
+TEST_F(ReportMerge, AMergeWaitsForAWriterOfTheOutputAndKeepsItsWrite) {
+  const fs::path out = dir_ / "campaign.sqlite";
+  merge_reports({shard("a.sqlite")}, out.string());
+  const std::string b = shard("b.sqlite");
+  SQLite::Database writer(out.string(), SQLite::OPEN_READWRITE);
+  writer.exec("BEGIN IMMEDIATE");
+  writer.exec("UPDATE runs SET recording_name = 'written meanwhile' WHERE run_id = 1");
+  std::atomic<bool> done{false};
+  MergeResult r;
+  std::string error;
+  std::thread merge([&] {
+    try {
+      r = merge_reports({b}, out.string());
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    done = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_FALSE(done) << "the merge waits for the writer's lock";
+  writer.exec("COMMIT");
+  merge.join();
+  ASSERT_EQ(error, "");
+  EXPECT_EQ(r.runs_before, 2);
+  EXPECT_EQ(r.runs_after, 4);
+  EXPECT_EQ(count(out, "SELECT count(*) FROM runs WHERE recording_name = 'written meanwhile'"), 1);
+}
+
 TEST_F(ReportMerge, CampaignsAndCriteriaMustAgree) {
   const std::string campaign = "INSERT INTO campaign VALUES ('drives', '{\"recordings\": [\"a\", \"b\"]}')";
   const std::string criterion = "INSERT INTO criteria VALUES (0, 'gospa_mean_m', 'recording', 'value', 'max', 0.5, 'fail')";
@@ -408,12 +507,26 @@ TEST_F(ReportMerge, CampaignsAndCriteriaMustAgree) {
   const std::string manifest = shard("b.sqlite", "manifest.sqlite");
   exec(manifest, "INSERT INTO campaign VALUES ('drives', '{\"recordings\": [\"c\"]}')");
   message = refusal({manifest}, out);
-  EXPECT_NE(message.find(manifest + ": the manifest of campaign 'drives' differs"), std::string::npos) << message;
+  EXPECT_NE(message.find(manifest + ": the manifest of campaign 'drives' differs from that of " + out.string() +
+                         " (field \"recordings\": [\"c\"] against [\"a\",\"b\"])"),
+            std::string::npos)
+      << "names the first field that differs: " << message;
   const std::string criteria = shard("b.sqlite", "criteria.sqlite");
   exec(criteria, "INSERT INTO criteria VALUES (0, 'gospa_mean_m', 'recording', 'value', 'max', 0.75, 'fail')");
   message = refusal({criteria}, out);
-  EXPECT_NE(message.find(criteria + ": its criteria differ from those of " + out.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("0.75"), std::string::npos) << message;
+  EXPECT_NE(message.find(criteria + ": its criteria differ from those of " + out.string() +
+                         " (1 against 1 criteria; criteria[0]: gospa_mean_m <= 0.75 per recording against "
+                         "gospa_mean_m <= 0.5 per recording)"),
+            std::string::npos)
+      << message;
+  // A second criterion more, over the campaign, passed if missing: the first difference is it.
+  const std::string more = shard("b.sqlite", "more.sqlite");
+  exec(more, criterion + "; INSERT INTO criteria VALUES (1, 'matched_fraction', 'campaign', 'p95', 'min', 0.9, 'pass')");
+  message = refusal({more}, out);
+  EXPECT_NE(message.find("(2 against 1 criteria; criteria[1]: p95(matched_fraction) >= 0.9 over the campaign, passed "
+                         "if missing against none)"),
+            std::string::npos)
+      << message;
   EXPECT_EQ(dump(out), before);
   EXPECT_FALSE(fs::exists(dir_ / "new.sqlite"));
 }
