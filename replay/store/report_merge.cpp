@@ -139,10 +139,10 @@ Plan plan_merge(const Snapshot& output, const std::vector<Snapshot>& inputs, Mer
   return plan;
 }
 
-// Copies and compares what the plan says, through the output's connection in its transaction.
+// Copies and compares what the plan says, through the output's connection.
 void fill(SQLite::Database& db, const std::string& output, const std::vector<Snapshot>& inputs, const Plan& plan,
-          MergeResult& result) {
-  MergeTarget target(db, output);
+          merge_copy::Copying copying, MergeResult& result) {
+  MergeTarget target(db, output, copying);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const MergeStep& step = plan.inputs[i];
     if (!step.copies() && !step.compares()) continue;
@@ -185,7 +185,7 @@ void merge_in_place(const std::string& output, const std::vector<Snapshot>& inpu
     }
     const Plan plan = plan_merge(snapshot, inputs, result);
     if (header == Header::empty) create_report_schema(db);  // an empty output is made a report
-    fill(db, output, inputs, plan, result);
+    fill(db, output, inputs, plan, merge_copy::Copying::rows, result);
     if (header == Header::empty || plan.writes()) transaction.commit();
     // else rolled back: nothing new, the output not written
   } catch (const SQLite::Exception& e) {
@@ -210,13 +210,17 @@ void merge_into_new(const fs::path& output_path, const std::vector<Snapshot>& in
     // syncs while filling; it is synced once before the move.
     db.exec("PRAGMA journal_mode = MEMORY");
     db.exec("PRAGMA synchronous = OFF");
-    db.exec("PRAGMA foreign_keys = ON");
+    db.exec("PRAGMA foreign_keys = ON");  // checked at each input's commit (defer_foreign_keys)
     db.exec("PRAGMA cache_size = -32768");
-    SQLite::Transaction transaction(db);
-    db.exec("PRAGMA defer_foreign_keys = ON");  // as in merge_in_place
-    create_report_schema(db);
-    fill(db, output, inputs, plan, result);
-    transaction.commit();
+    db.exec("PRAGMA temp_store = MEMORY");
+    {
+      SQLite::Transaction transaction(db);
+      create_report_schema(db);
+      transaction.commit();
+    }
+    // Each input ATTACHed and copied with INSERT ... SELECT in a transaction of its own: the
+    // fastest copy, for a file nobody else sees yet.
+    fill(db, output, inputs, plan, merge_copy::Copying::attach, result);
     // A report like every other; closed next, the last connection leaves no -wal or -shm.
     if (db.execAndGet("PRAGMA journal_mode = WAL").getString() != "wal") {
       throw InputError(output, "", "cannot set the merged report to WAL");

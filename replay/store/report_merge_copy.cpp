@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <set>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "common/input_error.hpp"
 #include "replay/store/report_merge_files.hpp"
@@ -78,9 +79,33 @@ int bind_as_stored(sqlite3_stmt* to, int parameter, sqlite3_stmt* from, int colu
   }
 }
 
+// ATTACHes an input read-only as `src` for the scope (outside a transaction: SQLite detaches
+// nothing inside one).
+class AttachedInput {
+ public:
+  AttachedInput(SQLite::Database& db, const std::string& file) : db_(db) {
+    SQLite::Statement attach(db_, "ATTACH DATABASE ? AS src");
+    attach.bind(1, merge_files::read_only_uri(file));
+    attach.exec();
+  }
+  ~AttachedInput() {
+    try {
+      db_.exec("DETACH DATABASE src");
+    } catch (const SQLite::Exception&) {
+      // only while unwinding from an error: the connection is closed next
+    }
+  }
+  AttachedInput(const AttachedInput&) = delete;
+  AttachedInput& operator=(const AttachedInput&) = delete;
+
+ private:
+  SQLite::Database& db_;
+};
+
 }  // namespace
 
-MergeTarget::MergeTarget(SQLite::Database& db, const std::string& output) : db_(db) {
+MergeTarget::MergeTarget(SQLite::Database& db, const std::string& output, Copying copying)
+    : db_(db), copying_(copying) {
   tables_ = classify_report_tables(db_);
   if (!tables_.unknown.empty()) {
     throw std::logic_error(fmt::format("{}: rcsim merge does not know how to merge the table(s) {}", output,
@@ -88,6 +113,10 @@ MergeTarget::MergeTarget(SQLite::Database& db, const std::string& output) : db_(
   }
   for (const auto* group : {&tables_.run_scoped, &tables_.bench, &tables_.campaign}) {
     for (const auto& table : *group) columns_[table] = table_columns(db_, table);
+  }
+  if (copying_ == Copying::attach) {
+    db_.exec("CREATE TEMP TABLE merge_run_map (old_id INTEGER PRIMARY KEY, new_id INTEGER NOT NULL)");
+    db_.exec("CREATE TEMP TABLE merge_bench_map (old_id INTEGER PRIMARY KEY, new_id INTEGER NOT NULL)");
   }
 }
 
@@ -106,14 +135,18 @@ void MergeTarget::add(const std::string& file, const MergeStep& step, std::vecto
                                            kReportSchemaVersion));
   }
   check_columns(input, file);
-  if (!step.runs.empty()) {
-    for (const auto& table : tables_.run_scoped) copy_rows(input, table, "run_id", step.runs);
+  if (copying_ == Copying::attach) {
+    copy_attached(file, step);
+  } else {
+    if (!step.runs.empty()) {
+      for (const auto& table : tables_.run_scoped) copy_rows(input, table, "run_id", step.runs);
+    }
+    if (!step.benches.empty()) {
+      for (const auto& table : tables_.bench) copy_rows(input, table, "bench_id", step.benches);
+    }
+    if (step.campaign) copy_rows(input, "campaign", "", {});
+    if (step.criteria) copy_rows(input, "criteria", "", {});
   }
-  if (!step.benches.empty()) {
-    for (const auto& table : tables_.bench) copy_rows(input, table, "bench_id", step.benches);
-  }
-  if (step.campaign) copy_rows(input, "campaign", "", {});
-  if (step.criteria) copy_rows(input, "criteria", "", {});
   for (std::size_t i = step.first_duplicate; i < step.end_duplicate; ++i) compare_summaries(db_, input, duplicates[i]);
 }
 
@@ -139,30 +172,72 @@ void MergeTarget::copy_rows(SQLite::Database& input, const std::string& table, c
     placeholders.emplace_back("?");
     if (columns[c] == key) key_column = static_cast<int>(c);
   }
-  RawStatement select(input, fmt::format("SELECT {} FROM main.{}{}", join(names, ", "), quoted(table),
-                                         key.empty() ? "" : " WHERE " + quoted(key) + " = ?"));
+  if (!key.empty() && key_column < 0) throw std::logic_error(fmt::format("table {} has no column {}", table, key));
+  const std::unordered_map<std::int64_t, std::int64_t> new_ids(ids.begin(), ids.end());
+  // The whole table in its order, the rows of other runs skipped: one pass over the input, where
+  // a lookup by run would visit the index and the table for each row.
+  RawStatement select(input, fmt::format("SELECT {} FROM main.{}", join(names, ", "), quoted(table)));
   RawStatement insert(db_, fmt::format("INSERT INTO main.{} ({}) VALUES ({})", quoted(table), join(names, ", "),
                                        join(placeholders, ", ")));
   const int n = static_cast<int>(columns.size());
-  const auto copy_selected = [&](std::int64_t new_id) {
-    while (select.step()) {
-      for (int c = 0; c < n; ++c) {
-        insert.check(c == key_column ? sqlite3_bind_int64(insert.get(), c + 1, new_id)
-                                     : bind_as_stored(insert.get(), c + 1, select.get(), c));
-      }
-      insert.step();
+  while (select.step()) {
+    std::int64_t new_id = 0;
+    if (key_column >= 0) {
+      const auto it = new_ids.find(sqlite3_column_int64(select.get(), key_column));
+      if (it == new_ids.end()) continue;
+      new_id = it->second;
+    }
+    for (int c = 0; c < n; ++c) {
+      insert.check(c == key_column ? sqlite3_bind_int64(insert.get(), c + 1, new_id)
+                                   : bind_as_stored(insert.get(), c + 1, select.get(), c));
+    }
+    insert.step();
+    insert.reset();
+  }
+}
+
+void MergeTarget::copy_attached(const std::string& file, const MergeStep& step) {
+  if (!step.copies()) return;
+  const AttachedInput attached(db_, file);
+  SQLite::Transaction transaction(db_);
+  db_.exec("PRAGMA defer_foreign_keys = ON");  // switched off again by every commit
+  const auto fill_map = [this](const char* map, const IdPairs& ids) {
+    db_.exec(fmt::format("DELETE FROM temp.{}", map));
+    SQLite::Statement insert(db_, fmt::format("INSERT INTO temp.{} VALUES (?, ?)", map));
+    for (const auto& [from, to] : ids) {
+      insert.bind(1, from);
+      insert.bind(2, to);
+      insert.exec();
       insert.reset();
     }
-    select.reset();
   };
+  if (!step.runs.empty()) {
+    fill_map("merge_run_map", step.runs);
+    for (const auto& table : tables_.run_scoped) db_.exec(insert_select_sql(table, "run_id", "merge_run_map"));
+  }
+  if (!step.benches.empty()) {
+    fill_map("merge_bench_map", step.benches);
+    for (const auto& table : tables_.bench) db_.exec(insert_select_sql(table, "bench_id", "merge_bench_map"));
+  }
+  if (step.campaign) db_.exec(insert_select_sql("campaign", "", ""));
+  if (step.criteria) db_.exec(insert_select_sql("criteria", "", ""));
+  transaction.commit();
+}
+
+// The rows of src's `table` whose `key` is in the temporary `map`, each under its new id; every
+// row when `key` is empty.
+std::string MergeTarget::insert_select_sql(const std::string& table, const std::string& key,
+                                           const std::string& map) const {
+  std::vector<std::string> names, selected;
+  for (const auto& column : columns_.at(table)) {
+    names.push_back(quoted(column));
+    selected.push_back(column == key ? "m.new_id" : "s." + quoted(column));
+  }
   if (key.empty()) {
-    copy_selected(0);
-    return;
+    return fmt::format("INSERT INTO main.{0} ({1}) SELECT {1} FROM src.{0}", quoted(table), join(names, ", "));
   }
-  for (const auto& [old_id, new_id] : ids) {
-    select.check(sqlite3_bind_int64(select.get(), 1, old_id));
-    copy_selected(new_id);
-  }
+  return fmt::format("INSERT INTO main.{0} ({1}) SELECT {2} FROM src.{0} AS s JOIN temp.{3} AS m ON m.old_id = s.{4}",
+                     quoted(table), join(names, ", "), join(selected, ", "), map, quoted(key));
 }
 
 void compare_summaries(SQLite::Database& output, SQLite::Database& input, MergeDuplicate& d) {

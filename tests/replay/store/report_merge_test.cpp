@@ -429,7 +429,8 @@ TEST_F(ReportMerge, AnEmptyExistingOutputIsMadeAReportInPlace) {
 }
 
 // SQLite attaches at most 10 databases and detaches none inside a transaction: the merge into an
-// existing report copies its inputs without ATTACH, all in its one transaction.
+// existing report copies its inputs without ATTACH, all in its one transaction; one into a new
+// report attaches them one at a time.
 TEST_F(ReportMerge, MoreInputsThanSQLiteAttachesAtOnce) {
   const fs::path out = dir_ / "campaign.sqlite";
   merge_reports({shard("a.sqlite")}, out.string());
@@ -443,6 +444,10 @@ TEST_F(ReportMerge, MoreInputsThanSQLiteAttachesAtOnce) {
   EXPECT_EQ(r.runs_after, 26);
   EXPECT_EQ(count(out, "SELECT count(DISTINCT seed) FROM runs"), 25);  // standstill_1m and two_in_one_cell share seed 1
   EXPECT_EQ(count(out, "SELECT count(*) FROM summaries"), 26);
+  // Into a new report (each input ATTACHed in turn) the same.
+  inputs.insert(inputs.begin(), shard("a.sqlite"));
+  merge_reports(inputs, (dir_ / "new.sqlite").string());
+  EXPECT_EQ(dump(dir_ / "new.sqlite"), dump(out));
 }
 
 // The output is read under its write lock: a writer that holds the lock when the merge begins is
