@@ -14,6 +14,7 @@
 #include "common/decibel.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "common/limits.hpp"
 #include "replay/import/annotation_smoothing.hpp"
 #include "replay/import/doppler_ego_motion.hpp"
 #include "replay/import/ego_log.hpp"
@@ -152,7 +153,20 @@ std::vector<RadarDetection> read_radar_file(const fs::path& path) {
     RadarDetection d{t.number("range"), t.number("azimuth"), t.number("elevation"), t.number("speed"),
                      t.number("rcs"), t.number("power"), t.number("noise")};
     if (d.range_m < 0.0) t.fail("range", "must not be negative");
+    if (d.range_m > limits::kMaxRange_m) t.fail("range", fmt::format("exceeds the limit of {} m", limits::kMaxRange_m));
     if (std::abs(d.azimuth_rad) > kPi || std::abs(d.elevation_rad) > kPi / 2) t.fail("azimuth", "angles must be in radians");
+    if (std::abs(d.speed_mps) > limits::kMaxSpeed_mps) t.fail("speed", fmt::format("exceeds the limit of {} m/s", limits::kMaxSpeed_mps));
+    // The recording's amplitude is power - noise (planar_target): each level, and their difference,
+    // within the limit a recording's reader holds amplitudes to (schemas/limits.md).
+    for (const auto& [field, level_db] : {std::pair{"power", d.power_db}, std::pair{"noise", d.noise_db}}) {
+      if (std::abs(level_db) > limits::kMaxLevel_dB) t.fail(field, fmt::format("exceeds the limit of {} dB", limits::kMaxLevel_dB));
+    }
+    if (d.rcs_m2 > 0.0 && power_to_db(d.rcs_m2) > limits::kMaxLevel_dB) {
+      t.fail("rcs", fmt::format("exceeds the limit of {} dBsm", limits::kMaxLevel_dB));
+    }
+    if (std::abs(d.power_db - d.noise_db) > limits::kMaxLevel_dB) {
+      t.fail("noise", fmt::format("power - noise exceeds the limit of {} dB", limits::kMaxLevel_dB));
+    }
     detections.push_back(d);
   }
   return detections;
@@ -315,6 +329,11 @@ void add_world_boxes(const std::vector<std::vector<BodyBox>>& boxes, const std::
 
 namespace {
 
+// sensor/radar/LABEL/LABEL_N.json: one radar's detections at keyframe N.
+fs::path radar_file(const fs::path& sequence, const RadarMount& mount, const Keyframe& frame) {
+  return sequence / "sensor/radar" / mount.label / (mount.label + "_" + frame.number + ".json");
+}
+
 // The ego log: the user's (--ego-log), interpolated to the keyframes, with the Doppler estimate
 // reported beside it; else the estimate. A dataset ego file whose layout is not published is
 // named in a warning, not guessed at.
@@ -362,8 +381,7 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
   for (std::size_t k = 0; k < frames.size(); ++k) {
     t_s[k] = 1e-9 * static_cast<double>(frames[k].timestamp_ns - frames.front().timestamp_ns);
     for (const RadarMount& m : mounts) {
-      detections[k].push_back(aimotive::read_radar_file(sequence / "sensor/radar" / m.label /
-                                                        (m.label + "_" + frames[k].number + ".json")));
+      detections[k].push_back(aimotive::read_radar_file(radar_file(sequence, m, frames[k])));
     }
   }
   std::vector<double> steps_s;
@@ -398,6 +416,10 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
     for (std::size_t s = 0; s < mounts.size(); ++s) {
       for (const RadarDetection& d : detections[k][s]) {
         RecordedTarget t = aimotive::planar_target(d, mounts[s]);
+        if (!(t.range_m <= limits::kMaxRange_m)) {  // a calibration matrix that scales can push a range beyond
+          throw InputError(radar_file(sequence, mounts[s], frames[k]).string(), "range",
+                           fmt::format("{} m in the mount's plane exceeds the limit of {} m", t.range_m, limits::kMaxRange_m));
+        }
         t.t_s = t_s[k];
         t.cycle = static_cast<int>(k);
         t.sensor = static_cast<int>(s);

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include "cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
@@ -205,6 +206,21 @@ TEST_F(AimotiveRefusals, AMissingFieldIsRefusedNamingFileAndField) {
   const std::string error = import_error();
   EXPECT_NE(error.find("frame_0033650.json"), std::string::npos) << error;
   EXPECT_NE(error.find("BoundingBox3D Extent X"), std::string::npos) << error;
+}
+
+// Found by the aimotive fuzzer: a noise of 2408 dB made an amplitude (power - noise) of -2338 dB,
+// which the importer wrote and the recording's reader then refused (schemas/limits.md).
+TEST_F(AimotiveRefusals, ALevelBeyondTheLimitIsRefusedAtImportNamingFileAndField) {
+  const fs::path file = sequence_ / "sensor/radar/F_LRR_C/F_LRR_C_0033660.json";
+  const std::string text = rcsim::testing::read_file(file);
+  const std::string damaged = std::regex_replace(text, std::regex(R"("noise": [-0-9.e]+)"), R"("noise": 2408.0)",
+                                                 std::regex_constants::format_first_only);
+  ASSERT_NE(damaged, text);
+  std::ofstream(file, std::ios::trunc) << damaged;
+  const std::string error = import_error();
+  EXPECT_NE(error.find("F_LRR_C_0033660.json"), std::string::npos) << error;
+  EXPECT_NE(error.find("noise"), std::string::npos) << error;
+  EXPECT_NE(error.find("1000 dB"), std::string::npos) << error;
 }
 
 TEST_F(AimotiveRefusals, AMissingRadarFileAndAnUnknownDatasetAreRefused) {
