@@ -116,6 +116,10 @@ std::vector<RadarMount> read_radar_mounts(const fs::path& sequence) {
     mount.T_body_sensor = read_matrix4(sensor, "RT_body_from_sensor");
     const Eigen::Matrix4d& T = mount.T_body_sensor;
     mount.X_VS = {T(0, 3), T(1, 3), std::atan2(T(1, 0), T(0, 0))};
+    if (std::abs(T(0, 3)) > limits::kMaxMountOffset_m || std::abs(T(1, 3)) > limits::kMaxMountOffset_m) {
+      sensor.fail("RT_body_from_sensor", fmt::format("translation ({}, {}) m beyond ±{} m: is it in millimetres?", T(0, 3),
+                                                     T(1, 3), limits::kMaxMountOffset_m));
+    }
     mounts.push_back(mount);
   }
   return mounts;
@@ -252,6 +256,20 @@ std::vector<std::vector<BodyBox>> read_body_boxes(const std::vector<Keyframe>& f
       box.width_m = o.number("BoundingBox3D Extent Y");
       if (!(box.length_m > 0.0) || !(box.width_m > 0.0)) o.fail("BoundingBox3D Extent X", "box extents must be positive");
       box.v_rel_V = {o.number("Relative Velocity X"), o.number("Relative Velocity Y")};
+      // Limits (schemas/limits.md): a box within a radar's reach, of a vehicle's size and speed.
+      struct Bound {
+        const char* field;
+        double value, limit;
+        const char* unit;
+      };
+      for (const Bound& b : {Bound{"BoundingBox3D Origin X", box.X_VO.x_m, limits::kMaxRange_m, "m"},
+                             Bound{"BoundingBox3D Origin Y", box.X_VO.y_m, limits::kMaxRange_m, "m"},
+                             Bound{"BoundingBox3D Extent X", box.length_m, limits::kMaxSize_m, "m"},
+                             Bound{"BoundingBox3D Extent Y", box.width_m, limits::kMaxSize_m, "m"},
+                             Bound{"Relative Velocity X", box.v_rel_V.x(), limits::kMaxSpeed_mps, "m/s"},
+                             Bound{"Relative Velocity Y", box.v_rel_V.y(), limits::kMaxSpeed_mps, "m/s"}}) {
+        if (std::abs(b.value) > b.limit) o.fail(b.field, fmt::format("|{}| exceeds the limit of {} {}", b.value, b.limit, b.unit));
+      }
       const auto [known, added] = model_of_id.emplace(box.id, box.model);
       if (!added && known->second != box.model) {
         o.fail("ObjectType", "'" + type + "' for " + box.id + ", which earlier keyframes call a " + known->second);
@@ -329,6 +347,66 @@ void add_world_boxes(const std::vector<std::vector<BodyBox>>& boxes, const std::
 
 namespace {
 
+// A recording has one row per sensor cycle (schemas/recording.md): keyframes at most 1.5 cycle
+// times apart, as `rcsim replay` reads ego.csv, and within the limits of a cycle time and a span.
+void check_keyframe_spacing(const std::vector<Keyframe>& frames, const std::vector<double>& steps_s, double cycle_time_s) {
+  if (cycle_time_s > limits::kMaxCycleTime_s) {
+    throw InputError(frames[1].box_file.string(), "Timestamp",
+                     fmt::format("keyframes {} s apart (median): beyond the limit of a cycle time, {} s", cycle_time_s,
+                                 limits::kMaxCycleTime_s));
+  }
+  double span_s = 0.0;
+  for (std::size_t k = 0; k < steps_s.size(); ++k) {
+    span_s += steps_s[k];
+    if (steps_s[k] > 1.5 * cycle_time_s) {
+      throw InputError(frames[k + 1].box_file.string(), "Timestamp",
+                       fmt::format("{:.6f} s after the previous keyframe, more than 1.5 x the median spacing of {:.6f} "
+                                   "s: a keyframe is missing (a recording has one row per cycle)",
+                                   steps_s[k], cycle_time_s));
+    }
+    if (span_s > limits::kMaxTime_s) {
+      throw InputError(frames[k + 1].box_file.string(), "Timestamp",
+                       fmt::format("{} s after the first keyframe: beyond the limit of {} s", span_s, limits::kMaxTime_s));
+    }
+  }
+}
+
+// What the import derived, held to the limits `rcsim replay` holds the written recording to
+// (schemas/limits.md): the ego motion estimated from the Doppler (or interpolated from --ego-log)
+// and the boxes moved into the world. Named by the keyframe they come from.
+void check_derived_limits(const Recording& rec, const std::vector<Keyframe>& frames, const fs::path& sequence) {
+  struct Bound {
+    const char* field;
+    double value, limit;
+    const char* unit;
+  };
+  const auto check = [](const std::string& file, std::initializer_list<Bound> bounds) {
+    for (const Bound& b : bounds) {
+      if (!(std::abs(b.value) <= b.limit)) {
+        throw InputError(file, b.field, fmt::format("|{}| exceeds the limit of {} {}", b.value, b.limit, b.unit));
+      }
+    }
+  };
+  for (std::size_t k = 0; k < rec.ego.size() && k < frames.size(); ++k) {
+    const EgoSample& e = rec.ego[k];
+    check((sequence / "sensor/radar").string() + " at keyframe " + frames[k].number + " (the ego motion)",
+          {Bound{"ego x_m", e.x_m, limits::kMaxCoordinate_m, "m"}, Bound{"ego y_m", e.y_m, limits::kMaxCoordinate_m, "m"},
+           Bound{"ego yaw_rad", e.yaw_rad, limits::kMaxUnwrappedYaw_rad, "rad"},
+           Bound{"ego speed_mps", e.speed_mps, limits::kMaxSpeed_mps, "m/s"},
+           Bound{"ego yaw_rate_radps", e.yaw_rate_radps, limits::kMaxYawRate_radps, "rad/s"}});
+  }
+  for (std::size_t o = 0; o < rec.objects.size(); ++o) {
+    for (const AnnotatedBox& b : rec.boxes[o]) {
+      const auto k = static_cast<std::size_t>(std::lower_bound(rec.ego.begin(), rec.ego.end(), b.t_s,
+                                                               [](const EgoSample& e, double t) { return e.t_s < t; }) -
+                                              rec.ego.begin());
+      check(frames[std::min(k, frames.size() - 1)].box_file.string() + " (" + rec.objects[o].id + " in the world)",
+            {Bound{"x_m", b.x_m, limits::kMaxCoordinate_m, "m"}, Bound{"y_m", b.y_m, limits::kMaxCoordinate_m, "m"},
+             Bound{"speed_mps", b.speed_mps, limits::kMaxSpeed_mps, "m/s"}});
+    }
+  }
+}
+
 // sensor/radar/LABEL/LABEL_N.json: one radar's detections at keyframe N.
 fs::path radar_file(const fs::path& sequence, const RadarMount& mount, const Keyframe& frame) {
   return sequence / "sensor/radar" / mount.label / (mount.label + "_" + frame.number + ".json");
@@ -387,6 +465,7 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
   std::vector<double> steps_s;
   for (std::size_t k = 1; k < t_s.size(); ++k) steps_s.push_back(t_s[k] - t_s[k - 1]);
   rec.cycle_time_s = median(steps_s);
+  check_keyframe_spacing(frames, steps_s, rec.cycle_time_s);
 
   // The ego motion from the stationary world's Doppler.
   std::vector<std::vector<std::vector<DopplerTarget>>> doppler(frames.size());
@@ -428,6 +507,7 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
     }
   }
   add_world_boxes(boxes, t_s, rec);
+  check_derived_limits(rec, frames, sequence);
 
   rec.description = fmt::format(
       "aiMotive Multimodal Dataset sequence {}: {} keyframes at {:.1f} Hz, radars {}, {} annotated objects; "

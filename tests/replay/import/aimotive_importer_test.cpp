@@ -223,6 +223,15 @@ TEST_F(AimotiveRefusals, ALevelBeyondTheLimitIsRefusedAtImportNamingFileAndField
   EXPECT_NE(error.find("1000 dB"), std::string::npos) << error;
 }
 
+// A dropped keyframe was imported, and the recording then refused by `rcsim replay` (ego.csv: one
+// row per cycle). The import refuses it, naming the keyframe after the gap.
+TEST_F(AimotiveRefusals, AMissingKeyframeIsRefusedAtImportNamingTheNextOne) {
+  fs::remove(sequence_ / "dynamic/box/3d_body/frame_0033650.json");
+  const std::string error = import_error();
+  EXPECT_NE(error.find("frame_0033651.json"), std::string::npos) << error;
+  EXPECT_NE(error.find("a keyframe is missing"), std::string::npos) << error;
+}
+
 TEST_F(AimotiveRefusals, AMissingRadarFileAndAnUnknownDatasetAreRefused) {
   fs::remove(sequence_ / "sensor/radar/B_LRR_C/B_LRR_C_0033670.json");
   EXPECT_NE(import_error().find("B_LRR_C_0033670.json"), std::string::npos);
