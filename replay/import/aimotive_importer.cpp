@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "common/angles.hpp"
@@ -31,6 +32,25 @@ constexpr const char* kBoxDir = "dynamic/box/3d_body";
 constexpr const char* kRadarDir = "sensor/radar";
 constexpr const char* kCalibrationFile = "sensor/calibration/calibration.json";
 constexpr const char* kSensorProfile = "aimotive_lrr";  // src/sensor/sensors/aimotive_lrr.json
+
+// A value and its limit (schemas/limits.md), for the checks of what the import reads and derives.
+struct Bound {
+  const char* field;
+  double value, limit;
+  const char* unit;
+};
+
+// The first bound exceeded (NaN exceeds every one), if any: a copy, as the list is a temporary.
+std::optional<Bound> first_exceeded(std::initializer_list<Bound> bounds) {
+  for (const Bound& b : bounds) {
+    if (!(std::abs(b.value) <= b.limit)) return b;
+  }
+  return std::nullopt;
+}
+
+std::string exceeded_message(const Bound& b) {
+  return fmt::format("|{}| exceeds the limit of {} {}", b.value, b.limit, b.unit);
+}
 
 bool is_sequence(const fs::path& dir) {
   return fs::is_directory(dir / kBoxDir) && fs::is_directory(dir / kRadarDir) && fs::is_regular_file(dir / kCalibrationFile);
@@ -256,19 +276,14 @@ std::vector<std::vector<BodyBox>> read_body_boxes(const std::vector<Keyframe>& f
       box.width_m = o.number("BoundingBox3D Extent Y");
       if (!(box.length_m > 0.0) || !(box.width_m > 0.0)) o.fail("BoundingBox3D Extent X", "box extents must be positive");
       box.v_rel_V = {o.number("Relative Velocity X"), o.number("Relative Velocity Y")};
-      // Limits (schemas/limits.md): a box within a radar's reach, of a vehicle's size and speed.
-      struct Bound {
-        const char* field;
-        double value, limit;
-        const char* unit;
-      };
-      for (const Bound& b : {Bound{"BoundingBox3D Origin X", box.X_VO.x_m, limits::kMaxRange_m, "m"},
-                             Bound{"BoundingBox3D Origin Y", box.X_VO.y_m, limits::kMaxRange_m, "m"},
-                             Bound{"BoundingBox3D Extent X", box.length_m, limits::kMaxSize_m, "m"},
-                             Bound{"BoundingBox3D Extent Y", box.width_m, limits::kMaxSize_m, "m"},
-                             Bound{"Relative Velocity X", box.v_rel_V.x(), limits::kMaxSpeed_mps, "m/s"},
-                             Bound{"Relative Velocity Y", box.v_rel_V.y(), limits::kMaxSpeed_mps, "m/s"}}) {
-        if (std::abs(b.value) > b.limit) o.fail(b.field, fmt::format("|{}| exceeds the limit of {} {}", b.value, b.limit, b.unit));
+      // A box within a radar's reach, of a vehicle's size and speed.
+      if (const auto b = aimotive::first_exceeded({{"BoundingBox3D Origin X", box.X_VO.x_m, limits::kMaxRange_m, "m"},
+                                                     {"BoundingBox3D Origin Y", box.X_VO.y_m, limits::kMaxRange_m, "m"},
+                                                     {"BoundingBox3D Extent X", box.length_m, limits::kMaxSize_m, "m"},
+                                                     {"BoundingBox3D Extent Y", box.width_m, limits::kMaxSize_m, "m"},
+                                                     {"Relative Velocity X", box.v_rel_V.x(), limits::kMaxSpeed_mps, "m/s"},
+                                                     {"Relative Velocity Y", box.v_rel_V.y(), limits::kMaxSpeed_mps, "m/s"}})) {
+        o.fail(b->field, aimotive::exceeded_message(*b));
       }
       const auto [known, added] = model_of_id.emplace(box.id, box.model);
       if (!added && known->second != box.model) {
@@ -375,17 +390,9 @@ void check_keyframe_spacing(const std::vector<Keyframe>& frames, const std::vect
 // (schemas/limits.md): the ego motion estimated from the Doppler (or interpolated from --ego-log)
 // and the boxes moved into the world. Named by the keyframe they come from.
 void check_derived_limits(const Recording& rec, const std::vector<Keyframe>& frames, const fs::path& sequence) {
-  struct Bound {
-    const char* field;
-    double value, limit;
-    const char* unit;
-  };
+  using aimotive::Bound;
   const auto check = [](const std::string& file, std::initializer_list<Bound> bounds) {
-    for (const Bound& b : bounds) {
-      if (!(std::abs(b.value) <= b.limit)) {
-        throw InputError(file, b.field, fmt::format("|{}| exceeds the limit of {} {}", b.value, b.limit, b.unit));
-      }
-    }
+    if (const auto b = aimotive::first_exceeded(bounds)) throw InputError(file, b->field, aimotive::exceeded_message(*b));
   };
   for (std::size_t k = 0; k < rec.ego.size() && k < frames.size(); ++k) {
     const EgoSample& e = rec.ego[k];

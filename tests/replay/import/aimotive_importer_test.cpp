@@ -223,6 +223,18 @@ TEST_F(AimotiveRefusals, ALevelBeyondTheLimitIsRefusedAtImportNamingFileAndField
   EXPECT_NE(error.find("1000 dB"), std::string::npos) << error;
 }
 
+TEST_F(AimotiveRefusals, ABoxBeyondTheLimitsIsRefusedNamingFileAndField) {
+  const fs::path file = sequence_ / "dynamic/box/3d_body/frame_0033650.json";
+  const std::string text = rcsim::testing::read_file(file);
+  const std::string damaged = std::regex_replace(text, std::regex(R"("BoundingBox3D Extent X": [-0-9.e]+)"),
+                                                 R"("BoundingBox3D Extent X": 5000.0)", std::regex_constants::format_first_only);
+  ASSERT_NE(damaged, text);
+  std::ofstream(file, std::ios::trunc) << damaged;
+  const std::string error = import_error();
+  EXPECT_NE(error.find("frame_0033650.json"), std::string::npos) << error;
+  EXPECT_NE(error.find("BoundingBox3D Extent X: |5000| exceeds the limit of 100 m"), std::string::npos) << error;
+}
+
 // A dropped keyframe was imported, and the recording then refused by `rcsim replay` (ego.csv: one
 // row per cycle). The import refuses it, naming the keyframe after the gap.
 TEST_F(AimotiveRefusals, AMissingKeyframeIsRefusedAtImportNamingTheNextOne) {
