@@ -1,5 +1,6 @@
 #pragma once
 // Small scenes built in code for the stage tests.
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -11,6 +12,9 @@
 #include "sim/simulation.hpp"
 
 namespace rcsim::testing {
+
+// The recordings bundled with the checkout.
+inline const std::filesystem::path kBundledRecordings = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
 
 inline const ModelLibrary& library() {
   static const ModelLibrary lib = ModelLibrary::builtin();

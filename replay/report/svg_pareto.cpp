@@ -15,7 +15,6 @@ namespace rcsim::replay::svg {
 namespace {
 
 // The margins and colours of svg_plot.cpp, so that the plot sits among the others.
-constexpr double kMarginLeft = 64.0, kMarginRight = 14.0, kMarginTop = 40.0, kMarginBottom = 44.0;
 constexpr const char* kFrontColour = "#2b8a3e";      // green: the Pareto front
 constexpr const char* kDominatedColour = "#868e96";  // grey: dominated levels
 constexpr const char* kDefaultColour = "#d9480f";    // orange: the default level

@@ -15,7 +15,6 @@ struct Frame {
   double left, top, right, bottom;  // plot area in pixels
 };
 
-constexpr double kMarginLeft = 64.0, kMarginRight = 14.0, kMarginTop = 40.0, kMarginBottom = 44.0;
 
 void open_svg(std::string& out, int width_px, int height_px, const std::string& css_class, const std::string& title) {
   out += fmt::format(R"(<svg class="{}" xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" role="img" aria-label="{}">)",

@@ -7,6 +7,9 @@
 
 namespace rcsim::replay::svg {
 
+// The plot frame's margins inside a chart (px): room for the axis labels and the title.
+inline constexpr double kMarginLeft = 64.0, kMarginRight = 14.0, kMarginTop = 40.0, kMarginBottom = 44.0;
+
 // Escapes text for HTML/SVG element content and double- or single-quoted attribute values
 // (& < > " '). Every string that came from a recording or the database goes through this.
 std::string escape(std::string_view text);

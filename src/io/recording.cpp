@@ -23,9 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Times in a recording agree when they differ by less than this (files carry 6 decimals).
-constexpr double kTimeTolerance_s = 2e-6;
-
 void read_header(Recording& rec, const fs::path& path) {  // recording.json
   const std::string file = path.string();
   const nlohmann::json json = parse_json_text(read_text_file(path), file);

@@ -14,8 +14,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Times in a recording agree when they differ by less than this (files carry 6 decimals).
-constexpr double kTimeTolerance_s = 2e-6;
 
 // Limits on a target's numbers (schemas/recording.md): beyond them a value is a unit or format
 // error, not a measurement (a range of 1e308 would be averaged into GOSPA).
@@ -220,7 +218,7 @@ bool TargetRowReader::next_pending() {
 
 void TargetRowReader::read_cycle(int cycle, double t_s, std::vector<RecordedTarget>& out) {
   while (next_pending() && pending_->target.cycle == cycle) {
-    if (std::abs(pending_->target.t_s - t_s) > kTimeTolerance_s) {
+    if (std::abs(pending_->target.t_s - t_s) > kRecordingTimeTolerance_s) {
       throw InputError(csv_.path(), fmt::format("line {}, column 't_s'", pending_->line),
                        fmt::format("time {} s differs from cycle {}'s time {} s in ego.csv", pending_->target.t_s,
                                    cycle, t_s));

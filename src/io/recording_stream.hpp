@@ -17,6 +17,9 @@
 
 namespace rcsim {
 
+// Times in a recording agree when they differ by less than this (files carry 6 decimals).
+inline constexpr double kRecordingTimeTolerance_s = 2e-6;
+
 // ego.csv's (or an ego log's) rows; with cycle_time_s > 0, one row per sensor cycle.
 class EgoRowReader {
  public:

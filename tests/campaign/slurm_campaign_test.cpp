@@ -11,12 +11,12 @@
 #include "campaign/slurm_cluster.hpp"
 #include "cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
+#include "test_support.hpp"
 
 namespace rcsim::testing {
 namespace {
 
-const std::filesystem::path kBundled = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
-const std::vector<std::string> kRecordings = {"close_front",  "corner_approach", "front_approach",
+const std::vector<std::string> kSlurmCampaignRecordings = {"close_front",  "corner_approach", "front_approach",
                                               "overtaking",   "two_in_one_cell", "perpendicular_crossing"};
 
 class SlurmCampaign : public ScratchDirTest {
@@ -30,7 +30,7 @@ class SlurmCampaign : public ScratchDirTest {
   }
   void plan(int shards) {
     std::string recordings;
-    for (const auto& r : kRecordings) recordings += (recordings.empty() ? "\"" : ", \"") + (kBundled / r).string() + "\"";
+    for (const auto& r : kSlurmCampaignRecordings) recordings += (recordings.empty() ? "\"" : ", \"") + (kBundledRecordings / r).string() + "\"";
     std::ofstream(dir_ / "campaign.json") << R"({"format": "rcsim-campaign", "version": 1, "name": "slurm-test", )"
                                           << R"("recordings": [)" << recordings << R"(], "replay": {"seed": 5}})";
     const auto planned = run_rcsim(fmt::format("campaign plan {} --shards {} -o {}", (dir_ / "campaign.json").string(),
@@ -51,13 +51,13 @@ class SlurmCampaign : public ScratchDirTest {
     }
     const auto merged = run_rcsim(fmt::format("merge{} -o {}", shards, (dir_ / "campaign.sqlite").string()));
     ASSERT_EQ(merged.exit_code, 0) << merged.output;
-    for (const auto& r : kRecordings) {
-      const auto serial = run_rcsim(fmt::format("replay {} --db {} --seed 5 --store summary", (kBundled / r).string(),
+    for (const auto& r : kSlurmCampaignRecordings) {
+      const auto serial = run_rcsim(fmt::format("replay {} --db {} --seed 5 --store summary", (kBundledRecordings / r).string(),
                                                 (dir_ / "serial.sqlite").string()));
       ASSERT_EQ(serial.exit_code, 0) << serial.output;
     }
     const auto campaign = figures_by_recording(dir_ / "campaign.sqlite");
-    EXPECT_EQ(campaign.size(), kRecordings.size());
+    EXPECT_EQ(campaign.size(), kSlurmCampaignRecordings.size());
     EXPECT_EQ(campaign, figures_by_recording(dir_ / "serial.sqlite"));
   }
   std::string why_not_;

@@ -16,19 +16,19 @@
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"
 #include "scratch_dir.hpp"
+#include "test_support.hpp"
 
 namespace rcsim::testing {
 namespace {
 
-const std::filesystem::path kBundled = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
-const std::vector<std::string> kRecordings = {"close_front", "front_approach", "overtaking", "two_in_one_cell"};
+const std::vector<std::string> kCampaignRecordings = {"close_front", "front_approach", "overtaking", "two_in_one_cell"};
 
 class CampaignCli : public ScratchDirTest {
  protected:
   CampaignCli() : ScratchDirTest("campaign_cli") {}
   std::filesystem::path write_manifest(const std::string& extra = "") {
     std::string recordings;
-    for (const auto& r : kRecordings) recordings += (recordings.empty() ? "\"" : ", \"") + (kBundled / r).string() + "\"";
+    for (const auto& r : kCampaignRecordings) recordings += (recordings.empty() ? "\"" : ", \"") + (kBundledRecordings / r).string() + "\"";
     const auto path = dir_ / "campaign.json";
     std::ofstream(path) << R"({"format": "rcsim-campaign", "version": 1, "name": "cli-test", "recordings": [)"
                         << recordings << R"(], "replay": {"seed": 3}, "criteria": [{"figure": "gospa_mean_m", "max": 100}])"
@@ -54,14 +54,14 @@ TEST_F(CampaignCli, RunLocalThenMergeEqualsASerialReplay) {
                                            dir("plan"), dir("campaign.sqlite")));
   ASSERT_EQ(merge.exit_code, 0) << merge.output;
 
-  for (const auto& r : kRecordings) {
-    const auto serial = run_rcsim(fmt::format("replay {} --db {} --seed 3 --store summary", (kBundled / r).string(),
+  for (const auto& r : kCampaignRecordings) {
+    const auto serial = run_rcsim(fmt::format("replay {} --db {} --seed 3 --store summary", (kBundledRecordings / r).string(),
                                               dir("serial.sqlite")));
     ASSERT_EQ(serial.exit_code, 0) << serial.output;
   }
   const auto merged = figures_by_recording(dir_ / "campaign.sqlite");
   const auto serial = figures_by_recording(dir_ / "serial.sqlite");
-  ASSERT_EQ(merged.size(), kRecordings.size());
+  ASSERT_EQ(merged.size(), kCampaignRecordings.size());
   EXPECT_EQ(merged, serial);  // figure for figure, bit for bit
 
   EXPECT_NE(merge.output.find("verdicts: 4 of 4 runs passed 1 criterion per recording; 0 of 0 campaign criteria passed"),
@@ -137,7 +137,7 @@ TEST_F(CampaignCli, AShardKilledMidRunRedoesOnlyWhatIsMissing) {
 TEST_F(CampaignCli, ReplayCriteriaExitStatusAndJunit) {
   const auto criteria = dir_ / "criteria.json";
   std::ofstream(criteria) << R"({"format": "rcsim-criteria", "version": 1, "criteria": [{"figure": "gospa_mean_m", "max": 0.0}]})";
-  const auto failed = run_rcsim(fmt::format("replay {} --db {} --criteria {} --junit {}", (kBundled / "front_approach").string(),
+  const auto failed = run_rcsim(fmt::format("replay {} --db {} --criteria {} --junit {}", (kBundledRecordings / "front_approach").string(),
                                             dir("r.sqlite"), criteria.string(), dir("junit.xml")));
   EXPECT_EQ(failed.exit_code, 3) << failed.output;
   EXPECT_NE(failed.output.find("FAIL run 1: "), std::string::npos) << failed.output;
@@ -145,18 +145,18 @@ TEST_F(CampaignCli, ReplayCriteriaExitStatusAndJunit) {
   // The criteria stay in the report: the next replay is judged by them without --criteria, and
   // a passing criterion gives exit status 0.
   std::ofstream(criteria) << R"({"format": "rcsim-criteria", "version": 1, "criteria": [{"figure": "gospa_mean_m", "max": 1000}]})";
-  EXPECT_EQ(run_rcsim(fmt::format("replay {} --db {} --criteria {}", (kBundled / "front_approach").string(), dir("r.sqlite"),
+  EXPECT_EQ(run_rcsim(fmt::format("replay {} --db {} --criteria {}", (kBundledRecordings / "front_approach").string(), dir("r.sqlite"),
                                   criteria.string()))
                 .exit_code,
             0);
   // A file that is no criteria document is refused before the replay: no third run is stored.
-  const auto bad = run_rcsim(fmt::format("replay {} --db {} --criteria {}", (kBundled / "front_approach").string(),
+  const auto bad = run_rcsim(fmt::format("replay {} --db {} --criteria {}", (kBundledRecordings / "front_approach").string(),
                                          dir("r.sqlite"), (dir_ / "r.sqlite").string()));
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   SQLite::Database db(dir("r.sqlite"));
   EXPECT_EQ(db.execAndGet("SELECT count(*) FROM runs").getInt(), 2);
   // --json carries the verdicts.
-  const auto json = run_rcsim(fmt::format("replay {} --db {} --json", (kBundled / "front_approach").string(), dir("r.sqlite")));
+  const auto json = run_rcsim(fmt::format("replay {} --db {} --json", (kBundledRecordings / "front_approach").string(), dir("r.sqlite")));
   ASSERT_EQ(json.exit_code, 0) << json.output;
   const auto summary = nlohmann::json::parse(json.output.substr(json.output.find('{')));
   EXPECT_EQ(summary["verdicts"]["passed"], true);

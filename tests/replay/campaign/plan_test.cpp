@@ -9,11 +9,11 @@
 #include "io/recording.hpp"
 #include "cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
+#include "test_support.hpp"
 
 namespace rcsim::replay::campaign {
 namespace {
 
-const std::filesystem::path kBundled = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
 
 TEST(BalanceShards, LongestFirstOntoTheLeastLoaded) {
   // 5, 4, 3, 3, 3 into two: 5 -> A, 4 -> B, 3 -> B (7), 3 -> A (8), 3 -> B (10). LPT's makespan is
@@ -35,8 +35,8 @@ TEST(BalanceShards, LongestFirstOntoTheLeastLoaded) {
 
 TEST(RecordedDuration, IsTheEgoLogsSpanPlusOneCycle) {
   for (const char* name : {"front_approach", "city_drive_60s"}) {
-    const Recording rec = read_recording(kBundled / name);
-    EXPECT_NEAR(recorded_duration_s(kBundled / name),
+    const Recording rec = read_recording(testing::kBundledRecordings / name);
+    EXPECT_NEAR(recorded_duration_s(testing::kBundledRecordings / name),
                 rec.ego.back().t_s - rec.ego.front().t_s + rec.cycle_time_s, 1e-9)
         << name;
   }
@@ -62,7 +62,7 @@ class PlanTest : public rcsim::testing::ScratchDirTest {
 
 TEST_F(PlanTest, WritesPlanAndBatchScriptAndReadsThemBack) {
   const auto manifest = read_manifest(write_manifest(
-      R"("recordings": [")" + (kBundled / "[fo]*").string() + R"(", ")" + (kBundled / "close_front").string() +
+      R"("recordings": [")" + (testing::kBundledRecordings / "[fo]*").string() + R"(", ")" + (testing::kBundledRecordings / "close_front").string() +
       R"("], "replay": {"seed": 7, "store": "full"}, "criteria": [{"figure": "gospa_mean_m", "max": 2}],
       "slurm": {"partition": "cpu", "time_limit": "00:30:00", "extra": ["--qos=short"]})"));
   ASSERT_EQ(manifest.recordings.size(), 3u);  // front_approach, overtaking, close_front; sorted
@@ -110,23 +110,23 @@ TEST_F(PlanTest, WritesPlanAndBatchScriptAndReadsThemBack) {
 }
 
 TEST_F(PlanTest, BadManifestsNameTheFileAndField) {
-  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "no_such_*").string() + R"("])").find("recordings[0]: "),
+  EXPECT_NE(error_of(R"("recordings": [")" + (testing::kBundledRecordings / "no_such_*").string() + R"("])").find("recordings[0]: "),
             std::string::npos);
-  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "no_such_*").string() + R"("])").find("matches no recording"),
+  EXPECT_NE(error_of(R"("recordings": [")" + (testing::kBundledRecordings / "no_such_*").string() + R"("])").find("matches no recording"),
             std::string::npos);
   // Under a directory that does not exist; a relative pattern says what it is relative to.
-  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "no_such_dir" / "*").string() + R"("])").find("a directory in it is missing"),
+  EXPECT_NE(error_of(R"("recordings": [")" + (testing::kBundledRecordings / "no_such_dir" / "*").string() + R"("])").find("a directory in it is missing"),
             std::string::npos);
   EXPECT_NE(error_of(R"("recordings": ["no_such_*"])").find("relative to the manifest's directory " + dir_.string()),
             std::string::npos);
-  EXPECT_NE(error_of(R"("recordings": [")" + kBundled.string() + R"("])").find("not a recording directory"),
+  EXPECT_NE(error_of(R"("recordings": [")" + testing::kBundledRecordings.string() + R"("])").find("not a recording directory"),
             std::string::npos);
-  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "front_approach").string() + R"("], "replay": {"sead": 1})").find("sead"), std::string::npos);
-  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "front_approach").string() +
+  EXPECT_NE(error_of(R"("recordings": [")" + (testing::kBundledRecordings / "front_approach").string() + R"("], "replay": {"sead": 1})").find("sead"), std::string::npos);
+  EXPECT_NE(error_of(R"("recordings": [")" + (testing::kBundledRecordings / "front_approach").string() +
                      R"("], "replay": {"fidelity": "best"})")
                 .find("unknown fidelity level 'best'"),
             std::string::npos);
-  EXPECT_NE(error_of(R"("recordings": [")" + (kBundled / "front_approach").string() +
+  EXPECT_NE(error_of(R"("recordings": [")" + (testing::kBundledRecordings / "front_approach").string() +
                      R"("], "slurm": {"extra": ["qos=x"]})")
                 .find("slurm.extra[0]"),
             std::string::npos);

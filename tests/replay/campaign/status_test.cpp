@@ -10,11 +10,11 @@
 
 #include "replay/campaign/shard_runner.hpp"
 #include "scratch_dir.hpp"
+#include "test_support.hpp"
 
 namespace rcsim::replay::campaign {
 namespace {
 
-const std::filesystem::path kBundled = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
 
 TEST(IndexRanges, RunsOfConsecutiveIndicesBecomeRanges) {
   EXPECT_EQ(index_ranges({}), "");
@@ -31,9 +31,9 @@ class CampaignStatusTest : public rcsim::testing::ScratchDirTest {
   CampaignPlan plan() {
     const auto path = dir_ / "campaign.json";
     std::ofstream(path) << R"({"format": "rcsim-campaign", "version": 1, "name": "status", "recordings": [")"
-                        << (kBundled / "close_front").string() << R"(", ")" << (kBundled / "front_approach").string()
-                        << R"(", ")" << (kBundled / "overtaking").string() << R"(", ")"
-                        << (kBundled / "two_in_one_cell").string() << R"("], "replay": {"seed": 3}})";
+                        << (testing::kBundledRecordings / "close_front").string() << R"(", ")" << (testing::kBundledRecordings / "front_approach").string()
+                        << R"(", ")" << (testing::kBundledRecordings / "overtaking").string() << R"(", ")"
+                        << (testing::kBundledRecordings / "two_in_one_cell").string() << R"("], "replay": {"seed": 3}})";
     return write_plan(read_manifest(path), 3, dir_ / "plan", "/usr/bin/true");
   }
 };

@@ -28,7 +28,7 @@ using campaign::Statistic;
 using rcsim::testing::count_occurrences;
 using rcsim::testing::read_file;
 
-constexpr const char* kEvilName = "<script>alert(1)</script> & \"x\" 'y'";
+constexpr const char* kEvilCampaignName = "<script>alert(1)</script> & \"x\" 'y'";
 
 // The text between `begin` and the next `end` after it (empty if `begin` is absent).
 std::string between(const std::string& text, const std::string& begin, const std::string& end) {
@@ -191,7 +191,7 @@ TEST_F(CampaignReport, EscapesTheRecordingAndCampaignNames) {
   {
     Recording rec = testing::model_recording(testing::two_cars_scene(2.0), 5);
     rec.dir = dir_ / "evil";
-    rec.name = kEvilName;
+    rec.name = kEvilCampaignName;
     ReplayOptions options;
     options.import.effects = {};
     ReportWriter writer(*db_, StoreLevel::summary);

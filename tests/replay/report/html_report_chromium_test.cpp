@@ -22,7 +22,6 @@ namespace fs = std::filesystem;
 using testing::count_occurrences;
 using testing::read_file;
 
-std::size_t count(const std::string& text, const std::string& needle) { return count_occurrences(text, needle); }
 
 class HtmlReportChromium : public ::testing::Test {
  protected:
@@ -82,24 +81,24 @@ TEST_F(HtmlReportChromium, RendersPicturesTablesAndNoInjectedScript) {
   HtmlReportOptions options;
   write_html_report_file(db_path, page.string(), options);
   const std::string html = read_file(page);
-  const std::size_t svgs_in_file = count(html, "<svg class=");
+  const std::size_t svgs_in_file = testing::count_occurrences(html, "<svg class=");
 
   const fs::path dom_path = dir_ / "dom.html";
   ASSERT_EQ(chromium(page, "--dump-dom", dom_path), 0) << read_file(dir_ / "chromium.log");
   const std::string dom = read_file(dom_path);
   ASSERT_GT(dom.size(), 1000u) << read_file(dir_ / "chromium.log");
   // Every picture was parsed as SVG, with its drawn content.
-  EXPECT_EQ(count(dom, "<svg class="), svgs_in_file);
-  EXPECT_GE(count(dom, "<svg class=\"birdseye\""), 3u);
+  EXPECT_EQ(testing::count_occurrences(dom, "<svg class="), svgs_in_file);
+  EXPECT_GE(testing::count_occurrences(dom, "<svg class=\"birdseye\""), 3u);
   // Two sensors with four series each; the detection rate against range; the background range and azimuth.
-  EXPECT_EQ(count(dom, "<svg class=\"plot\""), 11u);
-  EXPECT_GE(count(dom, "<svg class=\"object-frame\""), 1u);
-  EXPECT_EQ(count(dom, "<svg class=\"histogram\""), 4u);
-  EXPECT_GT(count(dom, "<circle class=\"t rec current\""), 5u);
-  EXPECT_GT(count(dom, "<polygon class=\"t sim current\""), 5u);
-  EXPECT_GE(count(dom, "<polygon class=\"fov\""), 6u);
-  EXPECT_GE(count(dom, "<polygon class=\"box\""), 3u);
-  EXPECT_GT(count(dom, "<rect class=\"bar\""), 4u);
+  EXPECT_EQ(testing::count_occurrences(dom, "<svg class=\"plot\""), 11u);
+  EXPECT_GE(testing::count_occurrences(dom, "<svg class=\"object-frame\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(dom, "<svg class=\"histogram\""), 4u);
+  EXPECT_GT(testing::count_occurrences(dom, "<circle class=\"t rec current\""), 5u);
+  EXPECT_GT(testing::count_occurrences(dom, "<polygon class=\"t sim current\""), 5u);
+  EXPECT_GE(testing::count_occurrences(dom, "<polygon class=\"fov\""), 6u);
+  EXPECT_GE(testing::count_occurrences(dom, "<polygon class=\"box\""), 3u);
+  EXPECT_GT(testing::count_occurrences(dom, "<rect class=\"bar\""), 4u);
   // The summary value, as parsed by the browser.
   EXPECT_NE(dom.find("data-key=\"targets_recorded\">" + std::to_string(targets_recorded) + "<"), std::string::npos);
   // Escaped text stayed text: no script element, no image, the handlers never ran.

@@ -56,7 +56,6 @@ void fill_database(const fs::path& dir, const std::string& path) {
 using testing::count_occurrences;
 using testing::read_file;
 
-std::size_t count(const std::string& text, const std::string& needle) { return count_occurrences(text, needle); }
 
 class HtmlReport : public ::testing::Test {
  protected:
@@ -109,20 +108,20 @@ TEST_F(HtmlReport, SummaryTablesShowTheStoredValues) {
 TEST_F(HtmlReport, HasPicturesPerRunAndTheSideBySideOfSeveralRuns) {
   const std::string html = write({});
   EXPECT_NE(html.find("Runs side by side"), std::string::npos);
-  EXPECT_EQ(count(html, "<section class=\"run\""), 2u);
-  const std::size_t birdseye = count(html, "<svg class=\"birdseye\"");
+  EXPECT_EQ(testing::count_occurrences(html, "<section class=\"run\""), 2u);
+  const std::size_t birdseye = testing::count_occurrences(html, "<svg class=\"birdseye\"");
   EXPECT_GE(birdseye, 6u);  // at least three cycles per run
   EXPECT_LE(birdseye, 10u);
   // Per sensor four time series (run 1 has two sensors, run 2 one), and per run the detection
   // rate against range and the background's range and azimuth.
-  EXPECT_EQ(count(html, "<svg class=\"plot\""), 18u);
-  EXPECT_EQ(count(html, "<svg class=\"histogram\""), 8u);
-  EXPECT_GT(count(html, "<circle class=\"t rec current\""), 10u);
-  EXPECT_GT(count(html, "<polygon class=\"t sim current\""), 10u);
-  EXPECT_GT(count(html, "<polygon class=\"t sim trace\""), 10u);
-  EXPECT_GE(count(html, "<polygon class=\"fov\""), 6u);
-  EXPECT_GE(count(html, "<polygon class=\"box\""), 6u);
-  EXPECT_GE(count(html, "<circle class=\"merge\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(html, "<svg class=\"plot\""), 18u);
+  EXPECT_EQ(testing::count_occurrences(html, "<svg class=\"histogram\""), 8u);
+  EXPECT_GT(testing::count_occurrences(html, "<circle class=\"t rec current\""), 10u);
+  EXPECT_GT(testing::count_occurrences(html, "<polygon class=\"t sim current\""), 10u);
+  EXPECT_GT(testing::count_occurrences(html, "<polygon class=\"t sim trace\""), 10u);
+  EXPECT_GE(testing::count_occurrences(html, "<polygon class=\"fov\""), 6u);
+  EXPECT_GE(testing::count_occurrences(html, "<polygon class=\"box\""), 6u);
+  EXPECT_GE(testing::count_occurrences(html, "<circle class=\"merge\""), 1u);
   EXPECT_NE(html.find("most merge artefacts"), std::string::npos);
   EXPECT_NE(html.find("largest GOSPA"), std::string::npos);
   EXPECT_NE(html.find("Generalized optimal sub-pattern assignment"), std::string::npos);  // cited source
@@ -136,7 +135,7 @@ TEST_F(HtmlReport, OneSelectedRunHasNoSideBySide) {
   options.run_ids = {2};
   const std::string html = write(options);
   EXPECT_EQ(html.find("Runs side by side"), std::string::npos);
-  EXPECT_EQ(count(html, "<section class=\"run\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(html, "<section class=\"run\""), 1u);
   EXPECT_NE(html.find("id=\"run-2\""), std::string::npos);
   options.run_ids = {};
   options.last_runs = 1;
@@ -232,7 +231,7 @@ TEST(HtmlReportLarge, LongRunsAreThinnedAndTheFileStaysSmall) {
     for (auto pos = html.find(kind); pos != std::string::npos; pos = html.find(kind, pos + 1)) {
       const std::size_t begin = pos + std::string(kind).size();
       const std::string d = html.substr(begin, html.find('"', begin) - begin);
-      const std::size_t points = count(d, "M") + count(d, "L");
+      const std::size_t points = testing::count_occurrences(d, "M") + testing::count_occurrences(d, "L");
       EXPECT_LE(points, 2000u);
       EXPECT_GE(points, 1900u);
       ++series;

@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 using testing::count_occurrences;
 using testing::read_file;
 
-constexpr const char* kEvilName = "<script>alert(1)</script>";
+constexpr const char* kEvilLevelName = "<script>alert(1)</script>";
 
 struct Row {
   int recording = 0;
@@ -368,7 +368,7 @@ TEST_F(HtmlReportBench, ARecordingBenchedAloneHasNoSmallPlots) {
 }
 
 TEST_F(HtmlReportBench, EscapesRecordingNamesAndEveryOtherDatabaseText) {
-  add_bench(two_recordings(kEvilName, true));
+  add_bench(two_recordings(kEvilLevelName, true));
   const std::string html = write();
   EXPECT_EQ(html.find("<script"), std::string::npos);
   EXPECT_EQ(html.find("<test>"), std::string::npos);

@@ -12,7 +12,6 @@
 namespace rcsim::replay {
 namespace {
 
-std::size_t count(const std::string& text, const std::string& needle) { return testing::count_occurrences(text, needle); }
 
 TEST(SvgBirdseye, BirdsEyeDrawsBoxesSensorsTargetsAndLinks) {
   svg::BirdsEyeSpec spec;
@@ -25,13 +24,13 @@ TEST(SvgBirdseye, BirdsEyeDrawsBoxesSensorsTargetsAndLinks) {
   spec.targets.push_back({{13.5, 0.4}, true, 2, false, ""});
   spec.links.push_back({{13.0, 0.5}, {13.1, 0.4}});
   const std::string out = svg::birdseye_svg(spec);
-  EXPECT_EQ(count(out, "<polygon class=\"box\""), 1u);
-  EXPECT_EQ(count(out, "<polygon class=\"fov\""), 1u);
-  EXPECT_EQ(count(out, "<polygon class=\"sensor\""), 1u);
-  EXPECT_EQ(count(out, "<circle class=\"t rec current\""), 1u);
-  EXPECT_EQ(count(out, "<polygon class=\"t sim current\""), 1u);
-  EXPECT_EQ(count(out, "<polygon class=\"t sim trace\""), 1u);
-  EXPECT_EQ(count(out, "<circle class=\"merge\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<polygon class=\"box\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<polygon class=\"fov\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<polygon class=\"sensor\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<circle class=\"t rec current\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<polygon class=\"t sim current\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<polygon class=\"t sim trace\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<circle class=\"merge\""), 1u);
   EXPECT_NE(out.find("x / m (vehicle frame, forward)"), std::string::npos);
   // x forward is up: the target at x = 13 m is drawn above the vehicle origin.
   const std::regex cy_re("class=\"t rec current\" cx=\"([-0-9.]+)\" cy=\"([-0-9.]+)\"");
@@ -59,13 +58,13 @@ TEST(SvgBirdseye, EmptySpecRendersAValidSvg) {
   const std::string out = svg::birdseye_svg({});
   EXPECT_EQ(out.rfind("<svg class=\"birdseye\"", 0), 0u);
   EXPECT_EQ(out.substr(out.size() - 6), "</svg>");
-  EXPECT_EQ(count(out, "<svg"), 2u);  // the picture and its clipping viewport
-  EXPECT_EQ(count(out, "</svg>"), 2u);
-  EXPECT_EQ(count(out, "<g"), count(out, "</g>"));
+  EXPECT_EQ(testing::count_occurrences(out, "<svg"), 2u);  // the picture and its clipping viewport
+  EXPECT_EQ(testing::count_occurrences(out, "</svg>"), 2u);
+  EXPECT_EQ(testing::count_occurrences(out, "<g"), testing::count_occurrences(out, "</g>"));
   EXPECT_EQ(out.find("nan"), std::string::npos);
   EXPECT_EQ(out.find("inf"), std::string::npos);
-  EXPECT_EQ(count(out, "<polygon class=\"box\""), 0u);
-  EXPECT_EQ(count(out, "class=\"t "), 0u);
+  EXPECT_EQ(testing::count_occurrences(out, "<polygon class=\"box\""), 0u);
+  EXPECT_EQ(testing::count_occurrences(out, "class=\"t "), 0u);
   EXPECT_EQ(out.find("<style>"), std::string::npos);  // only a standalone picture carries styles
   std::smatch m;
   ASSERT_TRUE(std::regex_search(out, m, std::regex(R"re(width="([0-9]+)" height="([0-9]+)")re")));
@@ -104,7 +103,7 @@ TEST(SvgBirdseye, EveryTextFromDataIsEscaped) {
   EXPECT_EQ(out.find("<script"), std::string::npos);
   EXPECT_EQ(out.find("&\""), std::string::npos);
   // aria-label and title, note, sensor tooltip, box label, two legend entries
-  EXPECT_EQ(count(out, "&lt;script&gt;&amp;&quot;"), 7u);
+  EXPECT_EQ(testing::count_occurrences(out, "&lt;script&gt;&amp;&quot;"), 7u);
 }
 
 }  // namespace

@@ -11,7 +11,6 @@
 namespace rcsim::replay {
 namespace {
 
-std::size_t count(const std::string& text, const std::string& needle) { return testing::count_occurrences(text, needle); }
 
 TEST(SvgPlot, PlotBreaksLinesAtGapsAndLabelsItsAxes) {
   svg::PlotSpec spec;
@@ -23,8 +22,8 @@ TEST(SvgPlot, PlotBreaksLinesAtGapsAndLabelsItsAxes) {
   const std::regex line_re("class=\"series line\" d=\"([^\"]*)\"");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(out, m, line_re));
-  EXPECT_EQ(count(m[1], "M"), 2u);
-  EXPECT_EQ(count(m[1], "L"), 2u);
+  EXPECT_EQ(testing::count_occurrences(m[1], "M"), 2u);
+  EXPECT_EQ(testing::count_occurrences(m[1], "L"), 2u);
   EXPECT_NE(out.find("T &lt;1&gt;"), std::string::npos);
   EXPECT_NE(out.find(">range / m<"), std::string::npos);
   EXPECT_NE(out.find(">t / s<"), std::string::npos);
@@ -40,7 +39,7 @@ TEST(SvgPlot, HistogramClampsOutliersIntoTheEndBins) {
   h.below = 2;
   h.above = 1;
   const std::string out = svg::histogram_svg(h);
-  EXPECT_EQ(count(out, "<rect class=\"bar\""), 3u);
+  EXPECT_EQ(testing::count_occurrences(out, "<rect class=\"bar\""), 3u);
   EXPECT_NE(out.find("2 below / 1 above"), std::string::npos);
 }
 
@@ -50,9 +49,9 @@ TEST(SvgPlot, EmptyPlotSaysNoDataAndIsAValidSvg) {
   const std::string out = svg::plot_svg(spec);
   EXPECT_EQ(out.rfind("<svg class=\"plot\"", 0), 0u);
   EXPECT_EQ(out.substr(out.size() - 6), "</svg>");
-  EXPECT_EQ(count(out, "<g"), count(out, "</g>"));
+  EXPECT_EQ(testing::count_occurrences(out, "<g"), testing::count_occurrences(out, "</g>"));
   EXPECT_NE(out.find(">no data</text>"), std::string::npos);
-  EXPECT_EQ(count(out, "class=\"series"), 0u);
+  EXPECT_EQ(testing::count_occurrences(out, "class=\"series"), 0u);
   EXPECT_EQ(out.find("nan"), std::string::npos);
 }
 
@@ -66,7 +65,7 @@ TEST(SvgPlot, LargerValuesAreHigherAndLaterOnesFurtherRight) {
   EXPECT_LT(std::stod(m[1]), std::stod(m[3]));  // t = 0 left of t = 10
   EXPECT_GT(std::stod(m[2]), std::stod(m[4]));  // 1 below 5 (screen y grows downwards)
   EXPECT_NE(out.find("<circle cx="), std::string::npos);  // a dot series has a dot in the legend
-  EXPECT_EQ(count(out, "no data"), 0u);
+  EXPECT_EQ(testing::count_occurrences(out, "no data"), 0u);
 }
 
 TEST(SvgPlot, LegendNotesAndHistogramLabelsAreEscaped) {

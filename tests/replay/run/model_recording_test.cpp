@@ -12,7 +12,7 @@
 namespace rcsim::replay {
 namespace {
 
-Scene pole_ahead(double duration_s = 1.0) {
+Scene two_poles_ahead(double duration_s = 1.0) {
   Scene scene = testing::single_sensor_scene(duration_s);
   testing::add_object(scene, "pole", "pole", {testing::sample(0.0, 10.0, 0.0, 0.0, 0.0)});
   testing::add_object(scene, "far", "pole", {testing::sample(0.0, 40.0, 5.0, 0.0, 0.0)});
@@ -20,7 +20,7 @@ Scene pole_ahead(double duration_s = 1.0) {
 }
 
 TEST(ModelRecording, TrueBoxesAndTheModelsTracks) {
-  const Scene scene = pole_ahead();
+  const Scene scene = two_poles_ahead();
   const Recording rec = model_recording(scene, "poles", 3);
   EXPECT_EQ(rec.name, "poles");
   EXPECT_EQ(rec.cycle_count(), static_cast<int>(std::lround(scene.duration_s / scene.cycle_time_s)) + 1);
@@ -36,7 +36,7 @@ TEST(ModelRecording, TrueBoxesAndTheModelsTracks) {
 }
 
 TEST(ModelRecording, NoiseAndAnnotationRangeAsAsked) {
-  const Scene scene = pole_ahead(2.0);
+  const Scene scene = two_poles_ahead(2.0);
   const Recording noisy = model_recording(scene, "poles", 3, {0.05, 0.0, 20.0});
   // The far pole is never within 20 m: it is not in the recording at all.
   ASSERT_EQ(noisy.boxes.size(), 1u);
