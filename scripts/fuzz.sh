@@ -1,24 +1,31 @@
 #!/usr/bin/env bash
-# The libFuzzer harnesses (docs/fuzzing.md): builds them with Debian's clang into build-fuzz/
-# (-DRCSIM_FUZZ=ON: every library instrumented, ASan + UBSan), gathers each harness's seed corpus
-# from the repository's own files, and runs the harnesses one after the other for a bounded time.
+# The libFuzzer harnesses (docs/fuzzing.md): builds them into the sanitizer tree build-asan/
+# (scripts/build-sanitize.sh: clang, every library instrumented with libFuzzer's coverage, ASan and
+# UBSan; the tree scripts/test.sh also runs the whole suite from), gathers each harness's seed
+# corpus from the repository's own files, and runs the harnesses for a bounded time, FUZZ_JOBS at
+# a time.
 #
 # Usage: scripts/fuzz.sh [HARNESS...]          (default: every tests/fuzz/*_fuzz.cpp)
 #   FUZZ_SECONDS=60     time per harness (libFuzzer -max_total_time)
+#   FUZZ_JOBS=2         harnesses run at once (default: the cores, at most 2)
 #   FUZZ_NO_BUILD=1     use the harnesses already built
 #   FUZZ_NICE=0         niceness of the runs (long runs beside other work: 10)
 #   FUZZ_ARGS="..."     more libFuzzer flags (e.g. -seed=1)
+#   RCSIM_FUZZ_CORPUS_DIR  where the corpora grow from run to run, outside the clone, so that a
+#                       new clone's 60 s start where the last run ended
+#                       (default: ~/.cache/rcsim/fuzz-corpus; never checked in)
 # Fails if any harness finds a crash, a sanitizer report, a hang (-timeout) or a memory blow-up
-# (-rss_limit_mb, -malloc_limit_mb); the input is in build-fuzz/fuzz/findings/HARNESS/, the log in
-# build-fuzz/fuzz/logs/HARNESS.log. Inputs that found new coverage accumulate in
-# build-fuzz/fuzz/corpus/HARNESS/ from run to run (never checked in).
+# (-rss_limit_mb, -malloc_limit_mb); the input is in build-asan/fuzz/findings/HARNESS/, the log in
+# build-asan/fuzz/logs/HARNESS.log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-build=${RCSIM_FUZZ_BUILD_DIR:-build-fuzz}
+build=${RCSIM_SANITIZE_BUILD_DIR:-build-asan}
 seconds=${FUZZ_SECONDS:-60}
 niceness=${FUZZ_NICE:-0}
+lanes=${FUZZ_JOBS:-$(( $(nproc) < 2 ? $(nproc) : 2 ))}
 work=$root/$build/fuzz
+corpus_root=${RCSIM_FUZZ_CORPUS_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/rcsim/fuzz-corpus}
 
 all_harnesses() {
   for f in tests/fuzz/*_fuzz.cpp; do basename "$f" .cpp; done
@@ -32,13 +39,7 @@ fi
 
 # ---- build ----
 if [ "${FUZZ_NO_BUILD:-0}" != "1" ]; then
-  scripts/install-packages.sh clang libclang-rt-14-dev cmake ninja-build ccache libeigen3-dev libboost-dev \
-    libsqlite3-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libsqlitecpp-dev
-  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
-  jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
-  CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRCSIM_FUZZ=ON \
-    -DRCSIM_BUILD_BENCHMARKS=OFF >/dev/null
-  cmake --build "$build" -j "$jobs" --target "${harnesses[@]}" rcsim_fuzz_regressions
+  scripts/build-sanitize.sh "${harnesses[@]}" rcsim_fuzz_regressions
 fi
 
 # ---- seeds: the repository's own files, as each harness reads them ----
@@ -134,28 +135,43 @@ fi
 # The harnesses write each input's files into a scratch directory: on tmpfs where there is one
 # (the recording and aiMotive harnesses spent a third of their time in ext4 otherwise).
 if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then export TMPDIR=/dev/shm; fi
+# run_harness HARNESS: gathers its seeds, fuzzes it, and leaves its exit status in logs/HARNESS.status.
+run_harness() {
+  local harness=$1 h=${1%_fuzz} status=0
+  local seeds=$work/seeds/$h corpus=$corpus_root/$h findings=$work/findings/$h log=$work/logs/$h.log
+  mkdir -p "$corpus" "$findings" "$work/logs"
+  gather_seeds "$h" "$seeds"
+  local dict=()
+  [ -f "tests/fuzz/$h.dict" ] && dict=(-dict="tests/fuzz/$h.dict")
+  echo "== fuzzing $h for ${seconds} s ($(ls "$seeds" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
+  # shellcheck disable=SC2086
+  nice -n "$niceness" "$build/bin/${h}_fuzz" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 \
+    -print_final_stats=1 -artifact_prefix="$findings/" "${dict[@]}" ${FUZZ_ARGS:-} "$corpus" "$seeds" > "$log" 2>&1 || status=$?
+  echo "$status" > "$work/logs/$h.status"
+}
+
+mkdir -p "$work/logs"
+for harness in "${harnesses[@]}"; do
+  rm -f "$work/logs/${harness%_fuzz}.status"
+  while [ "$(jobs -rp | wc -l)" -ge "$lanes" ]; do wait -n || true; done
+  run_harness "$harness" &
+done
+wait
+
 failed=()
 summary=()
 for harness in "${harnesses[@]}"; do
   h=${harness%_fuzz}
-  seeds=$work/seeds/$h corpus=$work/corpus/$h findings=$work/findings/$h log=$work/logs/$h.log
-  mkdir -p "$corpus" "$findings" "$work/logs"
-  gather_seeds "$h" "$seeds"
-  dict=()
-  [ -f "tests/fuzz/$h.dict" ] && dict=(-dict="tests/fuzz/$h.dict")
-  echo "== fuzzing $h for ${seconds} s ($(ls "$seeds" | wc -l) seeds, $(ls "$corpus" | wc -l) in the corpus)"
-  status=0
-  # shellcheck disable=SC2086
-  nice -n "$niceness" "$build/bin/${h}_fuzz" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 \
-    -print_final_stats=1 -artifact_prefix="$findings/" "${dict[@]}" ${FUZZ_ARGS:-} "$corpus" "$seeds" > "$log" 2>&1 || status=$?
+  log=$work/logs/$h.log findings=$work/findings/$h
+  status=$(cat "$work/logs/$h.status" 2>/dev/null || echo "?")
   done_line=$(grep -E '^#[0-9]+[[:space:]]+DONE' "$log" | tail -n 1 || true)
   [ -n "$done_line" ] || done_line=$(grep -E '^#[0-9]+' "$log" | tail -n 1 || true)
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
   cov=$(sed -n 's/.* cov: \([0-9]*\).*/\1/p' <<<"$done_line")
   ft=$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$done_line")
   summary+=("$(printf '%-14s %12s execs  cov %6s  ft %7s  %s' "$h" "${execs:-?}" "${cov:-?}" "${ft:-?}" \
-               "$([ $status -eq 0 ] && echo ok || echo "FAILED (exit $status)")")")
-  if [ $status -ne 0 ]; then
+               "$([ "$status" = 0 ] && echo ok || echo "FAILED (exit $status)")")")
+  if [ "$status" != 0 ]; then
     failed+=("$h")
     echo "-- $h failed (exit $status); the end of $log:"
     tail -n 60 "$log"
@@ -163,7 +179,7 @@ for harness in "${harnesses[@]}"; do
   fi
 done
 
-echo "== fuzz summary (${seconds} s each)"
+echo "== fuzz summary (${seconds} s each, ${lanes} at a time; corpora in $corpus_root)"
 printf '%s\n' "${summary[@]}"
 if [ ${#failed[@]} -gt 0 ]; then
   echo "fuzz: findings in ${failed[*]} (inputs in $work/findings/)" >&2

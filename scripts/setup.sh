@@ -8,9 +8,8 @@ shift || true
 
 # slurm-wlm and munge: the campaign tests start a one-node Slurm cluster on loopback
 # (tests/campaign/slurm_cluster.hpp); libxml2-utils: xmllint validates the JUnit output.
-scripts/install-packages.sh cmake ninja-build g++ ccache pkg-config libeigen3-dev libboost-dev libsqlite3-dev \
-  libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libsqlitecpp-dev chromium \
-  fonts-dejavu-core tshark slurm-wlm munge libxml2-utils
+# shellcheck disable=SC2046
+scripts/install-packages.sh $(cat scripts/build-packages.txt) chromium fonts-dejavu-core tshark slurm-wlm munge libxml2-utils
 
 # ccache keys on paths relative to the checkout, so that a fresh clone elsewhere reuses the
 # cache (and a debug build's working directory is left out of the key).

@@ -15,6 +15,7 @@ target_link_options(rcsim_warnings INTERFACE -fsanitize=thread)
 
 file(GLOB RCSIM_STREAM_TSAN_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*_test.cpp)
 list(FILTER RCSIM_STREAM_TSAN_SOURCES EXCLUDE REGEX "/(listen_cli|wireshark_dissector)_test\\.cpp$")
+rcsim_unity(RCSIM_STREAM_TSAN_SOURCES rcsim_stream_tests ${RCSIM_STREAM_TSAN_SOURCES})
 add_executable(rcsim_stream_tests ${RCSIM_STREAM_TSAN_SOURCES})
 target_link_libraries(rcsim_stream_tests PRIVATE rcsim_stream GTest::gtest GTest::gtest_main rcsim_warnings)
 target_include_directories(rcsim_stream_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
