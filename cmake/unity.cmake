@@ -4,8 +4,8 @@
 # root's include directory, which every target has from rcsim_common), so that the heavy headers
 # (nlohmann/json, fmt, Eigen, Boost.Asio, GoogleTest) are parsed once a batch rather than once a
 # file. The generated files name no absolute path: a clone elsewhere hits the same ccache entries
-# (CMake's own unity files include absolute paths). Sources outside the repository (the embedded
-# data, generated into the build tree) are compiled on their own. Names at file scope, anonymous
+# (CMake's own unity files include absolute paths). Sources outside the repository or inside the build
+# tree (the embedded data) are compiled on their own. Names at file scope, anonymous
 # namespaces included, must be unique within a target; -DRCSIM_UNITY=OFF builds file by file.
 option(RCSIM_UNITY "Compile each target's sources in batches (docs/ci.md)" ON)
 set(RCSIM_UNITY_BATCH_SIZE 16 CACHE STRING "Sources per unity batch")
@@ -15,10 +15,17 @@ function(rcsim_unity out name)
     set(${out} ${ARGN} PARENT_SCOPE)
     return()
   endif()
-  set(inside ${ARGN})
-  list(FILTER inside INCLUDE REGEX "^${CMAKE_SOURCE_DIR}/")
-  set(outside ${ARGN})
-  list(FILTER outside EXCLUDE REGEX "^${CMAKE_SOURCE_DIR}/")
+  set(inside "")
+  set(outside "")
+  foreach(source ${ARGN})
+    cmake_path(IS_PREFIX CMAKE_SOURCE_DIR "${source}" NORMALIZE in_source)
+    cmake_path(IS_PREFIX CMAKE_BINARY_DIR "${source}" NORMALIZE in_binary)
+    if(in_source AND NOT in_binary)
+      list(APPEND inside ${source})
+    else()
+      list(APPEND outside ${source})
+    endif()
+  endforeach()
   list(SORT inside)
   set(result ${outside})
   set(batch 0)
