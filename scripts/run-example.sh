@@ -7,7 +7,7 @@
 # Runs accumulate in the database (rcsim never deletes a report); the HTML shows this batch.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh build
+RCSIM_TARGETS=rcsim scripts/setup.sh build  # the executable only; scripts/test.sh builds the rest in build/ too
 mkdir -p out
 runs=0
 for recording in recordings_synthetic/*/; do

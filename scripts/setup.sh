@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what rcsim needs from Debian's packages (only what is missing), then configures and
 # builds. Usage: scripts/setup.sh [BUILD_DIR] [extra cmake arguments...]
+#   RCSIM_TARGETS="rcsim ..."  builds only these targets (default: everything)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${1:-build}
@@ -16,4 +17,5 @@ scripts/install-packages.sh $(cat scripts/build-packages.txt) chromium fonts-dej
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
 jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-cmake --build "$build_dir" -j "$jobs"
+# shellcheck disable=SC2086
+cmake --build "$build_dir" -j "$jobs" ${RCSIM_TARGETS:+--target $RCSIM_TARGETS}

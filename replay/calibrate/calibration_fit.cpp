@@ -20,8 +20,6 @@ namespace rcsim::replay {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
-
 constexpr double kErcsLowerDb = -40.0, kErcsUpperDb = 20.0;  // search range about the starting ERCS
 constexpr double kLevelRangeDb = 20.0;
 constexpr double kSlopeLowerDbPerM = 0.05, kSlopeUpperDbPerM = 3.0;

@@ -25,6 +25,9 @@
 
 namespace rcsim::replay {
 
+// The calibration's JSON documents keep their keys in the order they were written.
+using Json = nlohmann::ordered_json;
+
 // What may be varied. Reflectors that mirror each other about the model's x axis (a left and a
 // right corner) share their parameters, mirrored, so a fitted model stays symmetric.
 enum class ParameterGroup {

@@ -12,8 +12,6 @@
 
 namespace rcsim::replay {
 
-using Json = nlohmann::ordered_json;
-
 Recording restrict_to_sensor(const Recording& recording, int sensor) {
   Recording out = recording;
   out.sensors = {recording.sensors.at(static_cast<std::size_t>(sensor))};

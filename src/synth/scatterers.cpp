@@ -254,7 +254,11 @@ std::vector<WorldScatterer> road_clutter_near(const Clutter& clutter, std::uint6
       Rng rng(seed, key);
       const int count = rng.poisson(clutter.density_per_m2 * tile * tile);
       for (int i = 0; i < count; ++i) {
-        const Vec2 p(tile * (static_cast<double>(ix) + rng.uniform01()), tile * (static_cast<double>(iy) + rng.uniform01()));
+        // The draws one by one: the order of a call's arguments is unspecified (GCC took y first,
+        // clang x, and the same seed gave another clutter field); y first keeps the outputs made.
+        const double fraction_y = rng.uniform01();
+        const double fraction_x = rng.uniform01();
+        const Vec2 p(tile * (static_cast<double>(ix) + fraction_x), tile * (static_cast<double>(iy) + fraction_y));
         const double rcs_db = clutter.median_rcs_rel_db + clutter.rcs_spread_db * rng.normal();
         const double height_m = rng.uniform(0.02, 0.15);
         if ((p - p_WS_W).squaredNorm() > radius_m * radius_m) continue;

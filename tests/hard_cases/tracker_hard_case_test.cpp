@@ -6,6 +6,7 @@
 
 #include "common/rng.hpp"
 #include "hard_cases/hard_case_support.hpp"
+#include "sanitizers.hpp"
 #include "sim/tracking.hpp"
 
 namespace rcsim {
@@ -13,17 +14,7 @@ namespace {
 
 // 1e6 cycles take about a second in Release; sanitizer builds (ASan/UBSan run the suite too) are
 // some ten times slower, so they run 1e5.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr long kLongRunCycles = 100'000;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr long kLongRunCycles = 100'000;
-#else
-constexpr long kLongRunCycles = 1'000'000;
-#endif
-#else
-constexpr long kLongRunCycles = 1'000'000;
-#endif
+constexpr long kLongRunCycles = RCSIM_UNDER_ASAN ? 100'000 : 1'000'000;
 
 void expect_spd(const TrackCovariance& P, long cycle) {
   ASSERT_TRUE(P.allFinite()) << cycle;

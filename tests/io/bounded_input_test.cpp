@@ -14,6 +14,7 @@
 #include "common/input_error.hpp"
 #include "common/text_file.hpp"
 #include "io/recording.hpp"
+#include "sanitizers.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim {
@@ -105,7 +106,7 @@ TEST_F(BoundedInput, AnnotationsOutOfTimeOrderAreRefusedByLine) {
       << message;
 }
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if RCSIM_UNDER_SANITIZER
 TEST(StreamingMemory, ALongDriveReplaysWithinAFixedMemoryLimit) {
   GTEST_SKIP() << "the sanitizers reserve terabytes of address space: no address-space limit applies";
 }
