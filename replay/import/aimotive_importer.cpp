@@ -258,6 +258,7 @@ std::vector<std::vector<BodyBox>> read_body_boxes(const std::vector<Keyframe>& f
     const std::string file = frames[k].box_file.string();
     const nlohmann::json json = parse_json_file(file);
     const JsonField root(json, file, "");
+    std::map<std::string, std::string> actor_of_id;  // this keyframe's objects: one box each
     for (const JsonField& o : root.array("CapturedObjects")) {
       const std::string type = o.string("ObjectType");
       const auto model = model_of_type().find(type);
@@ -266,7 +267,12 @@ std::vector<std::vector<BodyBox>> read_body_boxes(const std::vector<Keyframe>& f
         continue;
       }
       BodyBox box;
-      box.id = object_id(o.string("ActorName"));
+      const std::string actor = o.string("ActorName");
+      box.id = object_id(actor);
+      if (const auto [earlier, added] = actor_of_id.emplace(box.id, actor); !added) {
+        o.fail("ActorName", fmt::format("'{}' is object '{}', which this keyframe already has a box of ('{}')", actor, box.id,
+                                        earlier->second));
+      }
       box.model = model->second;
       const double qw = o.number("BoundingBox3D Orientation Quat W"), qx = o.number("BoundingBox3D Orientation Quat X"),
                    qy = o.number("BoundingBox3D Orientation Quat Y"), qz = o.number("BoundingBox3D Orientation Quat Z");
