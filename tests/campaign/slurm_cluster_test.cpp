@@ -36,7 +36,9 @@ class SlurmClusterTest : public ScratchDirTest {
                           << "i=$SLURM_ARRAY_TASK_ID\n"
                           << "echo partial > $out/partial_$i\n"
                           << "if [ \"$i\" = " << slow_task << " ] && [ ! -e $out/started_$i ]; then\n"
-                          << "  touch $out/started_$i; sleep 600\n"
+                          // scancel may signal the sleep before the shell: a killed sleep ends
+                          // the task, which must not go on to look finished.
+                          << "  touch $out/started_$i; sleep 600 || exit 143\n"
                           << "fi\n"
                           << "echo \"$SLURM_ARRAY_JOB_ID $SLURM_ARRAY_TASK_ID\" > $out/task_$i.txt\n"
                           << "rm $out/partial_$i\n";
