@@ -118,9 +118,13 @@ gather_seeds() {  # gather_seeds HARNESS DIR
       base_sections tests/fuzz/base/calibration.txt "$dir" ;;
     aimotive)
       base_sections tests/fuzz/base/aimotive.txt "$dir" ;;
-    udp_datagram|udp_control)
-      # Datagrams made by the project's encoders (udp_targets.hpp), written by the harness itself.
+    udp_datagram|udp_control|report_database)
+      # Datagrams made by the project's encoders (udp_targets.hpp), and report databases replayed
+      # from the recording base (store_targets.hpp): written by the harness itself.
       RCSIM_FUZZ_WRITE_SEEDS=$dir "$build/bin/${h}_fuzz" ;;
+    campaign_manifest)
+      # The schema's examples, read beside drives/a, drives/b and extra/drive_0042 (store_targets.hpp).
+      schema_examples schemas/campaign.md "$dir" schema ;;
   esac
   if [ -d "tests/fuzz/corpus/$h" ]; then cp tests/fuzz/corpus/"$h"/* "$dir"/ 2>/dev/null || true; fi
   if [ -d "tests/fuzz/regressions/$h" ]; then cp tests/fuzz/regressions/"$h"/* "$dir"/ 2>/dev/null || true; fi

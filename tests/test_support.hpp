@@ -15,6 +15,10 @@ namespace rcsim::testing {
 
 // The recordings bundled with the checkout.
 inline const std::filesystem::path kBundledRecordings = std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
+// The aiMotive sample drive's raw layout (../shared/realdata/, never in the repository): tests that
+// need it skip, saying so, where it is absent.
+inline const std::filesystem::path kAimotiveRaw =
+    std::filesystem::path(RCSIM_SOURCE_DIR) / ".." / "shared" / "realdata" / "aimotive_highway_night" / "raw";
 
 inline const ModelLibrary& library() {
   static const ModelLibrary lib = ModelLibrary::builtin();

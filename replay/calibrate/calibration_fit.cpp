@@ -180,6 +180,7 @@ class Fitter {
   struct Figures {
     double gospa_m = 0.0;
     double log_targets_ratio = 0.0;  // ln((simulated + 1) / (recorded + 1))
+    long long object_cycles_in_view = 0;  // sensor cycles with an annotated object in view, summed
   };
   double gospa_m(std::size_t i) const { return figures(i).gospa_m; }
   Figures figures(std::size_t i) const {
@@ -192,8 +193,11 @@ class Fitter {
     ModelSource model(scene, model_options(options_.seed, Fidelity::full));
     DiscardingSink sink;
     const ReplaySummary s = compare_with_recording(*e.recording, e.imported, scene, model, replay, sink);
-    return {s.gospa_mean_m, std::log((static_cast<double>(s.targets_simulated) + 1.0) /
-                                     (static_cast<double>(s.targets_recorded) + 1.0))};
+    long long in_view = 0;
+    for (const auto& o : s.objects) in_view += o.cycles_in_view;
+    return {s.gospa_mean_m,
+            std::log((static_cast<double>(s.targets_simulated) + 1.0) / (static_cast<double>(s.targets_recorded) + 1.0)),
+            in_view};
   }
 
  private:
@@ -392,18 +396,46 @@ std::string_view parameter_group_name(ParameterGroup group) {
   return "?";
 }
 
+void check_fittable(const Recording& recording) {
+  const std::string dir = recording.dir.string();
+  if (recording.targets.empty()) throw InputError(dir, "", "holds no recorded target: nothing to fit the model to");
+  if (recording.cycle_count() < kMinCalibrationCycles) {
+    throw InputError(dir, "", fmt::format("{} cycles; a fit needs {} at least (a track confirms after {} hits)",
+                                          recording.cycle_count(), kMinCalibrationCycles, kMinCalibrationCycles));
+  }
+  const RecordedTarget& first = recording.targets.front();
+  const bool all_same = std::all_of(recording.targets.begin(), recording.targets.end(), [&](const RecordedTarget& t) {
+    return t.range_m == first.range_m && t.azimuth_rad == first.azimuth_rad && t.range_rate_mps == first.range_rate_mps &&
+           t.amplitude_db == first.amplitude_db;
+  });
+  if (all_same && recording.targets.size() > 1) {
+    throw InputError(dir, "targets.csv",
+                     fmt::format("all {} recorded targets are one point (range, azimuth, range rate, amplitude): "
+                                 "nothing varies to fit",
+                                 recording.targets.size()));
+  }
+}
+
 CalibrationResult calibrate(const std::vector<Recording>& recordings, const CalibrationOptions& options,
                             const CalibrationProgress& progress) {
   if (recordings.empty()) throw std::invalid_argument("calibrate: no recording");
   if (!(options.initial_step_db > 0.0) || !(options.final_step_db > 0.0) || options.final_step_db > options.initial_step_db) {
     throw std::invalid_argument("calibrate: steps must satisfy 0 < final_step_db <= initial_step_db");
   }
+  for (const Recording& r : recordings) check_fittable(r);
   Fitter fitter(recordings, options);
   CalibrationResult result;
   const std::size_t n = fitter.size();
   using Figures = decltype(fitter.figures(0));
   std::vector<Figures> before(n), figures(n);
-  for (std::size_t i = 0; i < n; ++i) figures[i] = before[i] = fitter.figures(i);
+  for (std::size_t i = 0; i < n; ++i) {
+    figures[i] = before[i] = fitter.figures(i);
+    // The reflectors' parameters act only through objects a sensor sees.
+    if (before[i].object_cycles_in_view == 0) {
+      throw InputError(recordings[i].dir.string(), "",
+                       "no annotated object is ever within a sensor's view field: nothing to fit the reflectors to");
+    }
+  }
   ++result.evaluations;
   // Every recording weighs the same: GOSPA relative to its starting value (a perfect start is 1).
   // GOSPA alone rewards dropping targets it would misplace by more than the cut-off (a miss costs

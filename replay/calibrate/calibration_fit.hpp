@@ -82,6 +82,13 @@ struct CalibrationResult {
   std::map<std::string, nlohmann::ordered_json> documents;
 };
 
+// The fewest cycles a recording to fit on may have: a track confirms after 4 hits (paper III-E).
+inline constexpr int kMinCalibrationCycles = 4;
+
+// Refuses, naming the recording (InputError), one that cannot inform a fit: no recorded target,
+// fewer than kMinCalibrationCycles cycles, or every recorded target the same point.
+void check_fittable(const Recording& recording);
+
 // Progress: the step just finished, the objective and the evaluations so far.
 using CalibrationProgress = std::function<void(double step_db, double objective, int evaluations)>;
 

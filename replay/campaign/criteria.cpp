@@ -101,6 +101,18 @@ std::vector<Criterion> parse_criteria(const JsonField& document) {
       if (!entry.has(key)) continue;
       c.bound = bound;
       c.threshold = entry.number(key);
+      // A floor above a ceiling of the same figure and statistic, in this entry or an earlier one,
+      // can never pass: a typo, refused rather than failing every run.
+      for (const Criterion& other : out) {
+        if (other.figure != c.figure || other.scope != c.scope || other.statistic != c.statistic || other.bound == c.bound) {
+          continue;
+        }
+        const double floor = c.bound == Bound::min ? c.threshold : other.threshold;
+        const double ceiling = c.bound == Bound::max ? c.threshold : other.threshold;
+        if (floor > ceiling) {
+          entry.fail(key, fmt::format("\"{}\": min {:g} above max {:g}: no value can pass both", c.text(), floor, ceiling));
+        }
+      }
       out.push_back(c);
     }
   }

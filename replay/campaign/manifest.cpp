@@ -8,6 +8,7 @@
 
 #include "common/input_error.hpp"
 #include "common/limits.hpp"
+#include "common/safe_text.hpp"
 
 namespace rcsim::replay::campaign {
 
@@ -121,10 +122,19 @@ CampaignManifest read_manifest(const std::filesystem::path& path) {
   root.expect_format("rcsim-campaign", 1);
   root.expect_only({"format", "version", "name", "description", "recordings", "replay", "criteria", "slurm"});
   m.name = root.string("name");
-  if (m.name.empty()) root.fail("name", "expected a non-empty name");
+  // The name goes into the batch script, sbatch's job name, file names and commands printed to
+  // be pasted: only a plain name is safe in all of them unquoted.
+  if (!is_plain_name(m.name)) {
+    root.fail("name", "expected a plain name: 1 to 64 letters, digits, '.', '_', '-' or '+', starting with a letter "
+                      "or digit");
+  }
   const std::filesystem::path base_dir = m.file.parent_path();
   for (const JsonField& entry : root.array("recordings")) {
     for (const auto& dir : expand(entry, base_dir)) {
+      // A path goes into logs and status lines, one per recording.
+      if (const auto bad = find_control_character(dir.string())) {
+        entry.fail(fmt::format("the recording path '{}' holds {}: rename the folder", dir.string(), *bad));
+      }
       m.recordings.push_back(std::filesystem::absolute(dir).lexically_normal());
     }
   }
@@ -139,7 +149,7 @@ CampaignManifest read_manifest(const std::filesystem::path& path) {
     const auto text = [&](const char* key) {
       if (!s.has(key)) return std::string();
       const std::string v = s.string(key);
-      if (v.find_first_of("\n\r") != std::string::npos) s.fail(key, "must be one line");
+      if (const auto bad = find_control_character(v)) s.fail(key, "must be one line of text; it holds " + *bad);
       return v;
     };
     m.slurm.partition = text("partition");
@@ -149,7 +159,7 @@ CampaignManifest read_manifest(const std::filesystem::path& path) {
     if (s.has("extra")) {
       for (const JsonField& e : s.array("extra")) {
         const std::string v = e.json().is_string() ? e.json().get<std::string>() : "";
-        if (!v.starts_with("--") || v.find_first_of("\n\r") != std::string::npos) {
+        if (!v.starts_with("--") || find_control_character(v)) {
           e.fail("expected one sbatch option on one line, starting with --");
         }
         m.slurm.extra.push_back(v);

@@ -7,6 +7,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "common/safe_text.hpp"
 #include "common/text_file.hpp"
 #include "io/recording_stream.hpp"
 
@@ -23,13 +24,6 @@ std::optional<double> first_field_s(std::string_view row) {
   const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), t);
   if (ec != std::errc() || end != field.data() + field.size()) return std::nullopt;
   return t;
-}
-
-// Single-quoted for the shell.
-std::string shell_quote(const std::string& text) {
-  std::string out = "'";
-  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 }  // namespace
@@ -92,7 +86,8 @@ std::string batch_script(const CampaignPlan& plan) {
   s += fmt::format("#SBATCH --job-name=rcsim-{}\n", plan.manifest.name.substr(0, 40));
   s += fmt::format("#SBATCH --array=0-{}\n", plan.shards.size() - 1);
   s += "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n";
-  s += fmt::format("#SBATCH --output={}\n", (plan.dir / "logs" / "slurm-%A_%a.out").string());
+  // Quoted: sbatch reads a double-quoted argument whole (write_plan refuses a '"' in the path).
+  s += fmt::format("#SBATCH --output=\"{}\"\n", (plan.dir / "logs" / "slurm-%A_%a.out").string());
   s += "#SBATCH --open-mode=append\n";
   if (!slurm.partition.empty()) s += "#SBATCH --partition=" + slurm.partition + "\n";
   if (!slurm.account.empty()) s += "#SBATCH --account=" + slurm.account + "\n";
@@ -100,8 +95,8 @@ std::string batch_script(const CampaignPlan& plan) {
   if (!slurm.memory.empty()) s += "#SBATCH --mem=" + slurm.memory + "\n";
   for (const std::string& extra : slurm.extra) s += "#SBATCH " + extra + "\n";
   s += "set -euo pipefail\n";
-  s += fmt::format("exec {} campaign run-shard {} --shard \"$SLURM_ARRAY_TASK_ID\"\n", shell_quote(plan.rcsim.string()),
-                   shell_quote(plan.dir.string()));
+  s += fmt::format("exec {} campaign run-shard {} --shard \"$SLURM_ARRAY_TASK_ID\"\n", shell_quoted(plan.rcsim.string()),
+                   shell_quoted(plan.dir.string()));
   return s;
 }
 
@@ -112,6 +107,16 @@ CampaignPlan write_plan(const CampaignManifest& manifest, int n, const std::file
   plan.dir = std::filesystem::absolute(dir).lexically_normal();
   plan.manifest = manifest;
   plan.rcsim = rcsim;
+  // The plan's directory and rcsim's path go into the batch script's #SBATCH lines and commands.
+  for (const std::filesystem::path& path : {plan.dir, plan.rcsim}) {
+    const std::string text = path.string();
+    if (const auto bad = find_control_character(text)) {
+      throw InputError(text, "", fmt::format("the path holds {}; it cannot go into a batch script", *bad));
+    }
+    if (text.find('"') != std::string::npos) {
+      throw InputError(text, "", "the path holds a '\"'; it cannot go into an #SBATCH line");
+    }
+  }
   if (std::filesystem::exists(plan.dir / "plan.json")) {
     throw InputError((plan.dir / "plan.json").string(), "",
                      "a campaign is planned here already; plan into a new directory (its shard reports stay valid)");
@@ -170,6 +175,7 @@ CampaignPlan read_plan(const std::filesystem::path& dir) {
   m.document = doc.at("manifest");
   const JsonField manifest(m.document, file, "manifest");
   m.name = root.string("name");
+  if (!is_plain_name(m.name)) root.fail("name", "expected a plain name, as the manifest's (rcsim campaign plan checks it)");
   if (manifest.has("replay")) m.replay = parse_campaign_replay(manifest.member("replay"), m.file.parent_path());
   if (manifest.has("criteria")) m.criteria = parse_criteria(manifest);
   plan.rcsim = root.string("rcsim");

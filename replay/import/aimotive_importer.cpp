@@ -11,6 +11,7 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
+#include "common/safe_text.hpp"
 #include "common/angles.hpp"
 #include "common/decibel.hpp"
 #include "common/input_error.hpp"
@@ -185,7 +186,9 @@ std::vector<RadarDetection> read_radar_file(const fs::path& path) {
     for (const auto& [field, level_db] : {std::pair{"power", d.power_db}, std::pair{"noise", d.noise_db}}) {
       if (std::abs(level_db) > limits::kMaxLevel_dB) t.fail(field, fmt::format("exceeds the limit of {} dB", limits::kMaxLevel_dB));
     }
-    if (d.rcs_m2 > 0.0 && power_to_db(d.rcs_m2) > limits::kMaxLevel_dB) {
+    // A radar cross-section in m^2: 0 or below has no level in dBsm (the sample drive's least is 0.087).
+    if (!(d.rcs_m2 > 0.0)) t.fail("rcs", "must be positive: a radar cross-section in m^2");
+    if (power_to_db(d.rcs_m2) > limits::kMaxLevel_dB) {
       t.fail("rcs", fmt::format("exceeds the limit of {} dBsm", limits::kMaxLevel_dB));
     }
     if (std::abs(d.power_db - d.noise_db) > limits::kMaxLevel_dB) {
@@ -208,7 +211,7 @@ RecordedTarget planar_target(const RadarDetection& d, const RadarMount& mount) {
   t.range_rate_mps = d.speed_mps;
   t.amplitude_db = d.power_db - d.noise_db;
   t.snr_db = t.amplitude_db;
-  t.rcs_dbsm = d.rcs_m2 > 0.0 ? power_to_db(d.rcs_m2) : -100.0;  // 10 log10(sigma / 1 m^2); 0 m^2 as -100 dBsm
+  t.rcs_dbsm = power_to_db(d.rcs_m2);  // 10 log10(sigma / 1 m^2); read_radar_file refuses sigma <= 0
   t.elevation_rad = d.elevation_rad;
   return t;
 }
@@ -268,6 +271,8 @@ std::vector<std::vector<BodyBox>> read_body_boxes(const std::vector<Keyframe>& f
       }
       BodyBox box;
       const std::string actor = o.string("ActorName");
+      // The name becomes an object id in objects.csv, one row per line.
+      if (const auto bad = find_control_character(actor)) o.fail("ActorName", "the name holds " + *bad);
       box.id = object_id(actor);
       if (const auto [earlier, added] = actor_of_id.emplace(box.id, actor); !added) {
         o.fail("ActorName", fmt::format("'{}' is object '{}', which this keyframe already has a box of ('{}')", actor, box.id,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <optional>
+#include <random>
 
 #include "replay/import/annotation_smoothing.hpp"
 
@@ -54,21 +55,42 @@ double rms_mps(const std::vector<DopplerTarget>& targets, const std::vector<std:
 
 SensorVelocityFit fit_sensor_velocity(const std::vector<DopplerTarget>& targets, const DopplerFitParameters& parameters) {
   SensorVelocityFit best;
+  std::size_t best_count = 0;
   double best_rms = 0.0;
-  // RANSAC with every pair as the minimal sample: the largest consensus, ties to the smaller RMS.
-  for (std::size_t a = 0; a < targets.size(); ++a) {
-    for (std::size_t b = a + 1; b < targets.size(); ++b) {
-      const auto v = least_squares_velocity(targets, {a, b});
-      if (!v) continue;
-      std::vector<std::size_t> inliers = inliers_of(targets, *v, parameters.inlier_threshold_mps);
-      const double rms = rms_mps(targets, inliers, *v);
-      if (inliers.size() > best.inliers.size() || (inliers.size() == best.inliers.size() && rms < best_rms)) {
-        best.v_S_S = *v;
-        best.inliers = std::move(inliers);
-        best_rms = rms;
+  // RANSAC with a pair as the minimal sample: the largest consensus, ties to the smaller RMS.
+  const auto try_pair = [&](std::size_t a, std::size_t b) {
+    const auto v = least_squares_velocity(targets, {a, b});
+    if (!v) return;
+    std::size_t count = 0;
+    double sum_sq = 0.0;
+    for (const DopplerTarget& t : targets) {
+      const double r = residual_mps(t, *v);
+      if (std::abs(r) <= parameters.inlier_threshold_mps) {
+        ++count;
+        sum_sq += r * r;
       }
     }
+    const double rms = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+    if (count > best_count || (count == best_count && count > 0 && rms < best_rms)) {
+      best.v_S_S = *v;
+      best_count = count;
+      best_rms = rms;
+    }
+  };
+  const std::size_t n = targets.size();
+  if (n >= 2 && n * (n - 1) / 2 <= parameters.max_hypotheses) {
+    for (std::size_t a = 0; a < n; ++a) {
+      for (std::size_t b = a + 1; b < n; ++b) try_pair(a, b);
+    }
+  } else if (n >= 2) {
+    std::mt19937_64 rng(0x5a4d0c1e);  // fixed: the same frame gives the same fit
+    std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+    for (std::size_t k = 0; k < parameters.max_hypotheses; ++k) {
+      const std::size_t a = pick(rng), b = pick(rng);
+      if (a != b) try_pair(a, b);
+    }
   }
+  if (best_count > 0) best.inliers = inliers_of(targets, best.v_S_S, parameters.inlier_threshold_mps);
   // Refit on the consensus, then once more on the refit's own inliers.
   for (int pass = 0; pass < 2 && best.inliers.size() >= 2; ++pass) {
     const auto v = least_squares_velocity(targets, best.inliers);

@@ -35,6 +35,10 @@ struct SensorVelocityFit {
 struct DopplerFitParameters {
   double inlier_threshold_mps = 0.2;  // |measured - predicted| radial speed of a stationary target
   std::size_t min_inliers = 5;
+  // RANSAC's hypotheses: every pair of targets while there are at most this many pairs (64 targets),
+  // else this many pairs drawn with a fixed seed. The cost is hypotheses x targets, linear in the
+  // targets of a frame (an imaging radar gives 10,000).
+  std::size_t max_hypotheses = 2048;
 };
 
 // Kellner's first step: the velocity of one sensor from its targets of one cycle.

@@ -106,10 +106,21 @@ ImportedScene import_header(const Recording& rec, double time_offset_s, const Mo
   out.time_offset_s = time_offset_s;
   out.cycle_time_s = rec.cycle_time_s;
   out.effects = options.effects;
-  if (const auto declared = rec.source.find("effects");
-      options.effects_from_recording && declared != rec.source.end() && declared->is_object()) {
-    const auto flag = [&](const char* name) { return declared->contains(name) && declared->at(name) == true; };
-    out.effects = {flag("clutter"), flag("multibounce"), flag("occlusion")};
+  if (const auto declared = rec.source.find("effects"); declared != rec.source.end()) {
+    // What made the recording: an object of three booleans, each optional (false when absent).
+    if (!declared->is_object()) {
+      throw InputError(header_file(rec), "source.effects", "expected an object of clutter, multibounce, occlusion: true|false");
+    }
+    for (const auto& [name, value] : declared->items()) {
+      if (name != "clutter" && name != "multibounce" && name != "occlusion") {
+        throw InputError(header_file(rec), "source.effects." + name, "unknown effect (clutter, multibounce, occlusion)");
+      }
+      if (!value.is_boolean()) throw InputError(header_file(rec), "source.effects." + name, "expected true or false");
+    }
+    if (options.effects_from_recording) {
+      const auto flag = [&](const char* name) { return declared->contains(name) && declared->at(name) == true; };
+      out.effects = {flag("clutter"), flag("multibounce"), flag("occlusion")};
+    }
   }
   out.sensors = rec.sensors;
   if (!options.sensor_type_override.empty()) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
 #include "replay/report/campaign_section.hpp"
 #include "replay/report/speed_error_section.hpp"
 #include "replay/store/report_reader.hpp"
@@ -288,8 +289,10 @@ void write_html_report(SQLite::Database& db, const std::string& db_label, const 
   write_page(db, db_label, options, selection, context, out);
 }
 
-int write_html_report_file(const std::string& db_path, const std::string& html_path, const HtmlReportOptions& options) {
-  const auto db = open_report_database(db_path, false);
+namespace {
+
+int write_report_pages(const std::string& db_path, const std::string& html_path, const HtmlReportOptions& options) {
+  const auto db = open_report_database_for_reading(db_path);
   const PageSelection selection = select_page(*db, db_path, options);
   std::optional<report::CampaignData> campaign;
   if (selection.overview) campaign = report::read_campaign_data(*db);
@@ -327,6 +330,19 @@ int write_html_report_file(const std::string& db_path, const std::string& html_p
   write_page(*db, db_path, options, selection, context, writer.stream());
   writer.commit();
   return pages_written;
+}
+
+}  // namespace
+
+int write_html_report_file(const std::string& db_path, const std::string& html_path, const HtmlReportOptions& options) {
+  try {
+    return write_report_pages(db_path, html_path, options);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    // SQLite's "malformed" and a damaged block's message: bad input, named (exit status 2).
+    throw InputError(db_path, "", e.what());
+  }
 }
 
 }  // namespace rcsim::replay

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/angles.hpp"
+#include "common/json_reader.hpp"
 #include "replay/report/html_cells.hpp"
 #include "replay/report/svg_writer.hpp"
 
@@ -173,7 +174,7 @@ std::string latency_table(const RunData& run) {
 }
 
 std::string parameter_table(const RunData& run) {
-  const nlohmann::ordered_json parameters = nlohmann::ordered_json::parse(run.info.parameters, nullptr, false);
+  const nlohmann::ordered_json parameters = parse_stored_json(run.info.parameters);
   if (parameters.is_discarded() || !parameters.is_object()) {
     return "<pre>" + escape(run.info.parameters) + "</pre>";
   }
@@ -204,7 +205,7 @@ std::string parameter_table(const RunData& run) {
 
 std::string provenance_blocks(const RunData& run) {
   std::string source = run.info.recording_source;
-  const nlohmann::ordered_json parsed = nlohmann::ordered_json::parse(source, nullptr, false);
+  const nlohmann::ordered_json parsed = parse_stored_json(source);
   if (!parsed.is_discarded()) source = parsed.dump(2);
   std::string out = "<details><summary>Recording provenance (recording.json <code>source</code>)</summary><pre>" +
                     escape(source) + "</pre></details>";

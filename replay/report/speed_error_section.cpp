@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "replay/evaluate/speed_error.hpp"
 #include "replay/report/svg_pareto.hpp"
 #include "replay/report/svg_writer.hpp"
@@ -130,7 +131,7 @@ svg::ParetoExtent shared_extent(const std::vector<BenchSummary>& per_recording) 
 
 std::string parameters_block(const BenchInfo& info) {
   std::string text = info.parameters;
-  const nlohmann::ordered_json parsed = nlohmann::ordered_json::parse(text, nullptr, false);
+  const nlohmann::ordered_json parsed = parse_stored_json(text);
   if (!parsed.is_discarded()) text = parsed.dump(2);
   return "<details><summary>Bench parameters (<code>bench_runs.parameters</code>)</summary><pre>" + escape(text) +
          "</pre></details>";

@@ -26,6 +26,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
 #include "replay/store/report_merge_copy.hpp"
 #include "replay/store/report_merge_files.hpp"
@@ -286,6 +287,8 @@ MergeResult merge_reports(const std::vector<std::string>& inputs, const std::str
   if (!output_path.parent_path().empty() && !fs::is_directory(output_path.parent_path(), error)) {
     throw InputError(output, "", "no such directory");
   }
+  // A symbolic link (a loop too) or a device is refused before anything is read or written.
+  check_output_file(output_path);
   result.stale_temporaries_removed = merge_files::remove_stale_temporaries(output_path);
   // Every input checked, and read, before the output is touched.
   std::vector<Snapshot> snapshots;

@@ -85,6 +85,11 @@ void fsync_path(const fs::path& path, int flags, const std::string& name_for_err
 std::string read_only_uri(const std::string& path) {
   std::error_code error;
   const bool has_wal = fs::exists(path + "-wal", error);
+  // immutable=1 reads without locks, which is right only for a file nobody writes: a replay that
+  // starts writing a shard the merge reads would make intact pages look "malformed". So only a
+  // file this process could not write either (a read-only copy, whose -shm SQLite cannot create).
+  const fs::path dir = fs::absolute(path).parent_path();
+  const bool writable = ::access(path.c_str(), W_OK) == 0 && ::access(dir.c_str(), W_OK) == 0;
   std::string uri = "file:";
   for (const unsigned char c : fs::absolute(path).lexically_normal().string()) {
     if (std::isalnum(c) || c == '/' || c == '.' || c == '_' || c == '-' || c == '~') {
@@ -93,7 +98,7 @@ std::string read_only_uri(const std::string& path) {
       uri += fmt::format("%{:02X}", c);
     }
   }
-  return uri + (has_wal ? "?mode=ro" : "?mode=ro&immutable=1");
+  return uri + (has_wal || writable ? "?mode=ro" : "?mode=ro&immutable=1");
 }
 
 void install_new(const fs::path& temporary, const fs::path& output) {

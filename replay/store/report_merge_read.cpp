@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/input_error.hpp"
+#include "common/json_reader.hpp"
 #include "replay/store/report_merge_files.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"
@@ -185,6 +186,23 @@ void check_regular_file(const std::string& path) {
   if (!fs::is_regular_file(path, error)) throw InputError(path, "", "not a regular file");
 }
 
+namespace {
+
+// Refuses, naming it, a database whose pages or indexes are damaged (SQLite's quick_check: every
+// page and record well-formed, linear in the file): a merge must not copy damage into a clean file.
+void check_intact(SQLite::Database& db, const std::string& path) {
+  SQLite::Statement check(db, "PRAGMA quick_check(5)");
+  std::vector<std::string> problems;
+  while (check.executeStep()) problems.push_back(check.getColumn(0).getString());
+  if (problems.size() == 1 && problems.front() == "ok") return;
+  std::string joined;
+  for (const std::string& p : problems) joined += (joined.empty() ? "" : "; ") + p;
+  throw InputError(path, "", "the database is damaged (PRAGMA quick_check: " + joined +
+                                 "); restore it from a copy, or replay its recordings again");
+}
+
+}  // namespace
+
 std::unique_ptr<SQLite::Database> open_input(const std::string& path, Header& header) {
   check_regular_file(path);
   try {
@@ -192,6 +210,7 @@ std::unique_ptr<SQLite::Database> open_input(const std::string& path, Header& he
                                                  SQLite::OPEN_READONLY | SQLite::OPEN_URI);
     db->setBusyTimeout(5000);
     header = check_header(*db, path);
+    check_intact(*db, path);
     return db;
   } catch (const SQLite::Exception& e) {
     throw_named(e, path);
@@ -208,9 +227,9 @@ Snapshot read_snapshot(SQLite::Database& db, const std::string& file) {
 
 std::string first_manifest_difference(const std::string& theirs, const std::string& kept) {
   if (theirs == kept) return "";
-  const auto t = nlohmann::ordered_json::parse(theirs, nullptr, false);
-  const auto k = nlohmann::ordered_json::parse(kept, nullptr, false);
-  if (t.is_discarded() || k.is_discarded()) return "the texts differ, and one is no JSON";
+  const auto t = parse_stored_json(theirs);
+  const auto k = parse_stored_json(kept);
+  if (t.is_discarded() || k.is_discarded()) return "the texts differ, and one is not JSON (or nests deeper than rcsim reads)";
   if (same_json(t, k)) return "";
   if (!t.is_object() || !k.is_object()) return fmt::format("{} against {}", short_json(t), short_json(k));
   for (const auto& [field, value] : k.items()) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/json_reader.hpp"
 #include "replay/store/run_rows.hpp"
 
 namespace rcsim::replay {
@@ -82,7 +83,7 @@ StoredTarget read_target(SQLite::Statement& q) {
 
 // The run's GOSPA parameters from runs.parameters; they only make the blocks smaller.
 std::pair<double, double> gospa_parameters(const std::string& parameters) {
-  const auto json = nlohmann::json::parse(parameters, nullptr, false);
+  const auto json = parse_stored_json(parameters);
   double cutoff_m = 2.0, order_p = 2.0;
   if (json.is_object() && json.contains("gospa") && json["gospa"].is_object()) {
     const auto& g = json["gospa"];

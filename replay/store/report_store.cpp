@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fmt/chrono.h>
 #include <fmt/format.h>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include "common/embedded_data.hpp"
@@ -154,48 +155,115 @@ void create_report_schema(SQLite::Database& db) {
   db.exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
 }
 
+namespace {
+
+// How long an opener waits for another process's write (a run's commit, a new schema): a run's
+// transaction holds the lock for its whole replay (docs/hardening.md).
+constexpr int kBusyTimeout_ms = 60000;
+
+// Refuses, naming the file, what is there and is not a regular file after symbolic links: SQLite
+// would write a -journal beside a device and fail with "disk I/O error".
+void check_database_file(const std::string& path) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw InputError(path, "", "not a regular file (a directory, device, pipe or socket): a report database is one");
+  }
+}
+
+enum class SchemaState { empty, older, current };
+
+// The identity and version of an open database (read in one transaction: the caller's); refuses, naming the file, one
+// that is not a report database, or of a version this rcsim cannot read.
+SchemaState read_schema_state(SQLite::Database& db, const std::string& path) {
+  const int application_id = db.execAndGet("PRAGMA application_id").getInt();
+  const int user_version = db.execAndGet("PRAGMA user_version").getInt();
+  const int tables = db.execAndGet("SELECT count(*) FROM sqlite_schema").getInt();
+  if (application_id == 0 && user_version == 0 && tables == 0) return SchemaState::empty;
+  if (application_id != kReportApplicationId) {
+    throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
+                                           static_cast<std::uint32_t>(application_id), kReportApplicationId));
+  }
+  if (user_version >= 1 && user_version < kReportSchemaVersion) return SchemaState::older;
+  if (user_version != kReportSchemaVersion) {
+    throw InputError(path, "", fmt::format("report database schema version {} is not the supported version {}",
+                                           user_version, kReportSchemaVersion));
+  }
+  return SchemaState::current;
+}
+
+// The same in a read transaction of its own: one snapshot of the three values.
+SchemaState read_schema_state_once(SQLite::Database& db, const std::string& path) {
+  SQLite::Transaction snapshot(db, SQLite::TransactionBehavior::DEFERRED);
+  const SchemaState state = read_schema_state(db, path);
+  snapshot.commit();
+  return state;
+}
+
+}  // namespace
+
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create) {
   if (!create && !std::filesystem::exists(path)) throw InputError(path, "", "no such report database");
+  check_database_file(path);
   std::unique_ptr<SQLite::Database> db;
   try {
     db = std::make_unique<SQLite::Database>(path, create ? SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE
                                                          : SQLite::OPEN_READWRITE);
-    db->setBusyTimeout(5000);
-    const int application_id = db->execAndGet("PRAGMA application_id").getInt();
-    const int user_version = db->execAndGet("PRAGMA user_version").getInt();
-    const int tables = db->execAndGet("SELECT count(*) FROM sqlite_schema").getInt();
-    if (application_id == 0 && user_version == 0 && tables == 0) {
-      if (!create) throw InputError(path, "", "the database is empty: no replay has been stored in it");
-      db->exec("PRAGMA journal_mode = WAL");  // persistent: readers never block the writer
-      SQLite::Transaction transaction(*db);
-      create_report_schema(*db);
-      transaction.commit();
-    } else if (application_id != kReportApplicationId) {
-      throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
-                                             static_cast<std::uint32_t>(application_id), kReportApplicationId));
-    } else if (user_version >= 1 && user_version < kReportSchemaVersion) {
-      // v1 -> v2: the bench tables; v2 -> v3: the real-drive columns and tables; v3 -> v4: the blocks;
-      // v4 -> v5: the campaign and its criteria.
-      SQLite::Transaction transaction(*db);
-      try {
-        upgrade_from(*db, user_version);
-      } catch (const std::runtime_error& e) {
-        if (dynamic_cast<const SQLite::Exception*>(&e) != nullptr) throw;
-        throw InputError(path, "", fmt::format("cannot migrate report schema version {} to {}: {}", user_version,
-                                               kReportSchemaVersion, e.what()));
+    db->setBusyTimeout(kBusyTimeout_ms);
+    if (const SchemaState state = read_schema_state_once(*db, path); state != SchemaState::current) {
+      if (state == SchemaState::empty && !create) {
+        throw InputError(path, "", "the database is empty: no replay has been stored in it");
       }
-      db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
+      // Creating or migrating the schema is one write transaction that reads the state again under
+      // the write lock: concurrent openers of a new database wait for the first, then find its schema.
+      SQLite::Transaction transaction(*db, SQLite::TransactionBehavior::IMMEDIATE);
+      const int user_version = db->execAndGet("PRAGMA user_version").getInt();
+      if (read_schema_state(*db, path) == SchemaState::empty) {
+        create_report_schema(*db);
+      } else if (user_version < kReportSchemaVersion) {
+        // v1 -> v2: the bench tables; v2 -> v3: the real-drive columns and tables; v3 -> v4: the
+        // blocks; v4 -> v5: the campaign and its criteria.
+        try {
+          upgrade_from(*db, user_version);
+        } catch (const std::runtime_error& e) {
+          if (dynamic_cast<const SQLite::Exception*>(&e) != nullptr) throw;
+          throw InputError(path, "", fmt::format("cannot migrate report schema version {} to {}: {}", user_version,
+                                                 kReportSchemaVersion, e.what()));
+        }
+        db->exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
+      }
       transaction.commit();
-    } else if (user_version != kReportSchemaVersion) {
-      throw InputError(path, "", fmt::format("report database schema version {} is not the supported version {}",
-                                             user_version, kReportSchemaVersion));
     }
+    // Persistent, outside any transaction: readers never block the writer.
+    if (db->execAndGet("PRAGMA journal_mode").getString() != "wal") db->exec("PRAGMA journal_mode = WAL");
     db->exec("PRAGMA foreign_keys = ON");
     // In WAL mode NORMAL keeps the database consistent on a crash or power loss; only the last
     // committed run may be lost on power loss, never an earlier one.
     db->exec("PRAGMA synchronous = NORMAL");
   } catch (const SQLite::Exception& e) {
     throw InputError(path, "", std::string("cannot use as a report database: ") + e.what());
+  }
+  return db;
+}
+
+std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError(path, "", "no such report database");
+  check_database_file(path);
+  // A file this process may write is opened as a writer would (an old schema is migrated).
+  if (::access(path.c_str(), W_OK) == 0) return open_report_database(path, false);
+  std::unique_ptr<SQLite::Database> db;
+  try {
+    db = std::make_unique<SQLite::Database>(path, SQLite::OPEN_READONLY);
+    db->setBusyTimeout(kBusyTimeout_ms);
+    const SchemaState state = read_schema_state_once(*db, path);
+    if (state == SchemaState::empty) throw InputError(path, "", "the database is empty: no replay has been stored in it");
+    if (state == SchemaState::older) {
+      throw InputError(path, "", fmt::format("an older report schema, which needs migrating to version {}, and the "
+                                             "file is read-only: make it writable, or copy it somewhere writable",
+                                             kReportSchemaVersion));
+    }
+  } catch (const SQLite::Exception& e) {
+    throw InputError(path, "", std::string("cannot read as a report database: ") + e.what());
   }
   return db;
 }

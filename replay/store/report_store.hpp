@@ -28,6 +28,10 @@ inline constexpr int kReportSchemaVersion = 5;
 // `full`), and the rows of `cycles`, `targets` and `object_states` are converted into blocks.
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
 
+// Opens a report database to read it: as open_report_database(path, false) when this process may
+// write the file, else read-only (a read-only copy of an older schema is refused, saying why).
+std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::string& path);
+
 // Writes a new report's schema (its tables, application_id and user_version) into an empty
 // database, within the caller's transaction (`rcsim merge` fills it in the same one).
 void create_report_schema(SQLite::Database& db);

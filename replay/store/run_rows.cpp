@@ -120,9 +120,20 @@ bool has_offset(const StoredTarget& t) { return t.object >= 0 && t.target_class.
 
 // ---- Decoding blocks ----
 
-std::vector<StoredCycle> decode_cycle_block(SQLite::Statement& q) {
+// A block's first cycle and count, checked before anything is allocated for it: a block holds 1 to
+// kBlockCycles cycles of its run, whatever a damaged or forged database says.
+void check_block_span(int first_cycle, int n, int run_cycles, const char* table) {
+  if (n < 1 || n > kBlockCycles || first_cycle < 0 || first_cycle > run_cycles - n) {
+    throw std::runtime_error(fmt::format("report database: a row of {} claims {} cycles from cycle {}, in a run of {} "
+                                         "cycles stored in blocks of 1 to {} (damaged)",
+                                         table, n, first_cycle, run_cycles, kBlockCycles));
+  }
+}
+
+std::vector<StoredCycle> decode_cycle_block(SQLite::Statement& q, int run_cycles) {
   // SELECT first_cycle, sensor, cycles, half_cutoff_p, order_p, <the columns>
   const int first_cycle = q.getColumn(0).getInt(), sensor = q.getColumn(1).getInt(), n = q.getColumn(2).getInt();
+  check_block_span(first_cycle, n, run_cycles, "cycle_blocks");
   const double half_cutoff_p = q.getColumn(3).getDouble(), order_p = q.getColumn(4).getDouble();
   const auto column = [&](int c) { return q.getColumn(5 + c); };
   std::vector<ColumnReader> r;
@@ -174,9 +185,10 @@ std::vector<StoredCycle> decode_cycle_block(SQLite::Statement& q) {
   return rows;
 }
 
-std::vector<StoredTargetList> decode_target_block(SQLite::Statement& q) {
+std::vector<StoredTargetList> decode_target_block(SQLite::Statement& q, int run_cycles) {
   // SELECT first_cycle, sensor, cycles, <the columns>
   const int first_cycle = q.getColumn(0).getInt(), sensor = q.getColumn(1).getInt(), n = q.getColumn(2).getInt();
+  check_block_span(first_cycle, n, run_cycles, "target_blocks");
   const auto column = [&](int c) { return q.getColumn(3 + c); };
   std::vector<ColumnReader> r;
   r.reserve(kTargetColumns);
@@ -233,16 +245,26 @@ std::vector<StoredTargetList> decode_target_block(SQLite::Statement& q) {
   return lists;
 }
 
-std::vector<StoredObjectState> decode_object_block(SQLite::Statement& q) {
+std::vector<StoredObjectState> decode_object_block(SQLite::Statement& q, int run_cycles, int run_objects) {
   // SELECT first_cycle, cycles, <the columns>
   const int first_cycle = q.getColumn(0).getInt(), n = q.getColumn(1).getInt();
+  check_block_span(first_cycle, n, run_cycles, "object_state_blocks");
   std::vector<ColumnReader> r;
   r.reserve(kObjectColumns);
   for (int c = 0; c < kObjectColumns; ++c) {
     r.push_back(reader_of(q.getColumn(2 + c), kObjectColumnNames[static_cast<std::size_t>(c)]));
   }
   std::vector<int> counts(static_cast<std::size_t>(n));
-  for (int& count : counts) count = static_cast<int>(r[kNObjects].get_unsigned());
+  for (int& count : counts) {
+    const std::uint64_t stored = r[kNObjects].get_unsigned();
+    // A cycle holds each of the run's objects once at most.
+    if (stored > static_cast<std::uint64_t>(run_objects)) {
+      throw std::runtime_error(fmt::format("report database: a row of object_state_blocks claims {} objects in a cycle "
+                                           "of a run of {} objects (damaged)",
+                                           stored, run_objects));
+    }
+    count = static_cast<int>(stored);
+  }
   std::unordered_map<int, std::array<LinearPrediction, 3>> predictions;
   std::vector<StoredObjectState> states;
   for (int k = 0; k < n; ++k) {
@@ -316,6 +338,26 @@ StoreLevel store_level_from_name(std::string_view name) {
 
 Vec2 StoredTarget::p_ST_S() const { return {range_m * std::cos(azimuth_rad), range_m * std::sin(azimuth_rad)}; }
 
+namespace {
+
+// The cycles of a run as `runs` holds them: what its blocks are checked against.
+int stored_run_cycles(SQLite::Database& db, std::int64_t run_id) {
+  SQLite::Statement q(db, "SELECT cycles FROM runs WHERE run_id = ?");
+  q.bind(1, run_id);
+  if (!q.executeStep()) throw std::runtime_error(fmt::format("no run with id {} in the report database", run_id));
+  return q.getColumn(0).getInt();
+}
+
+// The objects of a run as `run_objects` holds them.
+int stored_run_objects(SQLite::Database& db, std::int64_t run_id) {
+  SQLite::Statement q(db, "SELECT count(*) FROM run_objects WHERE run_id = ?");
+  q.bind(1, run_id);
+  q.executeStep();
+  return q.getColumn(0).getInt();
+}
+
+}  // namespace
+
 StoreLevel run_store_level(SQLite::Database& db, std::int64_t run_id) {
   SQLite::Statement q(db, "SELECT store FROM runs WHERE run_id = ?");
   q.bind(1, run_id);
@@ -325,19 +367,21 @@ StoreLevel run_store_level(SQLite::Database& db, std::int64_t run_id) {
 
 void for_each_cycle(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
                     const std::function<void(const StoredCycle&)>& visit) {
+  const int run_cycles = stored_run_cycles(db, run_id);
   auto q = block_query(db, "first_cycle, sensor, cycles, half_cutoff_p, order_p, " + column_list(kCycleColumnNames),
                        "cycle_blocks", run_id, span, true);
   CycleOrder<StoredCycle> order(span, visit);
-  while (q.executeStep()) order.add_block(q.getColumn(0).getInt(), decode_cycle_block(q));
+  while (q.executeStep()) order.add_block(q.getColumn(0).getInt(), decode_cycle_block(q, run_cycles));
   order.finish();
 }
 
 void for_each_target_list(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
                           const std::function<void(const StoredTargetList&)>& visit) {
+  const int run_cycles = stored_run_cycles(db, run_id);
   auto q = block_query(db, "first_cycle, sensor, cycles, " + column_list(kTargetColumnNames), "target_blocks", run_id,
                        span, true);
   CycleOrder<StoredTargetList> order(span, visit);
-  while (q.executeStep()) order.add_block(q.getColumn(0).getInt(), decode_target_block(q));
+  while (q.executeStep()) order.add_block(q.getColumn(0).getInt(), decode_target_block(q, run_cycles));
   order.finish();
 }
 
@@ -351,10 +395,12 @@ void for_each_target(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
 
 void for_each_object_state(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
                            const std::function<void(const StoredObjectState&)>& visit) {
+  const int run_cycles = stored_run_cycles(db, run_id);
+  const int run_objects = stored_run_objects(db, run_id);
   auto q = block_query(db, "first_cycle, cycles, " + column_list(kObjectColumnNames), "object_state_blocks", run_id,
                        span, false);
   while (q.executeStep()) {
-    for (const StoredObjectState& s : decode_object_block(q)) {
+    for (const StoredObjectState& s : decode_object_block(q, run_cycles, run_objects)) {
       if (span.contains(s.cycle)) visit(s);
     }
   }

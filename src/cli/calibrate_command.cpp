@@ -76,7 +76,10 @@ void print_figures(const std::string& label, const replay::RealDriveFigures& f) 
 // stationary background fitted to real drives by their figures, with the hold-outs.
 void run_real_drive_calibration(const CalibrateArgs& args) {
   std::vector<Recording> recordings;
-  for (const auto& dir : recording_dirs(args.recordings)) recordings.push_back(read_recording(dir));
+  for (const auto& dir : recording_dirs(args.recordings)) {
+    recordings.push_back(read_recording(dir));
+    replay::check_fittable(recordings.back());
+  }
   replay::ReplayOptions options;
   options.seed = static_cast<std::uint64_t>(args.seed);
   options.fidelity = Fidelity::no_tracking;

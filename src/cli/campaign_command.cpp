@@ -10,6 +10,7 @@
 #include "cli/child_process.hpp"
 #include "cli/commands.hpp"
 #include "common/input_error.hpp"
+#include "common/safe_text.hpp"
 #include "replay/campaign/plan.hpp"
 #include "replay/campaign/shard_runner.hpp"
 #include "replay/campaign/status.hpp"
@@ -44,13 +45,17 @@ struct RunShardArgs {
   int shard = 0;
 };
 
+// Slurm's default MaxArraySize is 1001: task ids 0 to 1000.
+constexpr std::size_t kSlurmDefaultMaxArraySize = 1001;
+
 // "42.0 min" or "3.25 h".
 std::string duration_text(double s) {
   return s < 3600.0 ? fmt::format("{:.1f} min", s / 60.0) : fmt::format("{:.2f} h", s / 3600.0);
 }
 
 std::string merge_hint(const CampaignPlan& plan) {
-  return fmt::format("rcsim merge {}/shards/shard-*.sqlite -o {}.sqlite", plan.dir.string(), plan.manifest.name);
+  return fmt::format("rcsim merge {}/shards/shard-*.sqlite -o {}.sqlite", shell_quoted(plan.dir.string()),
+                     plan.manifest.name);
 }
 
 void run_plan(const PlanArgs& args) {
@@ -73,10 +78,16 @@ void run_plan(const PlanArgs& args) {
   for (const auto& s : plan.shards) {
     std::cout << fmt::format("  shard {}: {} recordings, {}\n", s.index, s.recordings.size(), duration_text(s.duration_s));
   }
+  if (plan.shards.size() > kSlurmDefaultMaxArraySize) {
+    std::cout << fmt::format("  note: {} array tasks; Slurm's default MaxArraySize takes {} (see `scontrol show config`): "
+                             "fewer --shards, or ask your administrator\n",
+                             plan.shards.size(), kSlurmDefaultMaxArraySize);
+  }
+  const std::string dir = shell_quoted(plan.dir.string());
   std::cout << fmt::format("planned in {}\n  on Slurm:        rcsim campaign submit {}   (or: sbatch {}/campaign.sbatch)\n"
                            "  on this machine: rcsim campaign run-local {} -j {}\n  then:            {}\n",
-                           plan.dir.string(), plan.dir.string(), plan.dir.string(), plan.dir.string(),
-                           std::min<std::size_t>(plan.shards.size(), 2), merge_hint(plan));
+                           plan.dir.string(), dir, dir, dir, std::min<std::size_t>(plan.shards.size(), 2),
+                           merge_hint(plan));
 }
 
 void run_submit(const SubmitArgs& args) {
@@ -167,8 +178,8 @@ void run_status(const StatusArgs& args) {
   } else {
     std::cout << fmt::format("to finish (only what is missing is replayed): rcsim campaign submit {} --shards {}\n"
                              "  or on this machine: rcsim campaign run-local {} -j {}\n",
-                             plan.dir.string(), replay::campaign::index_ranges(unfinished), plan.dir.string(),
-                             std::min<std::size_t>(unfinished.size(), 2));
+                             shell_quoted(plan.dir.string()), replay::campaign::index_ranges(unfinished),
+                             shell_quoted(plan.dir.string()), std::min<std::size_t>(unfinished.size(), 2));
     if (status.failed > 0) std::cout << "  (a failed recording fails again until its input is fixed; its error is above)\n";
   }
 }

@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/replay_options.hpp"
+#include "common/atomic_file.hpp"
 #include "io/recording.hpp"
 #include "replay/import/dataset_importer.hpp"
 #include "replay/import/importer.hpp"
@@ -16,6 +17,7 @@ namespace {
 void import_dataset(const std::string& dataset, const std::string& raw_dir, const std::string& output,
                     const replay::DatasetImportOptions& options) {
   const replay::DatasetImporter& importer = replay::find_dataset_importer(dataset);
+  check_output_directory(std::filesystem::absolute(output).lexically_normal(), "recording.json");  // before the work
   const replay::DatasetRecording imported = importer.import(raw_dir, options);
   for (const auto& warning : imported.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
   write_recording(output, imported.recording, imported.extra_files);

@@ -1,11 +1,16 @@
 // rcsim listen: the reference client of `rcsim stream` (docs/stream.md).
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/control_token.hpp"
 #include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
 #include "stream/listener.hpp"
 #include "stream/streamer.hpp"
 
@@ -18,6 +23,7 @@ struct ListenArgs {
   std::string group;
   std::string interface;
   std::string subscribe;
+  std::string control_token_file;
   std::string messages;
   std::string sensors;
   std::string print = "simulated";
@@ -56,6 +62,7 @@ void run_listen(const ListenArgs& args) {
   options.group = args.group;
   options.group_interface = args.interface;
   options.subscribe = args.subscribe;
+  if (!args.control_token_file.empty()) options.control_token = read_control_token(args.control_token_file);
   options.print = args.print == "recorded" ? stream::MessageType::recorded_targets : stream::MessageType::simulated_targets;
   if (args.messages.empty()) {
     options.messages = stream::message_bit(options.print) | (args.truth_output.empty() ? 0u : stream::kTruthBit);
@@ -70,22 +77,28 @@ void run_listen(const ListenArgs& args) {
   options.stop_at_end = !args.keep_going;
   options.handle_signals = true;
 
-  std::optional<AtomicFileWriter> file;
-  if (!args.output.empty() && args.output != "-") file.emplace(args.output);
-  std::ostream& out = file ? file->stream() : std::cout;
+  // The capture is written as it arrives, so that a stop, an error or a full disk keeps what came
+  // before; an output path that is a device or a link is refused first (docs/hardening.md).
+  for (const std::string* path : {&args.output, &args.truth_output, &args.pcap}) {
+    if (!path->empty() && *path != "-") check_output_file(*path);
+  }
+  std::optional<std::ofstream> file;
+  if (!args.output.empty() && args.output != "-") {
+    file.emplace(args.output, std::ios::binary | std::ios::trunc);
+    if (!*file) throw InputError(args.output, "", std::string("cannot create the output: ") + std::strerror(errno));
+  }
+  std::ostream& out = file ? *file : std::cout;
   stream::Listener listener(options, out, std::cerr);
   stream::ListenSummary summary;
   try {
     summary = listener.run();
-  } catch (...) {
-    // An error must not lose the capture: what was received before it is kept.
+  } catch (const std::runtime_error& e) {
     if (file) {
-      file->commit();
-      std::cerr << "rcsim listen: the target lists received before the error are kept in " << args.output << '\n';
+      std::cerr << "rcsim listen: the target lists received before the error are in " << args.output << '\n';
+      if (!*file) throw InputError(args.output, "", e.what());
     }
     throw;
   }
-  if (file) file->commit();
   std::cerr << summary.line() << std::endl;
 }
 
@@ -99,13 +112,16 @@ void add_listen_command(CLI::App& app) {
   cmd->add_option("--group", args->group, "Multicast group to join (IPv4)");
   cmd->add_option("--interface", args->interface, "IPv4 address of the interface to join the group on (e.g. 127.0.0.1)");
   cmd->add_option("--subscribe", args->subscribe, "Subscribe at a streamer's control port [HOST:]PORT instead of waiting passively");
+  cmd->add_option("--control-token-file", args->control_token_file,
+                  "With --subscribe: present the streamer's control token (a full streamer makes room for it)")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--messages", args->messages, "What to subscribe to: simulated,recorded,truth (default: what is printed or written)");
   cmd->add_option("--sensors", args->sensors, "Subscribe to these sensor indices only, e.g. 0,1");
   cmd->add_option("--print", args->print, "Which target lists to print: simulated | recorded")
       ->check(CLI::IsMember({"simulated", "recorded"}))
       ->capture_default_str();
   cmd->add_option("--format", args->format, "csv | jsonl")->check(CLI::IsMember({"csv", "jsonl"}))->capture_default_str();
-  cmd->add_option("-o,--output", args->output, "Output file (written atomically at the end, or when an error ends the capture); stdout if omitted");
+  cmd->add_option("-o,--output", args->output, "Output file, written as the target lists arrive; stdout if omitted");
   cmd->add_option("--truth-output", args->truth_output, "Write the ground truth (ego and object boxes) to this CSV file");
   cmd->add_option("--pcap", args->pcap, "Write every datagram received to this pcap file (for Wireshark/tshark)");
   cmd->add_option("--idle-timeout-s", args->idle_timeout_s, "End after this long without a datagram (0: never)")

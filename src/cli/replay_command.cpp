@@ -167,7 +167,20 @@ class PrintImportWarnings final : public replay::ReplaySink {
   std::size_t seen_ = 0;
 };
 
+void replay_and_store(ReplayArgs& args);
+
 void run_replay(ReplayArgs& args) {
+  try {
+    replay_and_store(args);
+  } catch (const SQLite::Exception& e) {
+    // A full disk or a failing file system while the run was stored: it was rolled back, the runs
+    // stored before are intact. Named, with SQLite's reason.
+    throw std::runtime_error(fmt::format("{}: cannot store the run: {}; the report keeps the runs stored before it",
+                                         args.db_path, e.what()));
+  }
+}
+
+void replay_and_store(ReplayArgs& args) {
   read_verdict_criteria(args.verdicts);  // a bad criteria file is refused before the replay
   // The header only: the rows are read as the replay goes (replay_recording_dir).
   Recording recording = read_recording_header(args.recording_dir);

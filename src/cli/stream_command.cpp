@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/control_token.hpp"
 #include "cli/fidelity_option.hpp"
 #include "common/input_error.hpp"
 #include "stream/streamer.hpp"
@@ -16,6 +17,8 @@ struct StreamArgs {
   std::string input;
   std::vector<std::string> to;
   std::string control;
+  std::string control_token_file;
+  bool open_control = false;
   std::string speed = "1";
   bool stepped = false;
   std::string messages;
@@ -46,6 +49,8 @@ void run_stream(const StreamArgs& args) {
   stream::StreamOptions options;
   options.destinations = args.to;
   options.control = args.control;
+  if (!args.control_token_file.empty()) options.control_token = read_control_token(args.control_token_file);
+  options.open_control = args.open_control;
   options.speed = stream::parse_speed(args.speed);
   options.stepped = args.stepped;
   const std::uint32_t available = source->available_messages();
@@ -72,7 +77,12 @@ void run_stream(const StreamArgs& args) {
   std::cerr << fmt::format("rcsim stream: {}: {} cycles, sensors {}; speed {}{}", args.input, source->cycle_count(), sensors,
                            args.speed, args.stepped ? ", stepped" : "");
   for (const auto& to : args.to) std::cerr << "; to " << to;
-  if (streamer.control_port() != 0) std::cerr << "; control port " << streamer.control_port();
+  if (streamer.control_port() != 0) {
+    std::cerr << "; control port " << streamer.control_port()
+              << (args.open_control                      ? " (every client may steer)"
+                  : !options.control_token.empty() ? " (clients with the control token steer, others watch)"
+                                                   : " (clients watch; nobody steers without --control-token-file)");
+  }
   std::cerr << std::endl;
   const stream::StreamSummary summary = streamer.run();
   std::cerr << summary.line() << std::endl;
@@ -89,8 +99,14 @@ void add_stream_command(CLI::App& app) {
   cmd->add_option("--to", args->to, "Destination HOST:PORT, unicast or multicast (repeatable)");
   cmd->add_option("--control", args->control,
                   "Control port [HOST:]PORT where clients subscribe, pause, resume, step and seek (HOST defaults to 127.0.0.1)");
+  cmd->add_option("--control-token-file", args->control_token_file,
+                  "File whose first line is the control token: clients that present it may pause, resume, step and "
+                  "seek; the others only watch")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--open-control", args->open_control,
+                "Let every subscribed client steer playback, without a token (a machine whose users you trust)");
   cmd->add_option("--speed", args->speed, "1 real time, 10 ten times, max as fast as possible")->capture_default_str();
-  cmd->add_flag("--stepped", args->stepped, "Start paused: a client's STEP lets cycles out (RESUME plays paced)");
+  cmd->add_flag("--stepped", args->stepped, "Start paused: a steering client's STEP lets cycles out (RESUME plays paced)");
   cmd->add_option("--messages", args->messages,
                   "What --to destinations get: simulated,recorded,truth (default: the target lists the input has)");
   cmd->add_option("--level", args->level, "tracks | detections")->check(CLI::IsMember({"tracks", "detections"}))->capture_default_str();

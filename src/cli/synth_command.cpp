@@ -47,7 +47,11 @@ void run_synth(const SynthArgs& args) {
   const std::uint64_t seed = parse_seed(args.seed);
   if (args.output.empty()) throw InputError("-o", "", "an output recording directory is required");
   require_parent_directory(args.output, "output recording directory");
-  if (!args.svg.empty()) require_parent_directory(args.svg, "SVG file");
+  check_output_directory(fs::absolute(args.output).lexically_normal(), "recording.json");  // before the work
+  if (!args.svg.empty()) {
+    require_parent_directory(args.svg, "SVG file");
+    check_output_file(args.svg);
+  }
   if (!args.svg_compare.empty() && !fs::is_regular_file(args.svg_compare)) {
     throw InputError(args.svg_compare, "", "no such target list file");
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "common/atomic_file.hpp"
 #include "replay/campaign/junit.hpp"
 #include "replay/store/campaign_store.hpp"
 
@@ -48,6 +49,9 @@ void add_verdict_options(CLI::App& cmd, VerdictArgs& args) {
 
 void read_verdict_criteria(VerdictArgs& args) {
   if (!args.criteria_file.empty()) args.file_criteria = read_criteria_file(args.criteria_file);
+  // Before any work: a --junit path that is a directory, device or link fails now, not after the
+  // replay or merge has written its output.
+  if (!args.junit_path.empty()) check_output_file(args.junit_path);
 }
 
 std::optional<Verdicts> judge_runs(SQLite::Database& db, const VerdictArgs& args, std::optional<std::int64_t> only_run,

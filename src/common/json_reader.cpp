@@ -8,25 +8,59 @@
 
 namespace rcsim {
 
+namespace {
+
+// "line L, column C" of a byte offset, for a person to jump to.
+std::string line_and_column(std::string_view text, std::size_t offset) {
+  std::size_t line = 1;
+  std::size_t column = 1;
+  for (std::size_t i = 0; i < std::min(offset, text.size()); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return fmt::format("line {}, column {}", line, column);
+}
+
+}  // namespace
+
+std::optional<std::size_t> json_too_deep_at(std::string_view text, int max_depth) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;  // the escaped character, a quote too
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_depth) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::nullopt;
+}
+
 nlohmann::json parse_json_text(std::string_view text, const std::string& file) {
+  if (const auto at = json_too_deep_at(text)) {
+    throw InputError(file, line_and_column(text, *at),
+                     fmt::format("arrays and objects nest deeper than {} levels; no rcsim format needs that many",
+                                 kMaxJsonDepth));
+  }
   try {
     return nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& error) {
-    // Turn the byte offset into a line and column a person can jump to.
-    std::size_t line = 1;
-    std::size_t column = 1;
-    const std::size_t end = std::min<std::size_t>(error.byte > 0 ? error.byte - 1 : 0, text.size());
-    for (std::size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
     std::string message = error.what();
     if (const auto pos = message.find("syntax error"); pos != std::string::npos) message = message.substr(pos);
-    throw InputError(file, fmt::format("line {}, column {}", line, column), "invalid JSON: " + message);
+    throw InputError(file, line_and_column(text, error.byte > 0 ? error.byte - 1 : 0), "invalid JSON: " + message);
   } catch (const nlohmann::json::exception& error) {
     // e.g. a number too large for a double ("number overflow parsing '1e999'")
     std::string message = error.what();
@@ -36,6 +70,11 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& file) {
 }
 
 nlohmann::json parse_json_file(const std::string& path) { return parse_json_text(read_text_file(path), path); }
+
+nlohmann::ordered_json parse_stored_json(std::string_view text) {
+  if (json_too_deep_at(text)) return nlohmann::ordered_json(nlohmann::ordered_json::value_t::discarded);
+  return nlohmann::ordered_json::parse(text.begin(), text.end(), nullptr, false);
+}
 
 JsonField::JsonField(const nlohmann::json& value, std::string file, std::string path)
     : value_(&value), file_(std::move(file)), path_(std::move(path)) {}

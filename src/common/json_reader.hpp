@@ -12,8 +12,21 @@
 
 namespace rcsim {
 
-// Parses JSON text; syntax errors name the file, line and column.
+// The deepest nesting of arrays and objects any of our JSON formats may hold (a scene needs 6):
+// deeper text is refused before it is parsed, so that neither memory nor a recursive walk
+// (comparing, printing, destroying) grows with an attacker's nesting (schemas/limits.md).
+inline constexpr int kMaxJsonDepth = 64;
+
+// The byte offset in JSON text where arrays and objects first nest deeper than `max_depth`
+// (brackets inside strings do not count); nullopt if they never do. Linear, allocates nothing.
+std::optional<std::size_t> json_too_deep_at(std::string_view text, int max_depth = kMaxJsonDepth);
+
+// Parses JSON text; syntax errors and nesting deeper than kMaxJsonDepth name the file, line and column.
 nlohmann::json parse_json_text(std::string_view text, const std::string& file);
+
+// Parses JSON text stored by rcsim (a report database's parameters, provenance, manifest): a
+// discarded value if it is not JSON or nests deeper than kMaxJsonDepth, never an exception.
+nlohmann::ordered_json parse_stored_json(std::string_view text);
 // Reads and parses a file.
 nlohmann::json parse_json_file(const std::string& path);
 

@@ -74,8 +74,10 @@ bool LineReader::next(std::string_view& line) {
       break;
     }
     if (end_ - begin_ > kMaxLineBytes) {
+      const bool cr_only = std::memchr(buffer_.data() + begin_, '\r', end_ - begin_) != nullptr;
       throw InputError(path_text_, fmt::format("line {}", line_number_ + 1),
-                       fmt::format("line longer than the limit of {} bytes (a binary file?)", kMaxLineBytes));
+                       cr_only ? "lines end with CR alone (no LF): lines must end with LF or CR LF"
+                               : fmt::format("line longer than the limit of {} bytes (a binary file?)", kMaxLineBytes));
     }
     scanned = end_ - begin_;  // relative to the front after fill()
     if (!fill()) {
@@ -91,7 +93,19 @@ bool LineReader::next(std::string_view& line) {
   }
   ++line_number_;
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  check_line(line);
   return true;
+}
+
+void LineReader::check_line(std::string_view line) const {
+  // What an editor or a spreadsheet adds, named as such rather than as a broken first column.
+  if (line_number_ == 1 && line.starts_with("\xEF\xBB\xBF")) {
+    throw InputError(path_text_, "line 1", "starts with a UTF-8 byte-order mark: save the file as UTF-8 without one");
+  }
+  if (line.find('\r') != std::string_view::npos) {
+    throw InputError(path_text_, fmt::format("line {}", line_number_),
+                     "holds a carriage return inside the line: lines must end with LF (or CR LF), not CR alone");
+  }
 }
 
 std::uint64_t fnv1a64_file(const fs::path& path, std::uint64_t hash) {

@@ -33,6 +33,8 @@ class LineReader {
 
  private:
   bool fill();
+  // Refuses a byte-order mark on line 1 and a carriage return inside a line, naming the line.
+  void check_line(std::string_view line) const;
   std::string path_text_;
   std::ifstream in_;
   std::string buffer_;

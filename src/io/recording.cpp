@@ -10,7 +10,9 @@
 #include <numbers>
 #include <unistd.h>
 
+#include "common/atomic_file.hpp"
 #include "common/limits.hpp"
+#include "common/safe_text.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "common/text_file.hpp"
@@ -172,11 +174,29 @@ Recording read_recording(const fs::path& dir) {
   return rec;
 }
 
+namespace {
+
+std::vector<std::string> ids_of(const Recording& rec) {
+  std::vector<std::string> ids;
+  for (const auto& s : rec.sensors) ids.push_back(s.id);
+  for (const auto& o : rec.objects) ids.push_back(o.id);
+  return ids;
+}
+
+}  // namespace
+
 void write_recording(const fs::path& dir, const Recording& rec, const std::map<std::string, std::string>& extra_files) {
   const fs::path target = fs::absolute(dir).lexically_normal();
   const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
   const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
   if (!fs::is_directory(parent)) throw InputError(dir.string(), "", "the parent directory does not exist");
+  check_output_directory(target, "recording.json");
+  // Ids go into CSV rows, one row per line: what the reader could not read back is not written.
+  for (const auto& id : ids_of(rec)) {
+    if (const auto bad = find_control_character(id)) {
+      throw std::invalid_argument(fmt::format("the id '{}' holds {}: a recording's ids are one line", id, *bad));
+    }
+  }
   const fs::path temp = parent / fmt::format(".{}.tmp.{}", name.string(), ::getpid());
   fs::remove_all(temp);
   fs::create_directory(temp);

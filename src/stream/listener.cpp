@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "io/csv_reader.hpp"
 #include "stream/endpoints.hpp"
@@ -73,7 +74,7 @@ struct Listener::Impl {
   void process(std::span<const std::uint8_t> datagram, const udp::endpoint& sender);
   void process_from(SenderState& source, const Header& header, std::span<const std::uint8_t> payload);
   void refuse(DecodeError error);
-  void handle_reply(std::span<const std::uint8_t> payload);
+  void handle_reply(std::span<const std::uint8_t> payload, const udp::endpoint& from);
   void handle_message(const CompleteMessage& complete);
   void send_control(MessageType type);
   void subscribe_tick();
@@ -98,6 +99,7 @@ struct Listener::Impl {
   std::string output, truth_output;  // rows not yet written
   std::optional<std::ofstream> truth;
   std::optional<PcapWriter> pcap;
+  std::unordered_map<std::uint32_t, std::uint32_t> last_cycle;  // (message type, sensor) -> the last list's cycle
   std::uint64_t control_sequence = 0;
   bool subscribed = false, stopping = false;
   int subscribe_attempts = 0;
@@ -167,12 +169,22 @@ void Listener::Impl::drain() {
 void Listener::Impl::flush_output() {
   if (truth && !truth_output.empty()) {
     truth->write(truth_output.data(), static_cast<std::streamsize>(truth_output.size()));
+    truth->flush();
     truth_output.clear();
+    if (!*truth && failure.empty()) {
+      failure = options.truth_output + ": cannot write the ground truth (the disk is full, or the file was closed)";
+      finish();
+    }
   }
   if (output.empty()) return;
   out.write(output.data(), static_cast<std::streamsize>(output.size()));
   out.flush();
   output.clear();
+  // Written as it arrives: what was received before a failed write is in the output.
+  if (!out && failure.empty()) {
+    failure = "cannot write the target lists (the disk is full, or the output was closed)";
+    finish();
+  }
 }
 
 void Listener::Impl::refuse(DecodeError error) {
@@ -190,7 +202,7 @@ void Listener::Impl::process(std::span<const std::uint8_t> datagram, const udp::
   const Header& header = decoded.header;
   const auto payload = datagram.subspan(kHeaderBytes);
   if (is_control_request(header.type)) return refuse(DecodeError::wrong_kind);
-  if (header.type == MessageType::control_reply) return handle_reply(payload);  // outside every stream
+  if (header.type == MessageType::control_reply) return handle_reply(payload, from);  // outside every stream
 
   bool fresh = false;
   SenderState& source = senders.hear(from, fresh);
@@ -227,6 +239,14 @@ void Listener::Impl::handle_message(const CompleteMessage& complete) {
   if (complete.header.flags & kFlagLate) ++summary.late_flagged;
   if (const auto* list = std::get_if<TargetListMessage>(&complete.message)) {
     ++summary.target_lists;
+    // A stream moves forward one cycle at a time: a list of a cycle already had, or of an earlier
+    // one, means someone paused and replayed or seeked the stream (docs/stream.md).
+    const std::uint32_t key = (static_cast<std::uint32_t>(complete.header.type) << 16) | list->sensor_index;
+    if (const auto [last, first] = last_cycle.try_emplace(key, list->cycle); !first) {
+      if (list->cycle == last->second) ++summary.cycles_repeated;
+      if (list->cycle < last->second) ++summary.rewinds;
+      last->second = list->cycle;
+    }
     if (complete.header.type != options.print) return;
     summary.rows += list->targets.size();
     append_target_rows(output, options.format, complete.header.timestamp_ns, *list);
@@ -244,7 +264,12 @@ void Listener::Impl::handle_message(const CompleteMessage& complete) {
   for (const WireObject& o : gt.objects) row("object", o.object_id, o.pose, o.length_m, o.width_m);
 }
 
-void Listener::Impl::handle_reply(std::span<const std::uint8_t> payload) {
+void Listener::Impl::handle_reply(std::span<const std::uint8_t> payload, const udp::endpoint& from) {
+  // Only the streamer this listener subscribed at answers it; a passive listener asked nobody.
+  if (!control || from != *control) {
+    ++summary.stray_replies;
+    return;
+  }
   ControlReply reply;
   if (decode_control_reply(payload, reply) != DecodeError::none) {
     ++summary.malformed;
@@ -276,7 +301,9 @@ void Listener::Impl::send_control(MessageType type) {
   header.type = type;
   header.sequence = control_sequence++;
   header.timestamp_ns = unix_time_ns();
-  const Bytes datagram = make_datagram(header, encode_control_payload(type, options.messages, options.sensor_mask));
+  const Bytes datagram =
+      make_datagram(header, encode_control_payload(type, options.messages, options.sensor_mask,
+                                                   type == MessageType::subscribe ? options.control_token : ""));
   boost::system::error_code ignored;
   socket.send_to(asio::buffer(datagram), *control, 0, ignored);
 }
@@ -393,6 +420,12 @@ std::string ListenSummary::line() const {
       fragmented_messages, target_lists, rows, truth_messages, lost, duplicates, reordered, incomplete, malformed);
   // A late cycle flags each of its messages (every sensor's target list, the ground truth).
   if (late_flagged > 0) text += fmt::format(", {} late-flagged messages", late_flagged);
+  if (cycles_repeated > 0 || rewinds > 0) {
+    text += fmt::format(", {} target lists of a cycle already received and {} rewinds (the stream was paused and "
+                        "replayed or seeked)",
+                        cycles_repeated, rewinds);
+  }
+  if (stray_replies > 0) text += fmt::format(", {} control replies from other than the streamer subscribed at, ignored", stray_replies);
   if (senders_forgotten > 0) {
     text += fmt::format(", {} senders forgotten (at most {} tracked, {} MiB)", senders_forgotten,
                         SenderTable<int>::kMaxSenders, SenderTable<int>::kMaxStateBytes >> 20);

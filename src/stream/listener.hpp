@@ -20,6 +20,7 @@ struct ListenOptions {
   std::string group;                      // multicast group to join (IPv4)
   std::string group_interface;            // IPv4 address of the interface to join on; empty: the system's choice
   std::string subscribe;                  // [HOST:]PORT of a streamer's control port
+  std::string control_token;              // presented when subscribing, empty for none
   std::uint32_t messages = kSimulatedBit; // what to subscribe to
   std::uint32_t sensor_mask = 0;          // 0: every sensor
   MessageType print = MessageType::simulated_targets;  // which target lists go to the output
@@ -38,6 +39,9 @@ struct ListenSummary {
   std::array<std::uint64_t, kDecodeErrorCount> malformed_by_reason{};
   std::uint64_t messages = 0, fragmented_messages = 0, target_lists = 0, rows = 0, truth_messages = 0;
   std::uint64_t replies = 0, late_flagged = 0;
+  std::uint64_t stray_replies = 0;  // control replies not from the streamer subscribed at: ignored
+  // Target lists of a (message type, sensor) whose cycle is the last one's again, or an earlier one.
+  std::uint64_t cycles_repeated = 0, rewinds = 0;
   std::uint64_t lost = 0, duplicates = 0, reordered = 0, incomplete = 0;
   // Senders (source addresses and ports) whose state was forgotten to keep at most 64 tracked in
   // at most 64 MiB (sender_table.hpp); their partial messages count as incomplete. `sources`

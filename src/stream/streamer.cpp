@@ -41,6 +41,7 @@ struct Sink {
   std::uint32_t messages = 0;
   std::uint32_t sensor_mask = 0;  // 0: every sensor
   bool client = false;
+  bool controller = false;  // a client that may steer playback (schemas/udp-stream.md)
   TimePoint last_heard{};
   std::uint64_t sequence = 0;
   std::uint32_t message_number = 0;
@@ -90,6 +91,8 @@ struct Streamer::Impl {
   void housekeeping();
   std::size_t client_count() const;
   Sink* find_client(const udp::endpoint& endpoint);
+  bool may_steer(const std::string& token) const;
+  void evict_oldest_watcher();
 
   CycleSource& source;
   StreamOptions options;
@@ -319,13 +322,21 @@ void Streamer::Impl::handle_control(std::span<const std::uint8_t> datagram, cons
                         request.header.type == MessageType::step || request.header.type == MessageType::seek;
   if (playback && !client) {
     result = ReplyResult::not_subscribed;
+  } else if (playback && !client->controller) {
+    result = ReplyResult::not_allowed;  // a watcher: it receives, it does not steer
   } else {
     switch (request.header.type) {
-      case MessageType::subscribe:
+      case MessageType::subscribe: {
+        const bool controller = may_steer(request.token);
         if (client) {
           client->messages = request.argument;
           client->sensor_mask = request.sensor_mask;
-        } else if (client_count() >= options.max_clients) {
+          client->controller = controller;
+          break;
+        }
+        // A full table makes room for a controller: the watcher subscribed longest ago goes.
+        if (client_count() >= options.max_clients && controller) evict_oldest_watcher();
+        if (client_count() >= options.max_clients) {
           result = ReplyResult::refused_full;
         } else {
           Sink sink;
@@ -334,12 +345,15 @@ void Streamer::Impl::handle_control(std::span<const std::uint8_t> datagram, cons
           sink.messages = request.argument;
           sink.sensor_mask = request.sensor_mask;
           sink.client = true;
+          sink.controller = controller;
           sink.last_heard = SteadyClock::now();
           sinks.push_back(sink);
           summary.clients_peak = std::max<std::uint64_t>(summary.clients_peak, client_count());
-          log << "rcsim stream: client " << to_string(sender) << " subscribed\n";
+          log << "rcsim stream: client " << to_string(sender) << " subscribed"
+              << (controller ? ", may steer\n" : ", watching\n");
         }
         break;
+      }
       case MessageType::unsubscribe:
         if (!client) {
           result = ReplyResult::not_subscribed;
@@ -376,6 +390,27 @@ void Streamer::Impl::handle_control(std::span<const std::uint8_t> datagram, cons
   if (result != ReplyResult::ok) ++summary.control_refused;
   reply(sender, request, result);
   if (result == ReplyResult::ok && request.header.type != MessageType::keepalive) pump();
+}
+
+bool Streamer::Impl::may_steer(const std::string& token) const {
+  if (options.open_control) return true;
+  if (options.control_token.empty() || token.size() != options.control_token.size()) return false;
+  // Compared in time independent of where the first difference is.
+  unsigned char difference = 0;
+  for (std::size_t i = 0; i < token.size(); ++i) {
+    difference |= static_cast<unsigned char>(token[i] ^ options.control_token[i]);
+  }
+  return difference == 0;
+}
+
+void Streamer::Impl::evict_oldest_watcher() {
+  // Sinks are kept in the order they subscribed in.
+  const auto watcher = std::find_if(sinks.begin(), sinks.end(), [](const Sink& s) { return s.client && !s.controller; });
+  if (watcher == sinks.end()) return;
+  log << "rcsim stream: client " << to_string(watcher->endpoint) << " (watching) ended to make room for a controller\n";
+  send_end(*watcher);
+  sinks.erase(watcher);
+  ++summary.watchers_evicted;
 }
 
 void Streamer::Impl::reply(const udp::endpoint& to, const ControlRequest& request, ReplyResult result) {
@@ -503,6 +538,7 @@ std::string StreamSummary::line() const {
   }
   text += fmt::format("; control: {} received, {} ignored, {} refused; clients: {} peak, {} timed out", control_received,
                       control_ignored, control_refused, clients_peak, clients_timed_out);
+  if (watchers_evicted > 0) text += fmt::format(", {} watchers ended for a controller", watchers_evicted);
   if (send_errors > 0) text += fmt::format("; {} send errors", send_errors);
   text += fmt::format("; {:.2f} s, CPU {:.0f}%", wall_s, wall_s > 0.0 ? 100.0 * cpu_s / wall_s : 0.0);
   return text;

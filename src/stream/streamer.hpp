@@ -31,6 +31,11 @@ struct StreamOptions {
   int first_cycle = 0;
   double client_timeout_s = 5.0;
   std::size_t max_clients = 16;
+  // Who may steer playback (pause, resume, step, seek): a client whose subscribe request presents
+  // this token (is_control_token), or with open_control every client. Others only watch, and
+  // a controller finding the clients full ends the stream of the watcher subscribed longest ago.
+  std::string control_token;
+  bool open_control = false;
   std::chrono::nanoseconds late_tolerance{std::chrono::milliseconds(2)};
   int multicast_ttl = 1;
   std::string multicast_interface;  // IPv4 address of the outgoing interface, empty = default
@@ -48,7 +53,7 @@ struct StreamSummary {
   double lateness_p50_ms = 0.0, lateness_p99_ms = 0.0, lateness_max_ms = 0.0;
   std::uint64_t control_received = 0, control_ignored = 0, control_refused = 0;
   std::array<std::uint64_t, kDecodeErrorCount> ignored_by_reason{};
-  std::uint64_t clients_peak = 0, clients_timed_out = 0, send_errors = 0;
+  std::uint64_t clients_peak = 0, clients_timed_out = 0, send_errors = 0, watchers_evicted = 0;
   double wall_s = 0.0, cpu_s = 0.0;
   bool interrupted = false;
   // The one line printed at the end.

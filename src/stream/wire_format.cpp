@@ -323,12 +323,22 @@ Bytes encode_control_reply(const ControlReply& reply) {
   return payload;
 }
 
-Bytes encode_control_payload(MessageType type, std::uint32_t argument, std::uint32_t sensor_mask) {
+bool is_control_token(std::string_view token) {
+  if (token.size() < kMinControlTokenBytes || token.size() > kMaxControlTokenBytes) return false;
+  return std::all_of(token.begin(), token.end(), [](char c) { return c > ' ' && c < 0x7f; });
+}
+
+Bytes encode_control_payload(MessageType type, std::uint32_t argument, std::uint32_t sensor_mask,
+                             std::string_view token) {
   Bytes payload;
   Writer w(payload);
   if (type == MessageType::subscribe) {
     w.u32(argument);
     w.u32(sensor_mask);
+    if (!token.empty()) {  // u8 length, then the token's bytes
+      w.u8(static_cast<std::uint8_t>(token.size()));
+      payload.insert(payload.end(), token.begin(), token.end());
+    }
   } else if (type == MessageType::step || type == MessageType::seek) {
     w.u32(argument);
   }
@@ -459,7 +469,7 @@ DecodeError decode_control_reply(std::span<const std::uint8_t> payload, ControlR
   out.cycle_count = r.u32();
   out.subscribers = r.u32();
   out.control_ignored = r.u64();
-  if (result > 3 || state > 2) return DecodeError::bad_value;
+  if (result > 4 || state > 2) return DecodeError::bad_value;
   out.result = static_cast<ReplyResult>(result);
   out.state = static_cast<PlayState>(state);
   return DecodeError::none;
@@ -474,12 +484,19 @@ DecodeError decode_control_request(std::span<const std::uint8_t> datagram, Contr
   out.sensor_mask = 0;
   Reader r(datagram.subspan(kHeaderBytes));
   switch (h.header.type) {
-    case MessageType::subscribe:
-      if (r.remaining() != 8) return DecodeError::bad_length;
+    case MessageType::subscribe: {
+      if (r.remaining() < 8) return DecodeError::bad_length;
       out.argument = r.u32();
       out.sensor_mask = r.u32();
       if ((out.argument & ~(kSimulatedBit | kRecordedBit | kTruthBit)) != 0 || out.argument == 0) return DecodeError::bad_value;
+      if (r.remaining() == 0) return DecodeError::none;
+      // The optional control token: u8 length, then that many bytes, ending the payload.
+      const std::size_t length = r.u8();
+      if (r.remaining() != length) return DecodeError::bad_length;
+      out.token = r.text(length);
+      if (!is_control_token(out.token)) return DecodeError::bad_value;
       return DecodeError::none;
+    }
     case MessageType::step:
     case MessageType::seek:
       if (r.remaining() != 4) return DecodeError::bad_length;

@@ -101,7 +101,8 @@ struct EndOfStream {
   std::uint32_t late_cycles = 0;
 };
 
-enum class ReplyResult : std::uint8_t { ok = 0, refused_full = 1, not_subscribed = 2, out_of_range = 3 };
+// not_allowed: steering from a subscription that does not hold the streamer's control token.
+enum class ReplyResult : std::uint8_t { ok = 0, refused_full = 1, not_subscribed = 2, out_of_range = 3, not_allowed = 4 };
 enum class PlayState : std::uint8_t { running = 0, paused = 1, finished = 2 };
 
 struct ControlReply {
@@ -117,10 +118,16 @@ struct ControlReply {
 
 // A request to the control port. `argument` is the step count (STEP), the cycle (SEEK), or the
 // message mask (SUBSCRIBE, with `sensor_mask`: bit i = sensor index i, 0 = every sensor).
+// A control token: what a subscribe request presents to be allowed to steer (schemas/udp-stream.md).
+inline constexpr std::size_t kMinControlTokenBytes = 16, kMaxControlTokenBytes = 64;
+// Whether `token` is one: 16 to 64 printable ASCII characters, no space.
+bool is_control_token(std::string_view token);
+
 struct ControlRequest {
   Header header;
   std::uint32_t argument = 0;
   std::uint32_t sensor_mask = 0;
+  std::string token;  // subscribe only: the control token presented, empty for none
 };
 
 // ---- encoding ----
@@ -132,7 +139,8 @@ std::vector<Bytes> encode_target_list(const TargetListMessage& message, std::siz
 std::vector<Bytes> encode_ground_truth(const GroundTruthMessage& message, std::size_t max_datagram_bytes = kMaxDatagramBytes);
 Bytes encode_end_of_stream(const EndOfStream& end);
 Bytes encode_control_reply(const ControlReply& reply);
-Bytes encode_control_payload(MessageType type, std::uint32_t argument, std::uint32_t sensor_mask);
+Bytes encode_control_payload(MessageType type, std::uint32_t argument, std::uint32_t sensor_mask,
+                             std::string_view token = {});
 // A whole datagram: header + payload.
 Bytes make_datagram(const Header& header, std::span<const std::uint8_t> payload);
 

@@ -3,6 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "cli/run_rcsim.hpp"
@@ -74,6 +79,75 @@ TEST_F(CalibrateCli, RefusalsNameTheInput) {
   EXPECT_EQ(start.exit_code, 2) << start.output;
   EXPECT_NE(start.output.find("calibration.json"), std::string::npos) << start.output;
   EXPECT_FALSE(fs::exists(dir_ / "x"));
+}
+
+// A copy of a bundled recording with each CSV's data rows passed through `edit` (file, fields;
+// false drops the row).
+fs::path edited_recording(const fs::path& to, const std::string& name,
+                          const std::function<bool(const std::string&, std::vector<std::string>&)>& edit) {
+  fs::copy(fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / name, to);
+  for (const char* file : {"ego.csv", "objects.csv", "targets.csv"}) {
+    std::istringstream in(testing::read_file(to / file));
+    std::string out, line;
+    std::getline(in, line);
+    out += line + "\n";
+    while (std::getline(in, line)) {
+      std::vector<std::string> fields;
+      std::stringstream row(line);
+      for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
+      if (!edit(file, fields)) continue;
+      for (std::size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + fields[i];
+      out += "\n";
+    }
+    std::ofstream(to / file, std::ios::trunc) << out;
+  }
+  return to;
+}
+
+TEST_F(CalibrateCli, RecordingsThatCannotInformAFitAreRefusedBeforeAnythingIsWritten) {
+  struct Case {
+    const char* name;
+    std::function<bool(const std::string&, std::vector<std::string>&)> edit;
+    const char* refusal;
+  };
+  const std::vector<Case> cases = {
+      {"no_targets", [](const std::string& file, auto&) { return file != "targets.csv"; }, "holds no recorded target"},
+      {"one_cycle",
+       [](const std::string& file, std::vector<std::string>& f) {
+         if (file == "targets.csv") {
+           if (f[1] != "3") return false;  // the first cycle with targets, moved to cycle 0
+           f[0] = "0.000000";
+           f[1] = "0";
+           return true;
+         }
+         return std::stod(f[0]) < 0.02;
+       },
+       "1 cycles; a fit needs 4 at least"},
+      {"one_point",
+       [](const std::string& file, std::vector<std::string>& f) {
+         if (file == "targets.csv") f[4] = "10.0", f[5] = "0.1", f[6] = "-1.0", f[7] = "12.0";
+         return true;
+       },
+       "targets.csv: all 263 recorded targets are one point"},
+      {"never_in_view",
+       [](const std::string& file, std::vector<std::string>& f) {
+         if (file == "objects.csv") f[2] = std::to_string(std::stod(f[2]) + 5000.0);
+         return true;
+       },
+       "no annotated object is ever within a sensor's view field"},
+  };
+  for (const Case& c : cases) {
+    const fs::path rec = edited_recording(dir_ / c.name, "close_front", c.edit);
+    for (const char* mode : {"", " --real-drive"}) {
+      if (std::string(c.name) == "never_in_view" && *mode != 0) continue;  // the GOSPA fit sees it
+      const fs::path out = dir_ / (std::string("cal_") + c.name);
+      const auto r = run_rcsim("calibrate " + rec.string() + " -o " + out.string() + mode);
+      EXPECT_EQ(r.exit_code, 2) << c.name << mode << "\n" << r.output;
+      EXPECT_NE(r.output.find(rec.string() + ": "), std::string::npos) << c.name << mode << "\n" << r.output;
+      EXPECT_NE(r.output.find(c.refusal), std::string::npos) << c.name << mode << "\n" << r.output;
+      EXPECT_FALSE(fs::exists(out)) << c.name << mode;
+    }
+  }
 }
 
 }  // namespace

@@ -104,6 +104,24 @@ TEST_F(CampaignCli, RunLocalThenMergeEqualsASerialReplay) {
   EXPECT_NE(again.output.find("0 runs stored"), std::string::npos) << again.output;
 }
 
+TEST_F(CampaignCli, APlanBeyondSlurmsDefaultArraySizeSaysSo) {
+  // 1,002 recordings (links to one) in 1,002 shards: task ids 0 to 1001, one beyond MaxArraySize.
+  const std::filesystem::path many = dir_ / "many";
+  std::filesystem::create_directories(many);
+  for (int i = 0; i < 1002; ++i) {
+    std::filesystem::create_directory_symlink(kBundledRecordings / "close_front", many / fmt::format("r{:04d}", i));
+  }
+  const auto path = dir_ / "many.json";
+  std::ofstream(path) << R"({"format": "rcsim-campaign", "version": 1, "name": "many", "recordings": [")"
+                      << (many / "*").string() << R"("]})";
+  const auto plan = run_rcsim(fmt::format("campaign plan {} --shards 100000 -o {}", path.string(), dir("plan")));
+  ASSERT_EQ(plan.exit_code, 0) << plan.output;
+  EXPECT_NE(plan.output.find("note: 1002 array tasks; Slurm's default MaxArraySize takes 1001"), std::string::npos)
+      << plan.output.substr(0, 2000);
+  const auto few = run_rcsim(fmt::format("campaign plan {} --shards 2 -o {}", write_manifest().string(), dir("few")));
+  EXPECT_EQ(few.output.find("MaxArraySize"), std::string::npos) << few.output;
+}
+
 TEST_F(CampaignCli, AShardKilledMidRunRedoesOnlyWhatIsMissing) {
   ASSERT_EQ(run_rcsim(fmt::format("campaign plan {} --shards 1 -o {}", write_manifest().string(), dir("plan"))).exit_code, 0);
   // Killed (SIGKILL, as from outside) in the middle of a run's transaction: the first run of the
@@ -122,7 +140,7 @@ TEST_F(CampaignCli, AShardKilledMidRunRedoesOnlyWhatIsMissing) {
   const auto where = run_rcsim(fmt::format("campaign status {}", dir("plan")));
   EXPECT_NE(where.output.find("2 of 4 recordings stored"), std::string::npos) << where.output;
   EXPECT_NE(where.output.find("shard 0: unfinished, 2 of 4 stored"), std::string::npos) << where.output;
-  EXPECT_NE(where.output.find("rcsim campaign submit " + dir("plan") + " --shards 0\n"), std::string::npos) << where.output;
+  EXPECT_NE(where.output.find("rcsim campaign submit '" + dir("plan") + "' --shards 0\n"), std::string::npos) << where.output;
   const auto rerun = run_rcsim(fmt::format("campaign run-shard {} --shard 0", dir("plan")));
   ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
   EXPECT_NE(rerun.output.find("2 runs stored, 2 stored before, 0 failed"), std::string::npos) << rerun.output;

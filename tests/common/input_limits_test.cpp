@@ -143,3 +143,46 @@ TEST(InputLimits, ARecordingWithAnglesInDegreesIsRefusedByFieldAndLine) {
 
 }  // namespace
 }  // namespace rcsim
+
+namespace rcsim {
+namespace {
+
+TEST(InputLimits, JsonNestedBeyondTheLimitIsRefusedBeforeItIsParsed) {
+  const auto nested = [](int depth, std::string_view open = "[", std::string_view close = "]") {
+    std::string text;
+    for (int i = 0; i < depth; ++i) text += open;
+    for (int i = 0; i < depth; ++i) text += close;
+    return text;
+  };
+  EXPECT_NO_THROW(parse_json_text(nested(kMaxJsonDepth), "ok.json"));
+  EXPECT_EQ(refusal_of([&] { parse_json_text(nested(kMaxJsonDepth + 1), "deep.json"); }),
+            "deep.json: line 1, column 65: arrays and objects nest deeper than 64 levels; no rcsim format needs that many");
+  // 10^7 deep: refused at the 65th bracket, nothing allocated for the rest.
+  EXPECT_NE(refusal_of([&] { parse_json_text(nested(10'000'000), "huge.json"); }).find("huge.json: line 1, column 65"),
+            std::string::npos);
+  // Brackets inside strings, escaped quotes included, do not count.
+  const std::string quoted = "{\"a\": \"" + nested(100) + "\\\"" + nested(100) + "\"}";
+  EXPECT_NO_THROW(parse_json_text(quoted, "quoted.json"));
+  EXPECT_EQ(json_too_deep_at(nested(3, "{\"k\":", "}"), 2), std::size_t{10});
+  // Stored JSON (a report's manifest, parameters) nested too deep is not JSON to the reader.
+  EXPECT_TRUE(parse_stored_json(nested(100'000)).is_discarded());
+  EXPECT_FALSE(parse_stored_json(nested(10)).is_discarded());
+}
+
+TEST(InputLimits, ACsvWithAByteOrderMarkOrCarriageReturnsAloneSaysSo) {
+  const fs::path dir = testing::fresh_scratch_dir("csv_line_ends");
+  for (const auto& [name, text, expected] :
+       {std::tuple{"bom", "\xEF\xBB\xBFt_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,0,0,0,0\n",
+                   "ego.csv: line 1: starts with a UTF-8 byte-order mark"},
+        std::tuple{"cr", "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\r0,0,0,0,0,0\r",
+                   "ego.csv: line 1: holds a carriage return inside the line"}}) {
+    const fs::path copy = dir / name;
+    fs::copy(testing::kBundledRecordings / "close_front", copy);
+    std::ofstream(copy / "ego.csv", std::ios::binary | std::ios::trunc) << text;
+    const std::string refusal = refusal_of([&] { read_recording(copy); });
+    EXPECT_NE(refusal.find(expected), std::string::npos) << refusal;
+  }
+}
+
+}  // namespace
+}  // namespace rcsim

@@ -16,6 +16,7 @@
 
 #include "fuzz/aimotive_targets.hpp"
 #include "fuzz/recording_targets.hpp"
+#include "fuzz/store_targets.hpp"
 #include "fuzz/udp_targets.hpp"
 #include "fuzz/world_targets.hpp"
 #include "replay/import/dataset_importer.hpp"
@@ -29,7 +30,8 @@ const std::map<std::string, void (*)(Input)>& entry_points() {
   static const std::map<std::string, void (*)(Input)> entries{
       {"scene", fuzz_scene},         {"object_model", fuzz_object_model}, {"sensor_config", fuzz_sensor_config},
       {"recording", fuzz_recording}, {"calibration", fuzz_calibration},   {"aimotive", fuzz_aimotive},
-      {"udp_datagram", fuzz_udp_datagrams}, {"udp_control", fuzz_udp_control}};
+      {"udp_datagram", fuzz_udp_datagrams}, {"udp_control", fuzz_udp_control},
+      {"report_database", fuzz_report_database}, {"campaign_manifest", fuzz_campaign_manifest}};
   return entries;
 }
 
@@ -180,6 +182,28 @@ TEST(FuzzBases, TheEncodedDatagramSeedsDecodeAndSurviveTheHarness) {
     stream::ControlRequest request;
     EXPECT_EQ(stream::decode_control_request(bytes, request), stream::DecodeError::none) << name;
     EXPECT_NO_THROW(fuzz_udp_control(bytes)) << name;
+  }
+}
+
+TEST(FuzzBases, TheReportDatabaseSeedsRenderAndMerge) {
+  const auto seeds = report_database_seeds();
+  ASSERT_EQ(seeds.size(), 2u);
+  for (const auto& [name, bytes] : seeds) {
+    const fs::path dir = fresh_dir("report_seed_check");
+    write_file(dir / "report.sqlite", {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+    EXPECT_NO_THROW((void)replay::write_html_report_file((dir / "report.sqlite").string(), (dir / "r.html").string(), {}))
+        << name;
+    const replay::MergeResult merged = replay::merge_reports({(dir / "report.sqlite").string()}, (dir / "m.sqlite").string());
+    EXPECT_EQ(merged.added(), 1) << name;
+  }
+}
+
+TEST(FuzzBases, TheCampaignManifestSeedsPlan) {
+  for (const auto& entry : fs::directory_iterator(fs::path(RCSIM_SOURCE_DIR) / "tests/fuzz/corpus/campaign_manifest")) {
+    const std::string text = read_source_file(entry.path());
+    std::string script;
+    EXPECT_NO_THROW(script = plan_campaign_manifest(text)) << entry.path();
+    EXPECT_NE(script.find("#SBATCH --array=0-1"), std::string::npos) << script;
   }
 }
 

@@ -11,7 +11,9 @@
 #include <fstream>
 #include <future>
 #include <random>
+#include <optional>
 #include <set>
+#include <thread>
 
 #include "common/input_error.hpp"
 #include "io/recording.hpp"
@@ -27,6 +29,8 @@ namespace {
 namespace asio = boost::asio;
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
+
+constexpr std::string_view kToken = "0123456789abcdef-token";
 
 Scene two_sensor_scene(double duration_s) {
   Scene scene = rcsim::testing::single_sensor_scene(duration_s);
@@ -68,13 +72,14 @@ class ControlClient {
   explicit ControlClient(std::uint16_t port) : socket_(io_, udp::v4()), control_(asio::ip::make_address("127.0.0.1"), port) {
     socket_.bind(udp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
   }
-  void send(MessageType type, std::uint32_t argument = 0) {
+  void send(MessageType type, std::uint32_t argument = 0, std::string_view token = {}) {
     Header h;
     h.type = type;
     h.sequence = sequence_++;
-    const Bytes d = make_datagram(h, encode_control_payload(type, argument, 0));
+    const Bytes d = make_datagram(h, encode_control_payload(type, argument, 0, token));
     socket_.send_to(asio::buffer(d), control_);
   }
+  std::uint16_t port() const { return socket_.local_endpoint().port(); }
   void send_raw(const Bytes& d) { socket_.send_to(asio::buffer(d), control_); }
   // The next datagram, or nothing after the timeout.
   std::optional<Bytes> receive(std::chrono::milliseconds timeout = 5s) {
@@ -231,11 +236,12 @@ TEST(StreamLoopback, StepSeekAndResumeFromAClient) {
   options.control = "127.0.0.1:0";
   options.speed = 0.0;
   options.stepped = true;
+  options.control_token = kToken;
   StreamerRun streamer(*source, options);
   ControlClient client(streamer.streamer.control_port());
   client.send(MessageType::pause);
   EXPECT_EQ(client.reply().result, ReplyResult::not_subscribed);  // only subscribers steer
-  client.send(MessageType::subscribe, kSimulatedBit);
+  client.send(MessageType::subscribe, kSimulatedBit, kToken);
   EXPECT_EQ(client.reply().result, ReplyResult::ok);
   client.send(MessageType::step, 3);
   client.reply();
@@ -257,6 +263,145 @@ TEST(StreamLoopback, StepSeekAndResumeFromAClient) {
   EXPECT_EQ(rest.back(), static_cast<std::uint32_t>(n - 1));
   const StreamSummary summary = streamer.get();
   EXPECT_EQ(summary.cycles, static_cast<std::uint64_t>(3 + 1 + n - 11));
+}
+
+TEST(StreamLoopback, WatchersCannotSteerAndAControllerTakesTheOldestWatchersPlace) {
+  const Scene scene = two_sensor_scene(1.0);
+  auto source = make_scene_source(scene, {});
+  StreamOptions options;
+  options.control = "127.0.0.1:0";
+  options.speed = 0.0;
+  options.stepped = true;
+  options.max_clients = 2;
+  options.control_token = kToken;
+  StreamerRun streamer(*source, options);
+  const std::uint16_t port = streamer.streamer.control_port();
+  ControlClient first(port), second(port), stranger(port), operator_client(port);
+  first.send(MessageType::subscribe, kSimulatedBit);
+  EXPECT_EQ(first.reply().result, ReplyResult::ok);
+  second.send(MessageType::subscribe, kSimulatedBit, "a-wrong-token-of-20b");
+  EXPECT_EQ(second.reply().result, ReplyResult::ok);  // a wrong token subscribes as a watcher
+  for (const MessageType steer : {MessageType::pause, MessageType::resume, MessageType::step, MessageType::seek}) {
+    for (ControlClient* watcher : {&first, &second}) {
+      watcher->send(steer, 1);
+      EXPECT_EQ(watcher->reply().result, ReplyResult::not_allowed) << message_type_name(steer);
+    }
+  }
+  EXPECT_TRUE(first.cycles(1, 200ms).empty()) << "a watcher's step let a cycle out";
+  stranger.send(MessageType::subscribe, kSimulatedBit);
+  EXPECT_EQ(stranger.reply().result, ReplyResult::refused_full);
+  // The operator gets in although two watchers fill the table: the first one goes.
+  operator_client.send(MessageType::subscribe, kSimulatedBit, kToken);
+  const ControlReply in = operator_client.reply();
+  EXPECT_EQ(in.result, ReplyResult::ok);
+  EXPECT_EQ(in.subscribers, 2u);
+  operator_client.send(MessageType::step, 2);
+  EXPECT_EQ(operator_client.reply().result, ReplyResult::ok);
+  EXPECT_EQ(operator_client.cycles(4), (std::vector<std::uint32_t>{0, 0, 1, 1}));
+  EXPECT_EQ(second.cycles(4), (std::vector<std::uint32_t>{0, 0, 1, 1}));
+  first.send(MessageType::keepalive);
+  EXPECT_EQ(first.reply().result, ReplyResult::not_subscribed) << "the evicted watcher still had a stream";
+  streamer.streamer.stop();
+  const StreamSummary summary = streamer.get();
+  EXPECT_EQ(summary.watchers_evicted, 1u);
+  EXPECT_EQ(summary.cycles, 2u);
+}
+
+TEST(StreamLoopback, WithoutATokenNobodySteersUnlessTheControlIsOpen) {
+  const Scene scene = two_sensor_scene(1.0);
+  for (const bool open : {false, true}) {
+    auto source = make_scene_source(scene, {});
+    StreamOptions options;
+    options.control = "127.0.0.1:0";
+    options.speed = 0.0;
+    options.stepped = true;
+    options.open_control = open;
+    StreamerRun streamer(*source, options);
+    ControlClient client(streamer.streamer.control_port());
+    client.send(MessageType::subscribe, kSimulatedBit, kToken);  // a token the streamer does not have
+    EXPECT_EQ(client.reply().result, ReplyResult::ok);
+    client.send(MessageType::step, 1);
+    EXPECT_EQ(client.reply().result, open ? ReplyResult::ok : ReplyResult::not_allowed);
+    EXPECT_EQ(client.cycles(2, open ? 5000ms : 200ms).size(), open ? 2u : 0u);  // both sensors' lists of cycle 0
+    streamer.streamer.stop();
+    EXPECT_EQ(streamer.get().cycles, open ? 1u : 0u);
+  }
+}
+
+TEST(StreamLoopback, AListenerCountsTheCyclesASeekSendsAgain) {
+  const Scene scene = two_sensor_scene(1.0);
+  auto source = make_scene_source(scene, {});
+  StreamOptions options;
+  options.control = "127.0.0.1:0";
+  options.speed = 0.0;
+  options.stepped = true;
+  options.control_token = kToken;
+  StreamerRun streamer(*source, options);
+  const std::uint16_t port = streamer.streamer.control_port();
+  ControlClient controller(port);
+  controller.send(MessageType::subscribe, kSimulatedBit, kToken);
+  controller.reply();
+  ListenOptions listen;
+  listen.subscribe = fmt::format("127.0.0.1:{}", port);
+  ListenerRun watcher(listen);
+  // The watcher is in once the streamer counts two subscribers.
+  for (int i = 0; i < 100; ++i) {
+    controller.send(MessageType::keepalive);
+    if (controller.reply().subscribers == 2) break;
+    std::this_thread::sleep_for(20ms);
+  }
+  controller.send(MessageType::step, 3);  // cycles 0, 1, 2
+  controller.reply();
+  EXPECT_EQ(controller.cycles(6).size(), 6u);
+  controller.send(MessageType::seek, 1);
+  controller.reply();
+  controller.send(MessageType::resume);  // 1 again, 2 again, then on to the end
+  controller.reply();
+  const ListenSummary s = watcher.get();
+  streamer.get();
+  EXPECT_TRUE(s.end_received);
+  EXPECT_EQ(s.rewinds, 2u);           // 2 -> 1, for each of the two sensors
+  EXPECT_EQ(s.cycles_repeated, 0u);
+  EXPECT_EQ(s.duplicates, 0u);        // the datagrams themselves are new: only the cycles repeat
+  EXPECT_NE(s.line().find("2 rewinds"), std::string::npos) << s.line();
+}
+
+TEST(StreamLoopback, AForgedControlReplyNeitherEndsNorSteersAListener) {
+  const Scene scene = two_sensor_scene(1.0);
+  SourceOptions source_options;
+  source_options.simulation.seed = 2;
+  for (const bool subscribed : {false, true}) {
+    auto source = make_scene_source(scene, source_options);
+    ListenOptions listen;
+    std::optional<StreamerRun> streamer;
+    StreamOptions options;
+    options.speed = testing::kLosslessSpeed;
+    if (subscribed) {
+      options.control = "127.0.0.1:0";
+      options.wait_clients = 1;
+      streamer.emplace(*source, options);
+      listen.subscribe = fmt::format("127.0.0.1:{}", streamer->streamer.control_port());
+    }
+    ListenerRun listener(listen);
+    // "Refused: the streamer has all the clients it takes", from a socket that is not the streamer.
+    ControlReply forged;
+    forged.request_type = MessageType::subscribe;
+    forged.result = ReplyResult::refused_full;
+    Header h;
+    h.type = MessageType::control_reply;
+    ControlClient stranger(listener.listener.port());
+    stranger.send_raw(make_datagram(h, encode_control_reply(forged)));
+    if (!subscribed) {
+      options.destinations = {fmt::format("127.0.0.1:{}", listener.listener.port())};
+      std::this_thread::sleep_for(100ms);  // the forged reply arrives first
+      streamer.emplace(*source, options);
+    }
+    const ListenSummary s = listener.get();
+    streamer->get();
+    EXPECT_TRUE(s.end_received) << (subscribed ? "subscribed" : "passive");
+    EXPECT_EQ(s.stray_replies, 1u);
+    EXPECT_EQ(listener.out.str(), testing::simulate_rows(scene, source_options.simulation));
+  }
 }
 
 TEST(StreamLoopback, SeekingBackReplaysIdenticalCycles) {

@@ -15,7 +15,8 @@ local message_types = {
   [0x14] = "step", [0x15] = "seek", [0x16] = "keepalive",
 }
 local levels = { [0] = "ideal", [1] = "detections", [2] = "tracks", [3] = "recorded" }
-local results = { [0] = "ok", [1] = "refused: clients full", [2] = "not subscribed", [3] = "out of range" }
+local results = { [0] = "ok", [1] = "refused: clients full", [2] = "not subscribed", [3] = "out of range",
+                  [4] = "not allowed: a watcher" }
 local states = { [0] = "running", [1] = "paused", [2] = "finished" }
 
 local f = rcsim.fields
@@ -73,6 +74,7 @@ f.reply_ignored = ProtoField.uint64("rcsim.reply.control_ignored", "Control data
 f.control_mask = ProtoField.uint32("rcsim.control.message_mask", "Message mask", base.HEX)
 f.control_sensor_mask = ProtoField.uint32("rcsim.control.sensor_mask", "Sensor mask", base.HEX)
 f.control_argument = ProtoField.uint32("rcsim.control.argument", "Argument")
+f.control_token_length = ProtoField.uint8("rcsim.control.token_length", "Control token length")
 
 local e_malformed = ProtoExpert.new("rcsim.malformed", "Malformed rcsim payload", expert.group.MALFORMED, expert.severity.ERROR)
 rcsim.experts = { e_malformed }
@@ -192,10 +194,13 @@ local function dissect(buf, pinfo, root)
       tree:add_le(f.reply_ignored, payload(24, 8))
     end
   elseif type == 0x10 then
-    ok = payload ~= nil and payload:len() == 8
+    -- 8 bytes, or 8 + 1 + a 16..64-byte control token (shown by its length only)
+    local n = payload ~= nil and payload:len() or 0
+    ok = n == 8 or (n >= 9 + 16 and n <= 9 + 64 and payload(8, 1):uint() == n - 9)
     if ok then
       tree:add_le(f.control_mask, payload(0, 4))
       tree:add_le(f.control_sensor_mask, payload(4, 4))
+      if n > 8 then tree:add(f.control_token_length, payload(8, 1)) end
     end
   elseif type == 0x14 or type == 0x15 then
     ok = payload ~= nil and payload:len() == 4

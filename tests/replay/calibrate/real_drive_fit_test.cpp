@@ -9,6 +9,7 @@
 
 #include "replay/import/aimotive_importer.hpp"
 #include "scratch_dir.hpp"
+#include "test_support.hpp"
 
 namespace rcsim::replay {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kSynthetic = fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / "two_in_one_cell";
-const fs::path kRaw = fs::path(RCSIM_SOURCE_DIR) / ".." / "shared" / "realdata" / "aimotive_highway_night" / "raw";
+using rcsim::testing::kAimotiveRaw;
 
 TEST(RealDriveFit, RecordingsSplitBySensorAndByCycles) {
   const Recording rec = read_recording(kSynthetic);
@@ -74,13 +75,13 @@ class RealDriveHoldOut : public rcsim::testing::ScratchDirTest {
  protected:
   RealDriveHoldOut() : ScratchDirTest("real_drive_fit") {}
   void SetUp() override {
-    if (!fs::is_directory(kRaw)) GTEST_SKIP() << "real data absent (" << kRaw.string() << "): real-drive fit tests skipped";
+    if (!fs::is_directory(kAimotiveRaw)) GTEST_SKIP() << "real data absent (" << kAimotiveRaw.string() << "): real-drive fit tests skipped";
     ScratchDirTest::SetUp();
   }
 };
 
 TEST_F(RealDriveHoldOut, BackgroundAndTheMetGoalsHoldOnDataNotFittedOn) {
-  const DatasetRecording imported = import_aimotive(kRaw);
+  const DatasetRecording imported = import_aimotive(kAimotiveRaw);
   write_recording(dir_ / "rec", imported.recording, imported.extra_files);
   const Recording rec = read_recording(dir_ / "rec");
   ReplayOptions options;

@@ -85,13 +85,13 @@ TEST_F(CriteriaTest, CampaignStatisticsByHand) {
       {"mean", (a + b) / 2}, {"median", (a + b) / 2}, {"p95", a + 0.95 * (b - a)}, {"min", a}, {"max", b}};
   for (const auto& [statistic, value] : expected) {
     const auto criteria = parse(R"({"criteria": [{"figure": "gospa_mean_m", "scope": "campaign", "statistic": ")" +
-                                statistic + R"(", "max": )" + fmt::format("{:.17g}", value + 1e-9) +
-                                R"(, "min": )" + fmt::format("{:.17g}", value + 1e-6) + "}]}");
+                                statistic + R"(", "max": )" + fmt::format("{:.17g}", value - 1e-9) +
+                                R"(, "min": )" + fmt::format("{:.17g}", value - 1e-6) + "}]}");
     const Verdicts v = judge(*db_, criteria);
     ASSERT_EQ(v.campaign.size(), 2u) << statistic;
     EXPECT_NEAR(*v.campaign[0].value, value, 1e-12) << statistic;
-    EXPECT_FALSE(v.campaign[0].passed) << statistic;  // "min" comes first: >= value + 1e-6 fails
-    EXPECT_TRUE(v.campaign[1].passed) << statistic;   // <= value + 1e-9
+    EXPECT_TRUE(v.campaign[0].passed) << statistic;    // "min" comes first: >= value - 1e-6 passes
+    EXPECT_FALSE(v.campaign[1].passed) << statistic;   // <= value - 1e-9 fails
     EXPECT_EQ(v.runs_failed, 0);
     EXPECT_FALSE(v.passed());
   }
@@ -136,6 +136,18 @@ TEST_F(CriteriaTest, BadCriteriaNameTheField) {
   EXPECT_NE(error_of(R"({"criteria": [{"figure": "gospa_mean_m", "max": 1, "if_missing": "skip"}]})")
                 .find("if_missing"),
             std::string::npos);
+  // A floor above a ceiling can never pass: in one entry, or across two.
+  EXPECT_NE(error_of(R"({"criteria": [{"figure": "gospa_mean_m", "min": 2, "max": 1}]})")
+                .find("criteria[0].max: \"gospa_mean_m <= 1\": min 2 above max 1"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"criteria": [{"figure": "gospa_mean_m", "max": 1}, {"figure": "gospa_mean_m", "min": 2}]})")
+                .find("criteria[1].min"),
+            std::string::npos);
+  // The same figure over the campaign is another quantity: no contradiction.
+  EXPECT_EQ(error_of(R"({"criteria": [{"figure": "gospa_mean_m", "max": 1},
+                                      {"figure": "gospa_mean_m", "scope": "campaign", "min": 2}]})"),
+            "no error");
+  EXPECT_EQ(error_of(R"({"criteria": [{"figure": "gospa_mean_m", "min": 1, "max": 1}]})"), "no error");
 }
 
 TEST_F(CriteriaTest, JunitValidatesAgainstTheSchemaCiToolsRead) {

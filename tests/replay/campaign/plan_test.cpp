@@ -134,5 +134,39 @@ TEST_F(PlanTest, BadManifestsNameTheFileAndField) {
   EXPECT_NE(error_of(R"("recordings": ["x"])").find("campaign.json"), std::string::npos);
 }
 
+TEST_F(PlanTest, NothingInAManifestReachesTheBatchScriptButAsItsOwnLine) {
+  const std::string recordings = R"("recordings": [")" + (testing::kBundledRecordings / "close_front").string() + R"("])";
+  const auto manifest_with_name = [&](const std::string& json_name) {
+    const auto path = dir_ / "named.json";
+    std::ofstream(path) << R"({"format": "rcsim-campaign", "version": 1, "name": )" << json_name << ", " << recordings << "}";
+    return path;
+  };
+  // A newline would end the #SBATCH lines and start a command; CR, NUL and U+2028 as well.
+  for (const char* name : {R"("A\ntouch INJECTED;#")", R"("A\rB")", R"("A\u0000B")", R"("A\u2028B")", R"("a b")",
+                           "\"$(id)\"", R"("")", R"("-x")"}) {
+    try {
+      read_manifest(manifest_with_name(name));
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("named.json: name: "), std::string::npos) << e.what();
+    }
+  }
+  // A slurm field or a sbatch option with a line separator.
+  EXPECT_NE(error_of(recordings + R"(, "slurm": {"partition": "cpu\u2028touch X"})").find("slurm.partition: must be one line"),
+            std::string::npos);
+  EXPECT_NE(error_of(recordings + R"(, "slurm": {"extra": ["--qos=a\rb"]})").find("slurm.extra[0]"), std::string::npos);
+  // A plan directory whose path would break an #SBATCH line.
+  const auto manifest = read_manifest(write_manifest(recordings));
+  EXPECT_THROW(write_plan(manifest, 1, dir_ / "a\nb", "/opt/rcsim/bin/rcsim"), InputError);
+  EXPECT_THROW(write_plan(manifest, 1, dir_ / "a\"b", "/opt/rcsim/bin/rcsim"), InputError);
+  // A path with a space is quoted where the script names it.
+  write_plan(manifest, 1, dir_ / "with space", "/opt/rcsim/bin/rcsim");
+  const std::string script = rcsim::testing::read_file(dir_ / "with space" / "campaign.sbatch");
+  EXPECT_NE(script.find("#SBATCH --output=\"" + (dir_ / "with space" / "logs").string() + "/slurm-%A_%a.out\"\n"),
+            std::string::npos)
+      << script;
+  EXPECT_NE(script.find("campaign run-shard '" + (dir_ / "with space").string() + "'"), std::string::npos) << script;
+}
+
 }  // namespace
 }  // namespace rcsim::replay::campaign

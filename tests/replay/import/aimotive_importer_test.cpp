@@ -15,25 +15,26 @@
 #include "common/input_error.hpp"
 #include "metrics/sensor_view.hpp"
 #include "scratch_dir.hpp"
+#include "test_support.hpp"
 
 namespace rcsim::replay {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRaw = fs::path(RCSIM_SOURCE_DIR) / ".." / "shared" / "realdata" / "aimotive_highway_night" / "raw";
+using rcsim::testing::kAimotiveRaw;
 
 class AimotiveImporter : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    if (fs::is_directory(kRaw)) imported_ = new DatasetRecording(import_aimotive(kRaw));
+    if (fs::is_directory(kAimotiveRaw)) imported_ = new DatasetRecording(import_aimotive(kAimotiveRaw));
   }
   static void TearDownTestSuite() {
     delete imported_;
     imported_ = nullptr;
   }
   void SetUp() override {
-    if (imported_ == nullptr) GTEST_SKIP() << "real data absent (" << kRaw.string() << "): aiMotive importer tests skipped";
+    if (imported_ == nullptr) GTEST_SKIP() << "real data absent (" << kAimotiveRaw.string() << "): aiMotive importer tests skipped";
   }
   static const Recording& rec() { return imported_->recording; }
 
@@ -125,7 +126,7 @@ class AimotiveEgoLog : public rcsim::testing::ScratchDirTest {
  protected:
   AimotiveEgoLog() : ScratchDirTest("aimotive_ego") {}
   void SetUp() override {
-    if (!fs::is_directory(kRaw)) GTEST_SKIP() << "real data absent (" << kRaw.string() << "): aiMotive ego-log tests skipped";
+    if (!fs::is_directory(kAimotiveRaw)) GTEST_SKIP() << "real data absent (" << kAimotiveRaw.string() << "): aiMotive ego-log tests skipped";
     ScratchDirTest::SetUp();
   }
   fs::path write_log(const std::vector<EgoSample>& ego, double add_mps, std::size_t rows) {
@@ -141,9 +142,9 @@ class AimotiveEgoLog : public rcsim::testing::ScratchDirTest {
 };
 
 TEST_F(AimotiveEgoLog, AGivenLogIsUsedAndTheDopplerEstimateReportedBesideIt) {
-  const DatasetRecording estimated = import_aimotive(kRaw);
+  const DatasetRecording estimated = import_aimotive(kAimotiveRaw);
   const fs::path log = write_log(estimated.recording.ego, 1.0, estimated.recording.ego.size());
-  const DatasetRecording logged = import_aimotive(kRaw, {log});
+  const DatasetRecording logged = import_aimotive(kAimotiveRaw, {log});
   ASSERT_EQ(logged.recording.ego.size(), estimated.recording.ego.size());
   for (std::size_t k = 0; k < logged.recording.ego.size(); ++k) {
     EXPECT_NEAR(logged.recording.ego[k].speed_mps, estimated.recording.ego[k].speed_mps + 1.0, 1e-6);
@@ -153,11 +154,11 @@ TEST_F(AimotiveEgoLog, AGivenLogIsUsedAndTheDopplerEstimateReportedBesideIt) {
   EXPECT_NEAR(report.at("doppler_check").at("speed_difference_mean_mps").get<double>(), -1.0, 1e-6);
   EXPECT_EQ(report.at("doppler_estimate").at("cycles_fitted").get<int>(), 50);
   // Through the command line, and a log that ends before the last keyframe is refused.
-  const auto ok = rcsim::testing::run_rcsim("import --from aimotive " + kRaw.string() + " --ego-log " + log.string() +
+  const auto ok = rcsim::testing::run_rcsim("import --from aimotive " + kAimotiveRaw.string() + " --ego-log " + log.string() +
                                            " -o " + (dir_ / "rec").string());
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
   const fs::path short_log = write_log(estimated.recording.ego, 0.0, 40);
-  const auto r = rcsim::testing::run_rcsim("import --from aimotive " + kRaw.string() + " --ego-log " +
+  const auto r = rcsim::testing::run_rcsim("import --from aimotive " + kAimotiveRaw.string() + " --ego-log " +
                                            short_log.string() + " -o " + (dir_ / "rec2").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("ego_log.csv"), std::string::npos) << r.output;
@@ -168,9 +169,9 @@ class AimotiveRefusals : public rcsim::testing::ScratchDirTest {
  protected:
   AimotiveRefusals() : ScratchDirTest("aimotive") {}
   void SetUp() override {
-    if (!fs::is_directory(kRaw)) GTEST_SKIP() << "real data absent (" << kRaw.string() << "): aiMotive refusal tests skipped";
+    if (!fs::is_directory(kAimotiveRaw)) GTEST_SKIP() << "real data absent (" << kAimotiveRaw.string() << "): aiMotive refusal tests skipped";
     ScratchDirTest::SetUp();
-    fs::copy(kRaw, dir_ / "raw", fs::copy_options::recursive);
+    fs::copy(kAimotiveRaw, dir_ / "raw", fs::copy_options::recursive);
     sequence_ = aimotive::find_sequence(dir_ / "raw");
   }
   std::string import_error() {
@@ -221,6 +222,34 @@ TEST_F(AimotiveRefusals, ALevelBeyondTheLimitIsRefusedAtImportNamingFileAndField
   EXPECT_NE(error.find("F_LRR_C_0033660.json"), std::string::npos) << error;
   EXPECT_NE(error.find("noise"), std::string::npos) << error;
   EXPECT_NE(error.find("1000 dB"), std::string::npos) << error;
+}
+
+// An RCS of 0 m^2 or below has no level in dBsm: it was written as -100 dBsm without a word.
+TEST_F(AimotiveRefusals, ARadarCrossSectionOfZeroOrBelowIsRefusedNamingFileAndField) {
+  const fs::path file = sequence_ / "sensor/radar/F_LRR_C/F_LRR_C_0033660.json";
+  const std::string text = rcsim::testing::read_file(file);
+  for (const char* rcs : {R"("rcs": 0.0)", R"("rcs": -3.5)"}) {
+    const std::string damaged =
+        std::regex_replace(text, std::regex(R"("rcs": [-0-9.e]+)"), rcs, std::regex_constants::format_first_only);
+    ASSERT_NE(damaged, text);
+    std::ofstream(file, std::ios::trunc) << damaged;
+    const std::string error = import_error();
+    EXPECT_NE(error.find("F_LRR_C_0033660.json"), std::string::npos) << error;
+    EXPECT_NE(error.find("rcs: must be positive"), std::string::npos) << error;
+  }
+}
+
+// A name with a newline was imported, and the written objects.csv then refused by `rcsim replay`:
+// an importer writes only what rcsim reads back.
+TEST_F(AimotiveRefusals, AnActorNameWithALineBreakIsRefusedNamingFileAndField) {
+  const fs::path file = sequence_ / "dynamic/box/3d_body/frame_0033650.json";
+  const std::string text = rcsim::testing::read_file(file);
+  const std::string damaged = std::regex_replace(text, std::regex(R"re("ActorName": "([^"]*)")re"), R"re("ActorName": "$1\nX")re");
+  ASSERT_NE(damaged, text);
+  std::ofstream(file, std::ios::trunc) << damaged;
+  const std::string error = import_error();
+  EXPECT_NE(error.find("frame_0033650.json"), std::string::npos) << error;
+  EXPECT_NE(error.find("ActorName: the name holds a newline (U+000A)"), std::string::npos) << error;
 }
 
 TEST_F(AimotiveRefusals, ABoxBeyondTheLimitsIsRefusedNamingFileAndField) {

@@ -40,6 +40,35 @@ TEST(DopplerEgoMotion, OneSensorsVelocityAndItsStationaryTargets) {
   EXPECT_NEAR(fit.residual_rms_mps, 0.0, 1e-9);
 }
 
+TEST(DopplerEgoMotion, AnImagingRadarsFrameIsFittedFromABoundedSampleOfPairs) {
+  // 10,000 targets, a third of them moving: every pair (5e7 hypotheses of 1e4 residuals each)
+  // took hours; 2,048 drawn pairs find the stationary world as exactly.
+  const Vec2 v_S_S(12.5, 0.8);
+  auto targets = targets_for(v_S_S, 6700, 0);
+  for (int i = 0; i < 3300; ++i) targets.push_back({-0.3 + 0.6 * (i % 97) / 96.0, 0.0, 1.0 + 0.01 * i});  // receding
+  DopplerFitParameters parameters;
+  const SensorVelocityFit fit = fit_sensor_velocity(targets, parameters);
+  ASSERT_TRUE(fit.valid);
+  EXPECT_NEAR(fit.v_S_S.x(), 12.5, 1e-6);
+  EXPECT_NEAR(fit.v_S_S.y(), 0.8, 1e-6);
+  EXPECT_EQ(fit.inliers.size(), 6700u);
+  // The same frame gives the same fit (the pairs are drawn with a fixed seed).
+  EXPECT_EQ(fit_sensor_velocity(targets, parameters).v_S_S, fit.v_S_S);
+}
+
+TEST(DopplerEgoMotion, AFewTargetsAreFittedFromEveryPair) {
+  // 64 targets have 2,016 pairs, within the budget: every pair is tried, the sample drive's frames
+  // (55 targets at most) too, so their fit is the exhaustive one.
+  const auto targets = targets_for(Vec2(20.0, 0.0), 40, 24);
+  DopplerFitParameters exhaustive, sampled;
+  sampled.max_hypotheses = 64;  // fewer than the 2,016 pairs: drawn
+  const SensorVelocityFit a = fit_sensor_velocity(targets, exhaustive), b = fit_sensor_velocity(targets, sampled);
+  ASSERT_TRUE(a.valid && b.valid);
+  EXPECT_NEAR(a.v_S_S.x(), 20.0, 1e-9);
+  EXPECT_EQ(a.inliers.size(), 40u);
+  EXPECT_NEAR(b.v_S_S.x(), 20.0, 1e-9);
+}
+
 TEST(DopplerEgoMotion, TooFewStationaryTargetsIsNoFit) {
   EXPECT_FALSE(fit_sensor_velocity(targets_for(Vec2(10.0, 0.0), 3, 0), {}).valid);
   EXPECT_FALSE(fit_sensor_velocity({}, {}).valid);

@@ -63,6 +63,24 @@ TEST(Importer, WrittenSceneLoadsBack) {
   EXPECT_NEAR(loaded.objects[1].presence[0].until_s, imported.objects[1].presence[0].until_s, 1e-12);
 }
 
+TEST(Importer, AWrongTypedSourceEffectsIsRefusedByField) {
+  Recording rec = testing::model_recording(testing::two_cars_scene(1.0), 1);
+  rec.dir = "rec";
+  for (const auto& [effects, field] : {std::pair{nlohmann::json("all"), "source.effects"},
+                                       std::pair{nlohmann::json{{"clutter", "yes"}}, "source.effects.clutter"},
+                                       std::pair{nlohmann::json{{"glare", true}}, "source.effects.glare"}}) {
+    rec.source["effects"] = effects;
+    try {
+      import_recording(rec, testing::library(), {});
+      ADD_FAILURE() << effects.dump() << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("recording.json: ") + field + ":"), std::string::npos) << e.what();
+    }
+  }
+  rec.source["effects"] = {{"clutter", false}, {"occlusion", true}};
+  EXPECT_FALSE(import_recording(rec, testing::library(), {}).effects.clutter);
+}
+
 TEST(Importer, RefusesUnknownClassesAndSplitsLongGaps) {
   const Scene scene = testing::two_cars_scene(2.0);
   Recording rec = testing::model_recording(scene, 1);

@@ -12,25 +12,26 @@
 #include "replay/run/replay_run.hpp"
 #include "replay/store/report_store.hpp"
 #include "scratch_dir.hpp"
+#include "test_support.hpp"
 
 namespace rcsim::replay {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRaw = fs::path(RCSIM_SOURCE_DIR) / ".." / "shared" / "realdata" / "aimotive_highway_night" / "raw";
+using rcsim::testing::kAimotiveRaw;
 
 class RealDriveReplay : public testing::ScratchDirTest {
  protected:
   RealDriveReplay() : ScratchDirTest("real_drive") {}
   void SetUp() override {
-    if (!fs::is_directory(kRaw)) GTEST_SKIP() << "real data absent (" << kRaw.string() << "): real-drive replay tests skipped";
+    if (!fs::is_directory(kAimotiveRaw)) GTEST_SKIP() << "real data absent (" << kAimotiveRaw.string() << "): real-drive replay tests skipped";
     ScratchDirTest::SetUp();
   }
 };
 
 TEST_F(RealDriveReplay, ClassesObjectFiguresAndOptionalColumnsOfTheSample) {
-  const DatasetRecording imported = import_aimotive(kRaw);
+  const DatasetRecording imported = import_aimotive(kAimotiveRaw);
   write_recording(dir_ / "rec", imported.recording, imported.extra_files);
   const Recording rec = read_recording(dir_ / "rec");
   ReplayOptions options;

@@ -60,6 +60,7 @@ class FigureReader : public rcsim::testing::ScratchDirTest {
     db_->exec("INSERT INTO runs (run_id, recording_name, recording_dir, recording_checksum, recording_source, "
               "cycle_time_s, cycles, seed, level, parameters, rcsim_version, created_utc) "
               "VALUES (1, 'r', '/r', '0', '{}', 0.1, 4, 0, 'tracks', '{}', 'v', 't')");
+    db_->exec("INSERT INTO run_objects VALUES (1, 3, 'car', 'passenger_car', 4.5, 1.8, 7)");
     RunRowWriter rows(*db_, 1, StoreLevel::full, 2.0, 2.0);
     const Pose2 ahead{1, 0, 0};
     // cycle, t, pose, n_rec, n_sim, n_assigned, gospa (= OSPA), merges

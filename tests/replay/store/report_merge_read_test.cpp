@@ -22,7 +22,11 @@ TEST(ReportMergeRead, TheFirstFieldInWhichTwoManifestsDifferIsNamed) {
   EXPECT_EQ(first_manifest_difference(
                 R"({"name": "drives", "recordings": ["a", "b"], "replay": {"seed": 0, "store": "summary"}, "x": 1})", kept),
             R"(field "x": 1 against missing)");
-  EXPECT_EQ(first_manifest_difference("not json", kept), "the texts differ, and one is no JSON");
+  EXPECT_EQ(first_manifest_difference("not json", kept),
+            "the texts differ, and one is not JSON (or nests deeper than rcsim reads)");
+  // A stored manifest nested 100,000 deep crashed the merge (SIGSEGV) while this message was made.
+  const std::string deep = std::string(100'000, '[') + std::string(100'000, ']');
+  EXPECT_EQ(first_manifest_difference(deep, kept), "the texts differ, and one is not JSON (or nests deeper than rcsim reads)");
   // A long value is cut.
   const std::string many = R"({"name": "drives", "recordings": [)" + std::string(R"("drive_0001", )") + std::string(R"("drive_0002", "drive_0003", "drive_0004", "drive_0005", "drive_0006"]})");
   const std::string difference = first_manifest_difference(many, kept);

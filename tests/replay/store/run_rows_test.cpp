@@ -27,6 +27,14 @@ void insert_run(SQLite::Database& db, int run_id, const char* store) {
   q.bind(1, run_id);
   q.bind(2, store);
   q.exec();
+  // Its five objects (RandomRun's): a cycle's object states are checked against them.
+  for (int object = 0; object < 5; ++object) {
+    SQLite::Statement o(db, "INSERT INTO run_objects VALUES (?, ?, ?, 'passenger_car', 4.5, 1.8, 7)");
+    o.bind(1, run_id);
+    o.bind(2, object);
+    o.bind(3, "car_" + std::to_string(object));
+    o.exec();
+  }
 }
 
 double float32(double value) { return static_cast<double>(static_cast<float>(value)); }
