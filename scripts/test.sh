@@ -10,7 +10,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
-# One test more than cores: many tests wait on child processes, sockets or Slurm (docs/ci.md).
+# Release tests one more than the cores: many wait on child processes, sockets or Slurm. Under the
+# sanitizers the tests are CPU-bound: a third job only slows the longest (docs/ci.md).
 test_jobs=$((jobs + 1))
 
 times=()
@@ -41,7 +42,7 @@ if [ "${RCSIM_SKIP_SANITIZE:-0}" != "1" ] || [ "${RCSIM_SKIP_FUZZ:-0}" != "1" ];
 fi
 if [ "${RCSIM_SKIP_SANITIZE:-0}" != "1" ]; then
   stage "ASan+UBSan tests" env ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --test-dir build-asan --output-on-failure -j "$test_jobs"
+    ctest --test-dir build-asan --output-on-failure -j "$jobs"
 fi
 if [ "${RCSIM_SKIP_TSAN:-0}" != "1" ]; then
   stage "TSan: the stream's tests (build and run)" scripts/tsan.sh

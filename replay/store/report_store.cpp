@@ -13,6 +13,7 @@
 #include "common/embedded_data.hpp"
 #include "common/input_error.hpp"
 #include "common/text_file.hpp"
+#include "replay/store/report_merge_files.hpp"
 
 namespace rcsim::replay {
 
@@ -253,7 +254,8 @@ std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::st
   if (::access(path.c_str(), W_OK) == 0) return open_report_database(path, false);
   std::unique_ptr<SQLite::Database> db;
   try {
-    db = std::make_unique<SQLite::Database>(path, SQLite::OPEN_READONLY);
+    // Without write access SQLite cannot make the WAL's -shm beside it: read the file as immutable.
+    db = std::make_unique<SQLite::Database>(merge_files::read_only_uri(path), SQLite::OPEN_READONLY | SQLite::OPEN_URI);
     db->setBusyTimeout(kBusyTimeout_ms);
     const SchemaState state = read_schema_state_once(*db, path);
     if (state == SchemaState::empty) throw InputError(path, "", "the database is empty: no replay has been stored in it");

@@ -6,6 +6,10 @@
 
 #include <SQLiteCpp/SQLiteCpp.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -74,6 +78,30 @@ TEST_F(DamagedReport, AMergeRefusesAnInputWhosePagesAreDamagedNamingIt) {
   EXPECT_NE(r.output.find(bad.string() + ": "), std::string::npos) << r.output;
   EXPECT_TRUE(r.output.find("malformed") != std::string::npos || r.output.find("damaged") != std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(merged)) << "the merge wrote a report from a damaged input";
+}
+
+TEST_F(DamagedReport, AReadOnlyDatabaseInAReadOnlyDirectoryIsReported) {
+  // "attempt to write a readonly database": report opened every database read-write.
+  const fs::path db = replayed("readonly.sqlite");
+  fs::permissions(db, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  std::string as_someone_else;
+  if (::geteuid() == 0) {
+    // Root may write anything: the report runs as nobody, for whom the file and the directory
+    // are read-only.
+    if (std::system("command -v runuser >/dev/null 2>&1 && id nobody >/dev/null 2>&1") != 0) {
+      GTEST_SKIP() << "running as root without runuser or the user nobody: read-only access cannot be tried";
+    }
+    as_someone_else = "runuser -u nobody -- ";
+  } else {
+    fs::permissions(dir_, fs::perms::owner_write, fs::perm_options::remove);
+  }
+  const fs::path html = fs::temp_directory_path() / ("rcsim_readonly_" + std::to_string(::getpid()) + ".html");
+  const std::string command = as_someone_else + RCSIM_BINARY + " report " + db.string() + " -o " + html.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << command;
+  EXPECT_TRUE(fs::exists(html));
+  fs::remove(html);
 }
 
 TEST_F(DamagedReport, EightReplaysIntoOneNewDatabaseAtOnceAllStoreTheirRuns) {

@@ -145,12 +145,14 @@ inline void fuzz_udp_control(Input data) {
   stream::ControlRequest request;
   if (stream::decode_control_request(data, request) != stream::DecodeError::none) return;
   const stream::Bytes again = stream::make_datagram(
-      request.header, stream::encode_control_payload(request.header.type, request.argument, request.sensor_mask));
+      request.header,
+      stream::encode_control_payload(request.header.type, request.argument, request.sensor_mask, request.token));
   stream::ControlRequest twice;
   udp::check(stream::decode_control_request(again, twice) == stream::DecodeError::none, "a re-encoded control request does not decode");
   udp::check(twice.header.type == request.header.type && twice.header.sequence == request.header.sequence &&
                  twice.header.timestamp_ns == request.header.timestamp_ns && twice.header.flags == request.header.flags &&
-                 twice.argument == request.argument && twice.sensor_mask == request.sensor_mask,
+                 twice.argument == request.argument && twice.sensor_mask == request.sensor_mask &&
+                 twice.token == request.token,
              "a re-encoded control request differs");
 }
 
@@ -230,6 +232,12 @@ inline std::vector<std::pair<std::string, stream::Bytes>> udp_control_seeds() {
     const std::uint32_t argument = type == MessageType::subscribe ? (kSimulatedBit | kTruthBit) : type == MessageType::seek ? 50 : 3;
     seeds.emplace_back(name, make_datagram(h, encode_control_payload(type, argument, 0b101)));
   }
+  // A subscribe that presents a control token (docs/stream.md: who can do what).
+  Header h;
+  h.type = MessageType::subscribe;
+  h.sequence = sequence;
+  seeds.emplace_back("subscribe_with_token",
+                     make_datagram(h, encode_control_payload(MessageType::subscribe, kSimulatedBit, 0, "0123456789abcdef-token")));
   return seeds;
 }
 

@@ -129,6 +129,33 @@ TEST_F(RecordingFiles, RewritingReplacesAnEarlierRecordingWhole) {
   }
 }
 
+TEST_F(RecordingFiles, ReplacesOnlyARecordingOrAnEmptyDirectoryAndNeverALink) {
+  const auto refusal = [&](const std::filesystem::path& to) {
+    try {
+      write_recording(to, rec_);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("written");
+  };
+  std::filesystem::create_directories(dir_ / "photos");
+  std::ofstream(dir_ / "photos" / "holiday.jpg") << "not a recording";
+  EXPECT_NE(refusal(dir_ / "photos").find("photos: is a directory without a recording.json"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "photos" / "holiday.jpg"));
+  std::ofstream(dir_ / "file") << "x";
+  EXPECT_NE(refusal(dir_ / "file").find("exists and is not a directory"), std::string::npos);
+  std::filesystem::create_directories(dir_ / "empty");
+  EXPECT_EQ(refusal(dir_ / "empty"), "written");
+  std::filesystem::create_directory_symlink(dir_ / "empty", dir_ / "link");
+  EXPECT_NE(refusal(dir_ / "link").find("is a symbolic link"), std::string::npos);
+  EXPECT_EQ(refusal(dir_ / "empty"), "written");  // a recording it wrote is replaced
+  // An id that would break its CSV row is not written.
+  Recording bad = rec_;
+  bad.objects.front().id = "car\n1";
+  EXPECT_THROW(write_recording(dir_ / "bad", bad), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "bad"));
+}
+
 TEST_F(RecordingFiles, RefusesBadEgoLogs) {
   expect_refused("ego.csv", "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,0,0,0,0\n0.04,0,0,0,0,0\n0.02,0,0,0,0,0\n",
                  "line 4, column 't_s'");
