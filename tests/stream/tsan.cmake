@@ -17,7 +17,6 @@ file(GLOB RCSIM_STREAM_TSAN_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/
 list(FILTER RCSIM_STREAM_TSAN_SOURCES EXCLUDE REGEX "/(listen_cli|wireshark_dissector)_test\\.cpp$")
 rcsim_unity(RCSIM_STREAM_TSAN_SOURCES rcsim_stream_tests ${RCSIM_STREAM_TSAN_SOURCES})
 add_executable(rcsim_stream_tests ${RCSIM_STREAM_TSAN_SOURCES})
-target_link_libraries(rcsim_stream_tests PRIVATE rcsim_stream GTest::gtest GTest::gtest_main rcsim_warnings)
+target_link_libraries(rcsim_stream_tests PRIVATE rcsim_stream rcsim_test_paths GTest::gtest GTest::gtest_main rcsim_warnings)
 target_include_directories(rcsim_stream_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
-target_compile_definitions(rcsim_stream_tests PRIVATE RCSIM_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
 gtest_discover_tests(rcsim_stream_tests TEST_PREFIX "tsan." PROPERTIES LABELS tsan DISCOVERY_TIMEOUT 60)
