@@ -155,24 +155,13 @@ std::string exact(const SQLite::Column& v) {
 }
 
 Header check_header(SQLite::Database& db, const std::string& path) {
-  const int application_id = db.execAndGet("PRAGMA application_id").getInt();
-  const int user_version = db.execAndGet("PRAGMA user_version").getInt();
-  const int tables = db.execAndGet("SELECT count(*) FROM sqlite_schema").getInt();
-  if (application_id == 0 && user_version == 0 && tables == 0) return Header::empty;
-  if (application_id != kReportApplicationId) {
-    throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
-                                           static_cast<std::uint32_t>(application_id), kReportApplicationId));
-  }
-  if (user_version < kReportSchemaVersion) {
+  const SchemaState state = read_schema_state(db, path);
+  if (state == SchemaState::older) {
     throw InputError(path, "", fmt::format("report schema version {}, expected {}; open it once with `rcsim report {} "
                                            "-o REPORT.html` to migrate it, then merge again",
-                                           user_version, kReportSchemaVersion, path));
+                                           db.execAndGet("PRAGMA user_version").getInt(), kReportSchemaVersion, path));
   }
-  if (user_version != kReportSchemaVersion) {
-    throw InputError(path, "", fmt::format("report schema version {}, expected {}: written by a newer rcsim",
-                                           user_version, kReportSchemaVersion));
-  }
-  return Header::report;
+  return state == SchemaState::empty ? Header::empty : Header::report;
 }
 
 void throw_named(const SQLite::Exception& e, const std::string& path) {

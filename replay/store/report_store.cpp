@@ -156,6 +156,24 @@ void create_report_schema(SQLite::Database& db) {
   db.exec(fmt::format("PRAGMA user_version = {}", kReportSchemaVersion));
 }
 
+// The identity and version of an open database, read in the caller's transaction (one snapshot).
+SchemaState read_schema_state(SQLite::Database& db, const std::string& path) {
+  const int application_id = db.execAndGet("PRAGMA application_id").getInt();
+  const int user_version = db.execAndGet("PRAGMA user_version").getInt();
+  const int tables = db.execAndGet("SELECT count(*) FROM sqlite_schema").getInt();
+  if (application_id == 0 && user_version == 0 && tables == 0) return SchemaState::empty;
+  if (application_id != kReportApplicationId) {
+    throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
+                                           static_cast<std::uint32_t>(application_id), kReportApplicationId));
+  }
+  if (user_version >= 1 && user_version < kReportSchemaVersion) return SchemaState::older;
+  if (user_version != kReportSchemaVersion) {
+    throw InputError(path, "", fmt::format("report schema version {}, expected {}: written by a newer rcsim",
+                                           user_version, kReportSchemaVersion));
+  }
+  return SchemaState::current;
+}
+
 namespace {
 
 // How long an opener waits for another process's write (a run's commit, a new schema): a run's
@@ -172,27 +190,6 @@ void check_database_file(const std::string& path) {
   }
 }
 
-enum class SchemaState { empty, older, current };
-
-// The identity and version of an open database (read in one transaction: the caller's); refuses, naming the file, one
-// that is not a report database, or of a version this rcsim cannot read.
-SchemaState read_schema_state(SQLite::Database& db, const std::string& path) {
-  const int application_id = db.execAndGet("PRAGMA application_id").getInt();
-  const int user_version = db.execAndGet("PRAGMA user_version").getInt();
-  const int tables = db.execAndGet("SELECT count(*) FROM sqlite_schema").getInt();
-  if (application_id == 0 && user_version == 0 && tables == 0) return SchemaState::empty;
-  if (application_id != kReportApplicationId) {
-    throw InputError(path, "", fmt::format("not an rcsim report database (application_id {:#x}, expected {:#x})",
-                                           static_cast<std::uint32_t>(application_id), kReportApplicationId));
-  }
-  if (user_version >= 1 && user_version < kReportSchemaVersion) return SchemaState::older;
-  if (user_version != kReportSchemaVersion) {
-    throw InputError(path, "", fmt::format("report database schema version {} is not the supported version {}",
-                                           user_version, kReportSchemaVersion));
-  }
-  return SchemaState::current;
-}
-
 // The same in a read transaction of its own: one snapshot of the three values.
 SchemaState read_schema_state_once(SQLite::Database& db, const std::string& path) {
   SQLite::Transaction snapshot(db, SQLite::TransactionBehavior::DEFERRED);
@@ -204,7 +201,8 @@ SchemaState read_schema_state_once(SQLite::Database& db, const std::string& path
 }  // namespace
 
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create) {
-  if (!create && !std::filesystem::exists(path)) throw InputError(path, "", "no such report database");
+  const bool existed = std::filesystem::exists(path);
+  if (!create && !existed) throw InputError(path, "", "no such report database");
   check_database_file(path);
   std::unique_ptr<SQLite::Database> db;
   try {
@@ -242,6 +240,12 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
     // committed run may be lost on power loss, never an earlier one.
     db->exec("PRAGMA synchronous = NORMAL");
   } catch (const SQLite::Exception& e) {
+    // A database this call created and could not give a schema (a full disk) is left as nothing.
+    db.reset();
+    std::error_code ignored;
+    if (create && !existed && std::filesystem::file_size(path, ignored) == 0) {
+      for (const char* suffix : {"", "-journal", "-wal", "-shm"}) std::filesystem::remove(path + suffix, ignored);
+    }
     throw InputError(path, "", std::string("cannot use as a report database: ") + e.what());
   }
   return db;

@@ -32,6 +32,12 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
 // write the file, else read-only (a read-only copy of an older schema is refused, saying why).
 std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::string& path);
 
+// What an open database holds: nothing yet, a report of an older schema (1 to 4, migrated on
+// opening for writing), or one of this version. Refuses, naming the file, anything else (another
+// application's database, a newer schema). Read in the caller's transaction.
+enum class SchemaState { empty, older, current };
+SchemaState read_schema_state(SQLite::Database& db, const std::string& path);
+
 // Writes a new report's schema (its tables, application_id and user_version) into an empty
 // database, within the caller's transaction (`rcsim merge` fills it in the same one).
 void create_report_schema(SQLite::Database& db);

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -102,6 +103,28 @@ TEST_F(DamagedReport, AReadOnlyDatabaseInAReadOnlyDirectoryIsReported) {
   EXPECT_EQ(WEXITSTATUS(status), 0) << command;
   EXPECT_TRUE(fs::exists(html));
   fs::remove(html);
+}
+
+TEST_F(DamagedReport, AFullDiskIsNamedAndLeavesNoNewDatabaseBehind) {
+  // A 64 KiB file system of its own, in a user and mount namespace (no privilege needed).
+  if (std::system("unshare -rm true >/dev/null 2>&1") != 0) GTEST_SKIP() << "unshare -rm unavailable: no private file system to fill";
+  const fs::path full = dir_ / "full";
+  fs::create_directories(full);
+  const std::string command = "unshare -rm sh -c 'mount -t tmpfs -o size=64k tmpfs " + full.string() + " && " +
+                              RCSIM_BINARY + " replay " + kDamagedRecording + " --db " + full.string() +
+                              "/r.sqlite; echo \"rc $?\"; ls -A " + full.string() + "' 2>&1";
+  std::string output;
+  {
+    FILE* pipe = ::popen(command.c_str(), "r");
+    char buffer[4096];
+    while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+    ::pclose(pipe);
+  }
+  EXPECT_NE(output.find((full / "r.sqlite").string() + ": cannot use as a report database: database or disk is full"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("rc 2\n"), std::string::npos) << output;
+  EXPECT_EQ(output.substr(output.find("rc 2\n") + 5), "") << "left behind: " << output;
 }
 
 TEST_F(DamagedReport, EightReplaysIntoOneNewDatabaseAtOnceAllStoreTheirRuns) {

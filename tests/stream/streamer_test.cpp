@@ -32,6 +32,16 @@ namespace fs = std::filesystem;
 
 constexpr std::string_view kToken = "0123456789abcdef-token";
 
+// A stream that starts paused, at full speed when resumed, steered by whoever holds kToken.
+StreamOptions stepped_with_token() {
+  StreamOptions options;
+  options.control = "127.0.0.1:0";
+  options.speed = 0.0;
+  options.stepped = true;
+  options.control_token = kToken;
+  return options;
+}
+
 Scene two_sensor_scene(double duration_s) {
   Scene scene = rcsim::testing::single_sensor_scene(duration_s);
   scene.sensors.front().id = "front_left";
@@ -232,12 +242,7 @@ TEST(StreamLoopback, StepSeekAndResumeFromAClient) {
   const int n = scene.cycle_count();
   SourceOptions source_options;
   auto source = make_scene_source(scene, source_options);
-  StreamOptions options;
-  options.control = "127.0.0.1:0";
-  options.speed = 0.0;
-  options.stepped = true;
-  options.control_token = kToken;
-  StreamerRun streamer(*source, options);
+  StreamerRun streamer(*source, stepped_with_token());
   ControlClient client(streamer.streamer.control_port());
   client.send(MessageType::pause);
   EXPECT_EQ(client.reply().result, ReplyResult::not_subscribed);  // only subscribers steer
@@ -268,12 +273,8 @@ TEST(StreamLoopback, StepSeekAndResumeFromAClient) {
 TEST(StreamLoopback, WatchersCannotSteerAndAControllerTakesTheOldestWatchersPlace) {
   const Scene scene = two_sensor_scene(1.0);
   auto source = make_scene_source(scene, {});
-  StreamOptions options;
-  options.control = "127.0.0.1:0";
-  options.speed = 0.0;
-  options.stepped = true;
+  StreamOptions options = stepped_with_token();
   options.max_clients = 2;
-  options.control_token = kToken;
   StreamerRun streamer(*source, options);
   const std::uint16_t port = streamer.streamer.control_port();
   ControlClient first(port), second(port), stranger(port), operator_client(port);
@@ -331,12 +332,7 @@ TEST(StreamLoopback, WithoutATokenNobodySteersUnlessTheControlIsOpen) {
 TEST(StreamLoopback, AListenerCountsTheCyclesASeekSendsAgain) {
   const Scene scene = two_sensor_scene(1.0);
   auto source = make_scene_source(scene, {});
-  StreamOptions options;
-  options.control = "127.0.0.1:0";
-  options.speed = 0.0;
-  options.stepped = true;
-  options.control_token = kToken;
-  StreamerRun streamer(*source, options);
+  StreamerRun streamer(*source, stepped_with_token());
   const std::uint16_t port = streamer.streamer.control_port();
   ControlClient controller(port);
   controller.send(MessageType::subscribe, kSimulatedBit, kToken);
