@@ -180,11 +180,13 @@ Verdicts judge(SQLite::Database& db, const std::vector<Criterion>& criteria, std
     v.run_id = row.run_id;
     v.recording_name = row.recording_name;
     v.recording_dir = row.recording_dir;
+    v.kind = row.kind;
     v.seed = row.seed;
     v.duration_s = row.duration_s;
     v.wall_s = row.values[wall].value_or(0.0);
     for (std::size_t i = 0; i < criteria.size(); ++i) {
       if (criteria[i].scope != Scope::recording) continue;
+      if (criteria[i].kind && *criteria[i].kind != row.kind) continue;
       v.results.push_back(result_of(i, criteria[i], row.values[i]));
       v.passed = v.passed && v.results.back().passed;
     }
@@ -198,6 +200,27 @@ Verdicts judge(SQLite::Database& db, const std::vector<Criterion>& criteria, std
       if (row.values[i]) values.push_back(*row.values[i]);
     }
     out.campaign.push_back(result_of(i, criteria[i], statistic_of(criteria[i].statistic, std::move(values))));
+  }
+  return out;
+}
+
+std::string FigureVerdict::tolerance() const {
+  if (min && max) return fmt::format("{:g} .. {:g}", *min, *max);
+  if (max) return fmt::format("<= {:g}", *max);
+  return fmt::format(">= {:g}", min.value_or(0.0));
+}
+
+std::vector<FigureVerdict> figure_verdicts(const Verdicts& verdicts, const RunVerdict& run) {
+  std::vector<FigureVerdict> out;
+  for (const CriterionResult& r : run.results) {
+    const Criterion& c = verdicts.criteria[r.criterion];
+    auto row = std::find_if(out.begin(), out.end(), [&](const FigureVerdict& f) { return f.figure == c.figure; });
+    if (row == out.end()) {
+      out.push_back({c.figure, r.value, std::nullopt, std::nullopt, true});
+      row = out.end() - 1;
+    }
+    (c.bound == Bound::min ? row->min : row->max) = c.threshold;
+    row->passed = row->passed && r.passed;
   }
   return out;
 }

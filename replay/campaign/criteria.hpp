@@ -30,6 +30,9 @@ struct Criterion {
   Bound bound = Bound::max;
   double threshold = 0.0;
   bool pass_if_missing = false;
+  // The kind of run it judges (the default tolerances, default_criteria.hpp); nullopt: every run.
+  // Files cannot set it: one --criteria file judges the runs it is given.
+  std::optional<RunKind> kind = std::nullopt;
 
   // "gospa_mean_m <= 1.5" or "mean gospa_mean_m over the campaign <= 1.2".
   std::string text() const;
@@ -60,6 +63,7 @@ struct CriterionResult {
 struct RunVerdict {
   std::int64_t run_id = 0;
   std::string recording_name, recording_dir;
+  RunKind kind = RunKind::tracks;
   std::int64_t seed = 0;
   double duration_s = 0.0;
   double wall_s = 0.0;
@@ -67,7 +71,14 @@ struct RunVerdict {
   std::vector<CriterionResult> results;  // the per-recording criteria, in order
 };
 
+// Where the criteria of a verdict come from: the default tolerances of each kind of run
+// (docs/verdicts.md), a --criteria file, or the report's own (a campaign's manifest, or the file
+// of an earlier --criteria).
+enum class CriteriaSource { defaults, file, report };
+
 struct Verdicts {
+  CriteriaSource source = CriteriaSource::report;
+  bool gate = true;  // a failure sets the exit status (3); the default tolerances only where asked for
   std::vector<Criterion> criteria;
   std::vector<RunVerdict> runs;             // by run id
   std::vector<CriterionResult> campaign;    // the campaign criteria, in order
@@ -76,9 +87,21 @@ struct Verdicts {
 };
 
 // Judges the runs of the database by the criteria: all of them, with the campaign criteria over
-// all; or the one run given (rcsim replay), by the per-recording criteria alone.
+// all; or the one run given (rcsim replay), by the per-recording criteria alone. A criterion of
+// a kind judges the runs of that kind only.
 Verdicts judge(SQLite::Database& db, const std::vector<Criterion>& criteria,
                std::optional<std::int64_t> only_run = std::nullopt);
+
+// The results of one run grouped by figure, in the criteria's order: a figure bounded from
+// below and above (two criteria) is one row, "0.8 .. 1.25". What the verdict blocks print.
+struct FigureVerdict {
+  std::string figure;
+  std::optional<double> value;
+  std::optional<double> min, max;
+  bool passed = true;
+  std::string tolerance() const;  // "<= 1", ">= 0.5", "0.8 .. 1.25"
+};
+std::vector<FigureVerdict> figure_verdicts(const Verdicts& verdicts, const RunVerdict& run);
 
 // "gospa_mean_m = 1.73 > 1.5" or "latency_difference_mean_s missing".
 std::string describe_failure(const Criterion& criterion, const CriterionResult& result);

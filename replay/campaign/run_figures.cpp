@@ -37,6 +37,12 @@ const std::vector<CatalogueEntry>& catalogue() {
        [](const RunRecord& r) { return r.ospa_object_mean; }},
       {{"target_count_ratio", "1", "simulated / recorded targets (1: as many)", Worse::away_from_one},
        [](const RunRecord& r) { return ratio(r.targets_simulated, r.targets_recorded); }},
+      {{"object_target_count_ratio", "1", "simulated / recorded targets of annotated objects (1: as many)",
+        Worse::away_from_one},
+       [](const RunRecord& r) { return ratio(r.object_simulated, r.object_recorded); }},
+      {{"background_target_count_ratio", "1", "simulated / recorded stationary-background targets (1: as many)",
+        Worse::away_from_one},
+       [](const RunRecord& r) { return ratio(r.background_simulated, r.background_recorded); }},
       {{"matched_fraction", "1", "recorded targets assigned a simulated one within the GOSPA cut-off", Worse::lower},
        [](const RunRecord& r) { return ratio(r.targets_matched, r.targets_recorded); }},
       {{"object_detection_rate_recorded", "1", "object-sensor cycles in view with a recorded object target", Worse::lower},
@@ -141,6 +147,7 @@ std::vector<RunFigureRow> read_run_figures(SQLite::Database& db, const std::vect
     row.recording_dir = record.recording_dir;
     row.seed = record.seed;
     row.duration_s = record.duration_s;
+    row.kind = record.kind;
     row.values.resize(figures.size());
     for (std::size_t i = 0; i < figures.size(); ++i) {
       if (entries[i] == nullptr) continue;

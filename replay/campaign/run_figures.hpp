@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "replay/run/run_kind.hpp"
+
 namespace rcsim::replay::campaign {
 
 // Which way a figure gets worse (for "the worst recordings by each figure").
@@ -40,6 +42,7 @@ struct RunFigureRow {
   std::string recording_name, recording_dir;
   std::int64_t seed = 0;
   double duration_s = 0.0;  // cycles x cycle time
+  RunKind kind = RunKind::tracks;
   std::vector<std::optional<double>> values;  // one per figure asked for, in that order
 };
 

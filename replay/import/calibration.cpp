@@ -1,8 +1,10 @@
 #include "replay/import/calibration.hpp"
 
 #include <filesystem>
+#include <fmt/format.h>
 
 #include "common/json_reader.hpp"
+#include "common/text_file.hpp"
 #include "model/model_library.hpp"
 
 namespace rcsim::replay {
@@ -36,16 +38,20 @@ std::shared_ptr<const Calibration> load_calibration(const std::string& dir) {
   root.expect_format(kCalibrationFormat, kCalibrationVersion);
   auto calibration = std::make_shared<Calibration>();
   calibration->source = dir;
+  std::uint64_t hash = fnv1a64_file(index_path, 0xcbf29ce484222325ULL);
   for (const auto& [name, path] : listed_files(root, "sensors", dir)) {
+    hash = fnv1a64_file(path, hash);
     SensorConfig config = load_sensor_config_file(path);
     if (config.name != name) root.fail("sensors", path + " holds \"" + config.name + "\", not \"" + name + "\"");
     calibration->sensors.insert_or_assign(name, std::move(config));
   }
   for (const auto& [name, path] : listed_files(root, "models", dir)) {
+    hash = fnv1a64_file(path, hash);
     ObjectModel model = load_object_model_file(path);
     if (model.name != name) root.fail("models", path + " holds \"" + model.name + "\", not \"" + name + "\"");
     calibration->models.insert_or_assign(name, std::move(model));
   }
+  calibration->checksum = fmt::format("{:016x}", hash);
   if (const auto it = json.find("fitted_on"); it != json.end() && it->is_array()) {  // informational
     for (const auto& r : *it) {
       if (r.is_object() && r.contains("checksum") && r["checksum"].is_string()) {

@@ -18,6 +18,7 @@ inline constexpr std::string_view kCalibrationIndexFile = "calibration.json";
 
 struct Calibration {
   std::string source;                           // the directory it was read from ("" if in memory)
+  std::string checksum;                         // FNV-1a 64 of calibration.json and the files it lists, 16 hex digits
   std::map<std::string, SensorConfig> sensors;  // by the configuration's name (srr24, ...)
   std::map<std::string, ObjectModel> models;    // by the model's name (the class)
   std::vector<std::string> fitted_on_checksums;  // of the recordings it was fitted on (16 hex digits)

@@ -9,10 +9,11 @@ namespace rcsim::replay {
 
 namespace {
 
-// The query's columns after run_id, recording_name, recording_dir, seed, cycles, cycle_time_s are
-// those of kFigureColumns, in that order.
+// The query's columns after run_id, recording_name, recording_dir, seed, cycles, cycle_time_s,
+// level and the fidelity level are those of kFigureColumns, in that order.
 constexpr const char* kRunQuery = R"SQL(
 SELECT r.run_id, r.recording_name, r.recording_dir, r.seed, r.cycles, r.cycle_time_s,
+  r.level, json_extract(r.parameters, '$.fidelity.level'),
   s.gospa_mean, s.ospa_mean, s.gospa_object_mean, s.ospa_object_mean,
   s.targets_recorded, s.targets_simulated, s.targets_matched,
   s.latency_recorded_s, s.latency_simulated_s, s.latency_difference_mean_s, s.latency_pairs, s.latency_episodes,
@@ -20,6 +21,7 @@ SELECT r.run_id, r.recording_name, r.recording_dir, r.seed, r.cycles, r.cycle_ti
   s.merge_artefacts_recorded, s.merge_artefacts_simulated, s.merge_artefacts_matched,
   s.residual_range_rms_m, s.residual_azimuth_rms_rad, s.residual_range_rate_rms_mps, s.residual_amplitude_mean_db,
   s.simulate_cpu_s, s.total_wall_s,
+  s.targets_object_recorded, s.targets_object_simulated, s.targets_background_recorded, s.targets_background_simulated,
   f.in_view, f.detected_recorded, f.detected_simulated
 FROM runs r JOIN summaries s USING (run_id)
 LEFT JOIN (SELECT run_id, sum(cycles_in_view) AS in_view, sum(cycles_detected_recorded) AS detected_recorded,
@@ -27,7 +29,7 @@ LEFT JOIN (SELECT run_id, sum(cycles_in_view) AS in_view, sum(cycles_detected_re
            FROM object_figures GROUP BY run_id) f USING (run_id)
 ORDER BY r.run_id
 )SQL";
-constexpr int kFirstFigureColumn = 6;
+constexpr int kFirstFigureColumn = 8;
 constexpr double RunFigureSources::*kFigureColumns[] = {
     &RunFigureSources::gospa_mean,
     &RunFigureSources::ospa_mean,
@@ -52,6 +54,10 @@ constexpr double RunFigureSources::*kFigureColumns[] = {
     &RunFigureSources::residual_amplitude_mean_db,
     &RunFigureSources::simulate_cpu_s,
     &RunFigureSources::wall_s,
+    &RunFigureSources::object_recorded,
+    &RunFigureSources::object_simulated,
+    &RunFigureSources::background_recorded,
+    &RunFigureSources::background_simulated,
     &RunFigureSources::in_view,
     &RunFigureSources::detected_recorded,
     &RunFigureSources::detected_simulated,
@@ -135,6 +141,7 @@ std::vector<RunFigureSources> read_run_figure_sources(SQLite::Database& db) {
     run.recording_dir = query.getColumn(2).getString();
     run.seed = query.getColumn(3).getInt64();
     run.duration_s = query.getColumn(4).getDouble() * query.getColumn(5).getDouble();
+    run.kind = run_kind(query.getColumn(6).getString(), query.getColumn(7).isNull() ? "" : query.getColumn(7).getString());
     int c = kFirstFigureColumn;
     for (const auto field : kFigureColumns) run.*field = optional_double(query.getColumn(c++)).value_or(std::nan(""));
     out.push_back(std::move(run));

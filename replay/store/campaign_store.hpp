@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "replay/run/run_kind.hpp"
+
 namespace rcsim::replay {
 
 // One row of the table criteria, as stored: scope recording | campaign, statistic value | mean |
@@ -53,6 +55,7 @@ struct RunFigureSources {
   std::string recording_name, recording_dir;
   std::int64_t seed = 0;
   double duration_s = 0.0;  // cycles x cycle time
+  RunKind kind = RunKind::tracks;  // what the recording reports (run_kind)
   // summaries
   double gospa_mean = 0.0, ospa_mean = 0.0, gospa_object_mean = 0.0, ospa_object_mean = 0.0;
   double targets_recorded = 0.0, targets_simulated = 0.0, targets_matched = 0.0;
@@ -64,6 +67,8 @@ struct RunFigureSources {
   double simulate_cpu_s = 0.0, wall_s = 0.0;  // wall_s: total_wall_s
   // sums over object_figures: cycles in view, and detected in the recording and the simulation
   double in_view = 0.0, detected_recorded = 0.0, detected_simulated = 0.0;
+  // target classes (schema v3; NaN in older runs)
+  double object_recorded = 0.0, object_simulated = 0.0, background_recorded = 0.0, background_simulated = 0.0;
 };
 
 // Every run that has a row of summaries, by run id.

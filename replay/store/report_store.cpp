@@ -13,6 +13,8 @@
 #include "common/embedded_data.hpp"
 #include "common/input_error.hpp"
 #include "common/text_file.hpp"
+#include "replay/import/calibration.hpp"
+#include "replay/run/run_kind.hpp"
 #include "replay/store/report_merge_files.hpp"
 
 namespace rcsim::replay {
@@ -90,6 +92,11 @@ nlohmann::ordered_json run_parameters_json(const ReplayOptions& options, const E
         {"max_gap_s", options.import.max_gap_s},
         {"calibration", options.import.calibration_dir.empty() ? nlohmann::ordered_json()
                                                                  : nlohmann::ordered_json(options.import.calibration_dir)},
+        // What the calibration holds, so that a calibration written again into the same
+        // directory makes another run (the run identity).
+        {"calibration_checksum", options.import.calibration_dir.empty()
+                                     ? nlohmann::ordered_json()
+                                     : nlohmann::ordered_json(load_calibration(options.import.calibration_dir)->checksum)},
         {"effects", {{"clutter", e.clutter}, {"multibounce", e.multibounce}, {"occlusion", e.occlusion}}}}}};
 }
 
@@ -292,7 +299,7 @@ void ReportWriter::begin_run(const Recording& rec, const ImportedScene& imported
   run.bind(5, rec.cycle_time_s);
   run.bind(6, rec.cycle_count());
   run.bind(7, static_cast<std::int64_t>(options.seed));
-  run.bind(8, "tracks");
+  run.bind(8, run_level_of(rec));  // what the recording reports: tracks, detections or mixed
   run.bind(9, run_parameters_json(options, imported.effects).dump());  // the effects actually simulated
   run.bind(10, RCSIM_VERSION);
   run.bind(11, utc_now());

@@ -1,7 +1,11 @@
 #include "replay/store/run_identity.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
+
+#include "common/json_reader.hpp"
 #include "io/recording.hpp"
 #include "replay/store/report_store.hpp"
 
@@ -31,6 +35,68 @@ std::map<std::int64_t, RunIdentity> stored_run_identities(SQLite::Database& db) 
     const auto it = out.find(sensors.getColumn(0).getInt64());
     if (it == out.end()) continue;
     it->second.sensor_types += sensors.getColumn(1).getString() + '\n';
+  }
+  return out;
+}
+
+namespace {
+
+// "srr24 x2" for one profile on every sensor, else the profiles in sensor order.
+std::string sensors_text(const std::vector<std::string>& types) {
+  if (types.empty()) return "no sensor";
+  if (std::all_of(types.begin(), types.end(), [&](const std::string& t) { return t == types.front(); })) {
+    return types.size() == 1 ? types.front() : fmt::format("{} x{}", types.front(), types.size());
+  }
+  return fmt::format("{}", fmt::join(types, ", "));
+}
+
+// "all effects", "no effects" or the effects switched off ("no clutter, no occlusion").
+std::string effects_text(const nlohmann::ordered_json& effects) {
+  std::vector<std::string> off;
+  for (const char* name : {"clutter", "multibounce", "occlusion"}) {
+    if (effects.contains(name) && effects[name].is_boolean() && !effects[name].get<bool>()) off.push_back(std::string("no ") + name);
+  }
+  if (off.empty()) return "all effects";
+  if (off.size() == 3) return "no effects";
+  return fmt::format("{}", fmt::join(off, ", "));
+}
+
+std::string string_at(const nlohmann::ordered_json& json, const char* object, const char* key) {
+  if (!json.contains(object) || !json[object].is_object()) return "";
+  const auto& o = json[object];
+  return o.contains(key) && o[key].is_string() ? o[key].get<std::string>() : "";
+}
+
+}  // namespace
+
+std::string RunLabel::text() const {
+  const std::string calibrated =
+      calibration.empty() ? "no calibration"
+                          : fmt::format("calibration {}{}", calibration,
+                                        calibration_checksum.empty() ? "" : " #" + calibration_checksum.substr(0, 8));
+  return fmt::format("{}, fidelity {}, {}, {}, seed {}", sensors, fidelity, effects, calibrated, seed);
+}
+
+std::map<std::int64_t, RunLabel> read_run_labels(SQLite::Database& db) {
+  std::map<std::int64_t, RunLabel> out;
+  std::map<std::int64_t, std::vector<std::string>> types;
+  SQLite::Statement sensors(db, "SELECT run_id, type FROM run_sensors ORDER BY run_id, sensor");
+  while (sensors.executeStep()) types[sensors.getColumn(0).getInt64()].push_back(sensors.getColumn(1).getString());
+  SQLite::Statement runs(db, "SELECT run_id, seed, level, parameters FROM runs");
+  while (runs.executeStep()) {
+    const std::int64_t run_id = runs.getColumn(0).getInt64();
+    RunLabel& label = out[run_id];
+    label.sensors = sensors_text(types[run_id]);
+    label.seed = runs.getColumn(1).getInt64();
+    label.level = runs.getColumn(2).getString();
+    const nlohmann::ordered_json parameters = parse_stored_json(runs.getColumn(3).getString());
+    label.fidelity = string_at(parameters, "fidelity", "level");
+    if (label.fidelity.empty()) label.fidelity = "full";
+    label.calibration = string_at(parameters, "import", "calibration");
+    label.calibration_checksum = string_at(parameters, "import", "calibration_checksum");
+    const bool has_effects = parameters.contains("import") && parameters["import"].is_object() &&
+                             parameters["import"].contains("effects");
+    label.effects = has_effects ? effects_text(parameters["import"]["effects"]) : "all effects";
   }
   return out;
 }

@@ -32,6 +32,25 @@ struct RunIdentity {
 // The identity of every run stored in the database, by run id.
 std::map<std::int64_t, RunIdentity> stored_run_identities(SQLite::Database& db);
 
+// What tells one run from another on a line or a page (rcsim replay, rcsim report): the sensor
+// profiles simulated, the fidelity, the effects, the calibration (its directory and checksum) and
+// the seed, read from a stored run.
+struct RunLabel {
+  std::string sensors;      // "srr24 x2" or "srr24, aimotive_lrr", in sensor order
+  std::string level;        // runs.level: tracks | detections | mixed
+  std::string fidelity;     // full, no_tracking, ...
+  std::string effects;      // "all effects", "no clutter, no occlusion"
+  std::string calibration;  // the --calibration directory, "" for none
+  std::string calibration_checksum;  // 16 hex digits, "" for none or a run stored before it was kept
+  std::int64_t seed = 0;
+
+  // "srr24 x2, fidelity full, all effects, no calibration, seed 1".
+  std::string text() const;
+};
+
+// The label of every run stored, by run id.
+std::map<std::int64_t, RunLabel> read_run_labels(SQLite::Database& db);
+
 // The recording directory of every run stored, as given to the replay (`rcsim campaign status`
 // finds a plan's recordings in its shard reports by them, without reading the recordings); none
 // in a database without the table runs.

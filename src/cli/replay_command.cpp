@@ -8,12 +8,16 @@
 #include "cli/commands.hpp"
 #include "cli/fidelity_option.hpp"
 #include "cli/replay_options.hpp"
+#include "cli/seed_option.hpp"
 #include "cli/verdict_options.hpp"
 #include "io/recording.hpp"
 #include "io/recording_stream.hpp"
+#include "model/model_library.hpp"
+#include "replay/import/importer.hpp"
 #include "replay/run/kill_after_cycles.hpp"
 #include "replay/run/replay_run.hpp"
 #include "replay/store/report_store.hpp"
+#include "replay/store/run_identity.hpp"
 
 namespace rcsim::cli {
 
@@ -22,7 +26,7 @@ namespace {
 struct ReplayArgs {
   std::string recording_dir;
   std::string db_path;
-  std::int64_t seed = 0;
+  std::uint64_t seed = kDefaultSeed;
   bool json = false;
   std::string fidelity;  // empty: from what the recording's sensors report
   double cutoff_m = 2.0;
@@ -33,6 +37,7 @@ struct ReplayArgs {
   std::string calibration;
   std::string store = "full";  // what the report keeps (schemas/report-database.md)
   VerdictArgs verdicts;
+  bool again = false;  // store a run whose identity the report holds already
 };
 
 const replay::QuantityDistance* find_distance(const replay::ReplaySummary& s, const std::string& quantity) {
@@ -180,12 +185,68 @@ void run_replay(ReplayArgs& args) {
   }
 }
 
+// The figures under the verdict: all targets, then the classes (print_class_figures).
+void print_figures(const Recording& recording, const replay::ReplaySummary& summary,
+                   replay::RunKind kind) {
+  std::cout << fmt::format(
+      "  all targets: {} recorded / {} simulated, GOSPA mean {:.3f} m{}; merge artefacts {} / {}; latency {} / {}\n",
+      summary.targets_recorded, summary.targets_simulated, summary.gospa_mean_m,
+      kind == replay::RunKind::detections ? " (not judged: the background is drawn from a density, docs/verdicts.md)" : "",
+      summary.merge_artefacts_recorded, summary.merge_artefacts_simulated,
+      summary.latency_recorded_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_recorded_s),
+      summary.latency_simulated_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_simulated_s));
+  print_class_figures(summary, recording.sensors.size());
+}
+
+// The run's first line: its verdict where there is one.
+std::string verdict_word(const std::optional<replay::campaign::Verdicts>& verdicts, std::int64_t run_id) {
+  if (!verdicts) return "stored";
+  for (const auto& r : verdicts->runs) {
+    if (r.run_id == run_id) return r.passed ? "PASS" : "FAIL";
+  }
+  return "stored";
+}
+
+void print_verdict_block(const std::optional<replay::campaign::Verdicts>& verdicts, std::int64_t run_id) {
+  if (!verdicts) return;
+  for (const auto& r : verdicts->runs) {
+    if (r.run_id == run_id) print_run_verdict(std::cout, *verdicts, r);
+  }
+}
+
+// A run of this identity stored already (the same recording, seed, sensors and parameters give
+// the same figures): said, with its verdict, and nothing stored.
+bool print_if_stored(SQLite::Database& db, const ReplayArgs& args, const Recording& recording,
+                     const replay::ReplayOptions& options) {
+  const replay::RunIdentity planned = replay::planned_run_identity(
+      recording_checksum(args.recording_dir),
+      replay::import_header(recording, 0.0, ModelLibrary::builtin(), options.import), options,
+      replay::store_level_from_name(args.store));
+  for (const auto& [run_id, identity] : replay::stored_run_identities(db)) {
+    if (identity != planned) continue;
+    const auto verdicts = judge_runs(db, args.verdicts, run_id, recording.name, true);
+    if (args.json) {
+      nlohmann::ordered_json json = {{"run_id", run_id}, {"recording", recording.name}, {"already_stored", true}};
+      json["verdicts"] = verdicts_json(verdicts);
+      std::cout << json.dump(2) << '\n';
+    } else {
+      std::cout << fmt::format("run {}: {}: {}, stored already in {} (same recording, seed, sensors and parameters); "
+                               "nothing stored, --again stores another copy\n",
+                               run_id, recording.name, verdict_word(verdicts, run_id), args.db_path);
+      print_verdict_block(verdicts, run_id);
+    }
+    throw_if_failed(verdicts);
+    return true;
+  }
+  return false;
+}
+
 void replay_and_store(ReplayArgs& args) {
   read_verdict_criteria(args.verdicts);  // a bad criteria file is refused before the replay
   // The header only: the rows are read as the replay goes (replay_recording_dir).
   Recording recording = read_recording_header(args.recording_dir);
   replay::ReplayOptions options;
-  options.seed = static_cast<std::uint64_t>(args.seed);
+  options.seed = args.seed;
   options.fidelity = args.fidelity.empty() ? default_fidelity_for(recording) : fidelity_from_arg(args.fidelity);
   options.import = import_options(args.import);
   options.import.calibration_dir = args.calibration;
@@ -193,29 +254,27 @@ void replay_and_store(ReplayArgs& args) {
   options.association_gate_m = args.gate_m;
   options.stationary_gate_mps = args.stationary_gate_mps;
   const auto db = replay::open_report_database(args.db_path, true);
+  if (!args.again && print_if_stored(*db, args, recording, options)) return;
   replay::ReportWriter writer(*db, replay::store_level_from_name(args.store));
   replay::KillAfterCycles killer(writer);  // only with RCSIM_TEST_KILL_AFTER_CYCLES set
   PrintImportWarnings sink(killer);
   const replay::ReplaySummary summary = replay::replay_recording_dir(args.recording_dir, options, sink);
-  // The run judged by the criteria (--criteria, else the report's own): per-recording ones only.
-  const auto verdicts = judge_runs(*db, args.verdicts, writer.run_id(), recording.name);
+  // The run judged: by --criteria, else the report's own criteria, else the default tolerances of
+  // its kind (per-recording criteria only).
+  const auto verdicts = judge_runs(*db, args.verdicts, writer.run_id(), recording.name, true);
   if (args.json) {
     auto json = summary_json(writer.run_id(), recording, summary);
     json["verdicts"] = verdicts_json(verdicts);
     std::cout << json.dump(2) << '\n';
   } else {
-    std::cout << fmt::format(
-        "run {}: {} ({} cycles, {} sensors): {} recorded / {} simulated targets, GOSPA mean {:.3f} m, "
-        "merge artefacts {} / {}, latency {} / {}; stored in {}\n",
-        writer.run_id(), recording.name, summary.cycles, recording.sensors.size(), summary.targets_recorded,
-        summary.targets_simulated, summary.gospa_mean_m, summary.merge_artefacts_recorded,
-        summary.merge_artefacts_simulated,
-        summary.latency_recorded_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_recorded_s),
-        summary.latency_simulated_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_simulated_s),
-        args.db_path);
-    print_class_figures(summary, recording.sensors.size());
+    const replay::RunLabel label = replay::read_run_labels(*db).at(writer.run_id());
+    std::cout << fmt::format("run {}: {}: {}; stored in {}\n", writer.run_id(), recording.name,
+                             verdict_word(verdicts, writer.run_id()), args.db_path);
+    std::cout << fmt::format("  {} cycles, {} sensors, {}; {}\n", summary.cycles, recording.sensors.size(), label.level,
+                             label.text());
+    print_verdict_block(verdicts, writer.run_id());
+    print_figures(recording, summary, replay::run_kind(label.level, label.fidelity));
   }
-  if (verdicts && !args.json) print_verdicts(std::cout, *verdicts);
   throw_if_failed(verdicts);
 }
 
@@ -226,10 +285,11 @@ void add_replay_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("replay", "import a recording, re-simulate it, compare per cycle, store the report");
   cmd->add_option("RECORDING_DIR", args->recording_dir, "recording directory (rcsim-recording)")->required();
   cmd->add_option("--db", args->db_path, "report database (rcsim-report, SQLite); created if missing")->required();
-  cmd->add_option("--seed", args->seed, "seed of the simulation's random draws")
-      ->check(kNonNegative)
-      ->capture_default_str();
+  add_seed_option(*cmd, args->seed, "seed of the simulation's random draws");
   cmd->add_flag("--json", args->json, "print the run's summary as JSON");
+  cmd->add_flag("--again", args->again,
+                "store the run even if the report holds one of the same identity (recording, seed, sensors, "
+                "parameters); without it such a replay says so and stores nothing");
   cmd->add_option("--fidelity", args->fidelity,
                   std::string("fidelity level: ") + std::string(kFidelityNames) +
                       " (docs/fidelity.md); default: full, or no_tracking where every sensor of the recording reports "

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "common/atomic_file.hpp"
+#include "replay/campaign/default_criteria.hpp"
 #include "replay/campaign/junit.hpp"
 #include "replay/store/campaign_store.hpp"
 
@@ -41,33 +42,63 @@ nlohmann::ordered_json result_json(const Verdicts& v, const CriterionResult& c) 
 
 void add_verdict_options(CLI::App& cmd, VerdictArgs& args) {
   cmd.add_option("--criteria", args.criteria_file,
-                 "pass/fail criteria (rcsim-criteria or rcsim-campaign file, schemas/campaign.md), read before any "
-                 "work; stored in a report of no campaign, replacing its criteria; exit status 3 if a criterion fails")
-      ->check(CLI::ExistingFile);
+                 "pass/fail criteria instead of the default tolerances (docs/verdicts.md): an rcsim-criteria or "
+                 "rcsim-campaign file (schemas/campaign.md), read before any work and stored in a report of no "
+                 "campaign, or 'defaults' for the default tolerances; exit status 3 if a criterion fails")
+      ->check(CLI::Validator(
+          [](const std::string& value) {
+            return value == kDefaultCriteriaArg ? std::string() : CLI::ExistingFile(value);
+          },
+          "FILE|defaults"));
   cmd.add_option("--junit", args.junit_path, "write the verdicts as JUnit XML to this file");
 }
 
 void read_verdict_criteria(VerdictArgs& args) {
-  if (!args.criteria_file.empty()) args.file_criteria = read_criteria_file(args.criteria_file);
+  if (!args.criteria_file.empty() && args.criteria_file != kDefaultCriteriaArg) {
+    args.file_criteria = read_criteria_file(args.criteria_file);
+  }
   // Before any work: a --junit path that is a directory, device or link fails now, not after the
   // replay or merge has written its output.
   if (!args.junit_path.empty()) check_output_file(args.junit_path);
 }
 
 std::optional<Verdicts> judge_runs(SQLite::Database& db, const VerdictArgs& args, std::optional<std::int64_t> only_run,
-                                   const std::string& suite) {
+                                   const std::string& suite, bool default_tolerances) {
   std::vector<Criterion> criteria;
+  CriteriaSource source = CriteriaSource::report;
+  const bool asked_for_defaults = args.criteria_file == kDefaultCriteriaArg;
   if (args.file_criteria) {
     criteria = *args.file_criteria;
+    source = CriteriaSource::file;
     if (!replay::read_campaign_name(db)) store_criteria(db, criteria);
-  } else {
+  } else if (!asked_for_defaults) {
     criteria = stored_criteria(db);
+  }
+  if (criteria.empty() && (default_tolerances || asked_for_defaults)) {
+    criteria = default_criteria();
+    source = CriteriaSource::defaults;
   }
   if (criteria.empty() && args.junit_path.empty()) return std::nullopt;  // nothing to judge or to write
   Verdicts verdicts = judge(db, criteria, only_run);
+  verdicts.source = source;
+  verdicts.gate = source != CriteriaSource::defaults || asked_for_defaults;
   if (!args.junit_path.empty()) write_junit(args.junit_path, verdicts, suite);
   if (criteria.empty()) return std::nullopt;
   return verdicts;
+}
+
+void print_run_verdict(std::ostream& out, const Verdicts& v, const RunVerdict& run) {
+  const std::vector<FigureVerdict> figures = figure_verdicts(v, run);
+  const auto met = std::count_if(figures.begin(), figures.end(), [](const FigureVerdict& f) { return f.passed; });
+  const std::string what = v.source == CriteriaSource::defaults
+                               ? fmt::format("default tolerances for {} (docs/verdicts.md){}", replay::run_kind_name(run.kind),
+                                             v.gate ? "" : "; --criteria defaults makes them a gate")
+                               : (v.source == CriteriaSource::file ? "criteria of --criteria" : "the report's criteria");
+  out << fmt::format("verdict: {}, {} of {} figures within the {}\n", run.passed ? "PASS" : "FAIL", met, figures.size(), what);
+  for (const FigureVerdict& f : figures) {
+    out << fmt::format("  {:<4}  {:<38} {:>10}  {}\n", f.passed ? "pass" : "FAIL", f.figure,
+                       f.value ? fmt::format("{:.4g}", *f.value) : std::string("missing"), f.tolerance());
+  }
 }
 
 void print_verdicts(std::ostream& out, const Verdicts& v) {
@@ -109,7 +140,10 @@ nlohmann::ordered_json verdicts_json(const std::optional<Verdicts>& verdicts) {
     failed.push_back({{"run_id", r.run_id}, {"recording", r.recording_name}, {"seed", r.seed}, {"failed", results}});
   }
   for (const CriterionResult& c : v.campaign) campaign.push_back(result_json(v, c));
+  constexpr const char* kSources[] = {"defaults", "file", "report"};
   return {{"passed", v.passed()},
+          {"criteria_source", kSources[static_cast<int>(v.source)]},
+          {"gate", v.gate},
           {"runs", v.runs.size()},
           {"runs_failed", v.runs_failed},
           {"criteria", criteria},
@@ -118,7 +152,7 @@ nlohmann::ordered_json verdicts_json(const std::optional<Verdicts>& verdicts) {
 }
 
 void throw_if_failed(const std::optional<Verdicts>& verdicts) {
-  if (!verdicts || verdicts->passed()) return;
+  if (!verdicts || !verdicts->gate || verdicts->passed()) return;
   throw VerdictsFailed(fmt::format("{} of {} and {} failed", verdicts->runs_failed, plural(verdicts->runs.size(), "run", "runs"),
                                    plural(campaign_failures(*verdicts), "campaign criterion", "campaign criteria")));
 }

@@ -24,8 +24,11 @@ class VerdictsFailed : public std::runtime_error {
 };
 inline constexpr int kExitVerdictsFailed = 3;
 
+// --criteria defaults: the default tolerances (docs/verdicts.md), as a gate.
+inline constexpr std::string_view kDefaultCriteriaArg = "defaults";
+
 struct VerdictArgs {
-  std::string criteria_file;
+  std::string criteria_file;  // a file, or kDefaultCriteriaArg
   std::string junit_path;
   std::optional<std::vector<replay::campaign::Criterion>> file_criteria;  // read by read_verdict_criteria
 };
@@ -37,17 +40,25 @@ void add_verdict_options(CLI::App& cmd, VerdictArgs& args);
 void read_verdict_criteria(VerdictArgs& args);
 
 // Judges the runs of `db` (all, or `only_run`) by the criteria of --criteria FILE, else by the
-// database's own, and writes --junit. FILE's criteria are stored in a report that belongs to no
-// campaign (replacing its criteria, so that rcsim report shows them); a campaign's report keeps
-// its manifest's, and FILE judges this once. Nothing to judge and no JUnit: nullopt.
+// database's own, else (with `default_tolerances`) by the default tolerances of each run's kind,
+// and writes --junit. FILE's criteria are stored in a report that belongs to no campaign
+// (replacing its criteria, so that rcsim report shows them); a campaign's report keeps its
+// manifest's, and FILE judges this once. The default tolerances set the exit status only when
+// asked for (--criteria defaults). Nothing to judge and no JUnit: nullopt.
 std::optional<replay::campaign::Verdicts> judge_runs(SQLite::Database& db, const VerdictArgs& args,
-                                                     std::optional<std::int64_t> only_run, const std::string& suite);
+                                                     std::optional<std::int64_t> only_run, const std::string& suite,
+                                                     bool default_tolerances = false);
+
+// One run's verdict, the first thing rcsim replay prints: "verdict: PASS, 5 of 5 ..." and a line
+// per figure with its value, its tolerance and pass or FAIL.
+void print_run_verdict(std::ostream& out, const replay::campaign::Verdicts& verdicts,
+                       const replay::campaign::RunVerdict& run);
 
 // The verdicts as text (failed runs, at most 50, and every campaign criterion) and as JSON.
 void print_verdicts(std::ostream& out, const replay::campaign::Verdicts& verdicts);
 nlohmann::ordered_json verdicts_json(const std::optional<replay::campaign::Verdicts>& verdicts);
 
-// Throws VerdictsFailed if a run or a campaign criterion failed.
+// Throws VerdictsFailed if a run or a campaign criterion failed, where the verdicts are a gate.
 void throw_if_failed(const std::optional<replay::campaign::Verdicts>& verdicts);
 
 }  // namespace rcsim::cli

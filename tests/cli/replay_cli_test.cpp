@@ -96,7 +96,7 @@ TEST_F(ReplayCli, RunsAccumulateAndTheSameSeedRepeatsExactly) {
   const fs::path rec = recording(2.0);
   const std::string db = (dir_ / "r.sqlite").string();
   for (const char* seed : {"4", "4", "5"}) {
-    ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db + " --seed " + seed).exit_code, 0);
+    ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db + " --seed " + seed + " --again").exit_code, 0);
   }
   SQLite::Database d(db);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 3);
@@ -181,7 +181,7 @@ TEST_F(ReplayCli, ReplayKilledMidwayLeavesEarlierRunsComplete) {
   const auto complete = run_rcsim("replay " + large.string() + " --db " + db);  // a whole large run first
   ASSERT_EQ(complete.exit_code, 0) << complete.output;
   const std::string command = std::string("RCSIM_TEST_KILL_AFTER_CYCLES=3000 ") + RCSIM_BINARY + " replay " +
-                              large.string() + " --db " + db + " > /dev/null 2>&1";
+                              large.string() + " --db " + db + " --again > /dev/null 2>&1";
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFSIGNALED(status) || WEXITSTATUS(status) == 128 + SIGKILL) << "status " << status;
   ASSERT_TRUE(fs::exists(db + "-wal"));  // the dead run's uncommitted pages are left behind
@@ -193,7 +193,7 @@ TEST_F(ReplayCli, ReplayKilledMidwayLeavesEarlierRunsComplete) {
   EXPECT_EQ(d.execAndGet("SELECT count(DISTINCT run_id) FROM target_blocks").getInt(), 2);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM cycle_blocks WHERE run_id = 3").getInt(), 0);
   // And the database takes the next run.
-  EXPECT_EQ(run_rcsim("replay " + small.string() + " --db " + db).exit_code, 0);
+  EXPECT_EQ(run_rcsim("replay " + small.string() + " --db " + db + " --again").exit_code, 0);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM summaries").getInt(), 3);
 }
 

@@ -50,7 +50,7 @@ TEST(ReportCrashSafety, ReplaysKilledAtRandomMomentsLeaveOnlyCompleteRuns) {
   long replay_ms = 0;
   for (int i = 0; i < 2; ++i) {
     const auto start = std::chrono::steady_clock::now();
-    Child first = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string()}, dir / "out", dir / "err");
+    Child first = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string(), "--again"}, dir / "out", dir / "err");
     ASSERT_EQ(first.wait(std::chrono::seconds(60)), 0);
     const long ms = static_cast<long>(
         std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start).count());
@@ -66,7 +66,7 @@ TEST(ReportCrashSafety, ReplaysKilledAtRandomMomentsLeaveOnlyCompleteRuns) {
   int succeeded = 2, killed = 0, failed = 0;
   std::vector<long long> reported_runs;  // the run ids successful replays printed
   for (int i = 0; i < kKills; ++i) {
-    Child child = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string()}, dir / "out", dir / "err");
+    Child child = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string(), "--again"}, dir / "out", dir / "err");
     ASSERT_GT(child.pid, 0);
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
     ::kill(child.pid, SIGKILL);
@@ -98,7 +98,7 @@ TEST(ReportCrashSafety, ReplaysKilledAtRandomMomentsLeaveOnlyCompleteRuns) {
     EXPECT_EQ(q.getColumn(0).getInt(), 1) << "run " << run << " reported success";
   }
   // The database still takes runs.
-  Child last = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string()}, dir / "out", dir / "err");
+  Child last = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string(), "--again"}, dir / "out", dir / "err");
   EXPECT_EQ(last.wait(std::chrono::seconds(60)), 0);
   EXPECT_EQ(inspect(db).runs, s.runs + 1);
   std::cout << "[ figures  ] " << kKills << " kills over a " << replay_ms << " ms replay: " << killed
@@ -108,11 +108,11 @@ TEST(ReportCrashSafety, ReplaysKilledAtRandomMomentsLeaveOnlyCompleteRuns) {
 TEST(ReportCrashSafety, FourReplaysWritingOneDatabaseAtOnceAllSucceedOrSaySoCleanly) {
   const fs::path dir = testing::fresh_scratch_dir("concurrent_writers");
   const fs::path db = dir / "report.sqlite";
-  Child create = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string()}, dir / "out", dir / "err");
+  Child create = spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string(), "--again"}, dir / "out", dir / "err");
   ASSERT_EQ(create.wait(std::chrono::seconds(60)), 0);
   std::vector<Child> writers;
   for (int i = 0; i < 4; ++i) {
-    writers.push_back(spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string(), "--seed", std::to_string(i)},
+    writers.push_back(spawn({RCSIM_BINARY, "replay", kRecording, "--db", db.string(), "--seed", std::to_string(i), "--again"},
                             dir / ("out" + std::to_string(i)), dir / ("err" + std::to_string(i))));
   }
   int succeeded = 1;

@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRecordings = fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
+const fs::path kSyntheticRecordingsDir = fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
 
 struct NullSink final : ReplaySink {
   void begin_run(const Recording&, const ImportedScene&, const Scene&, const ReplayOptions&) override {}
@@ -31,7 +31,7 @@ ReplaySummary replay(const std::string& name, NullSink& sink, const std::string&
   ReplayOptions options;
   options.seed = 1;
   options.import.calibration_dir = calibration_dir;
-  return replay_recording(read_recording(kRecordings / name), options, sink);
+  return replay_recording(read_recording(kSyntheticRecordingsDir / name), options, sink);
 }
 
 std::vector<fs::path> recordings_in(const fs::path& dir) {
@@ -45,7 +45,7 @@ std::vector<fs::path> recordings_in(const fs::path& dir) {
 
 TEST(SyntheticRecordings, EveryRecordingReplaysAndEveryTargetIsAccountedFor) {
   int recordings = 0;
-  for (const auto& entry : fs::directory_iterator(kRecordings)) {
+  for (const auto& entry : fs::directory_iterator(kSyntheticRecordingsDir)) {
     if (!fs::exists(entry.path() / "recording.json")) continue;
     ++recordings;
     const std::string name = entry.path().filename().string();
@@ -111,7 +111,7 @@ TEST(SyntheticRecordings, OnTheCornerApproachTheModelIsLate) {
 // The calibration campaign (recordings_synthetic/campaign/): other situations than the nine, and a
 // calibration fitted on them alone, so that the nine measure it as drives it has never seen.
 TEST(SyntheticRecordings, TheCampaignCalibrationIsFittedOnNoneOfTheNineAndLowersTheirMeanError) {
-  const fs::path campaign = kRecordings / "campaign";
+  const fs::path campaign = kSyntheticRecordingsDir / "campaign";
   const auto campaign_recordings = recordings_in(campaign);
   EXPECT_EQ(campaign_recordings.size(), 13u);
   const auto calibration = load_calibration((campaign / "calibration").string());
@@ -123,7 +123,7 @@ TEST(SyntheticRecordings, TheCampaignCalibrationIsFittedOnNoneOfTheNineAndLowers
   EXPECT_EQ(fitted, campaign_checksums);  // fitted on the campaign, all of it
 
   double before_m = 0.0, after_m = 0.0;
-  const auto nine = recordings_in(kRecordings);
+  const auto nine = recordings_in(kSyntheticRecordingsDir);
   ASSERT_EQ(nine.size(), 9u);
   for (const auto& dir : nine) {
     const std::string name = dir.filename().string();

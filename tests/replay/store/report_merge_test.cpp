@@ -35,7 +35,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRecordings = fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
+const fs::path kMergeRecordings = fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic";
 
 struct RunSpec {
   const char* recording;
@@ -49,7 +49,7 @@ void replay_into(const fs::path& db_path, const std::vector<RunSpec>& runs) {
     ReplayOptions options;
     options.seed = r.seed;
     ReportWriter writer(*db, r.store);
-    replay_recording_dir(kRecordings / r.recording, options, writer);
+    replay_recording_dir(kMergeRecordings / r.recording, options, writer);
   }
 }
 

@@ -1,0 +1,18 @@
+#include "replay/run/run_kind.hpp"
+
+namespace rcsim::replay {
+
+std::string run_level_of(const Recording& recording) {
+  if (recording.all_sensors_report(ReportedLevel::tracks)) return "tracks";
+  if (recording.all_sensors_report(ReportedLevel::detections)) return "detections";
+  return "mixed";
+}
+
+RunKind run_kind(std::string_view level, std::string_view fidelity_level) {
+  if (level == "detections" || level == "mixed") return RunKind::detections;
+  return fidelity_level == "no_tracking" ? RunKind::detections : RunKind::tracks;
+}
+
+std::string_view run_kind_name(RunKind kind) { return kind == RunKind::detections ? "detections" : "tracks"; }
+
+}  // namespace rcsim::replay
