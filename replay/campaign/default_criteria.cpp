@@ -62,4 +62,13 @@ const std::vector<Criterion>& default_criteria() {
   return criteria;
 }
 
+Verdicts judge_report(SQLite::Database& db, std::optional<std::int64_t> only_run) {
+  std::vector<Criterion> criteria = stored_criteria(db);
+  const bool own = !criteria.empty();
+  Verdicts verdicts = judge(db, own ? criteria : default_criteria(), only_run);
+  verdicts.source = own ? CriteriaSource::report : CriteriaSource::defaults;
+  verdicts.gate = own;
+  return verdicts;
+}
+
 }  // namespace rcsim::replay::campaign

@@ -17,4 +17,8 @@ std::string_view default_criteria_document(RunKind kind);
 // The default tolerances of both kinds, each criterion tagged with its kind: tracks first.
 const std::vector<Criterion>& default_criteria();
 
+// The runs judged as rcsim report shows them (all, or the one given): by the report's own criteria
+// (a campaign's, or a stored --criteria file's), else by the default tolerances of each run's kind.
+Verdicts judge_report(SQLite::Database& db, std::optional<std::int64_t> only_run = std::nullopt);
+
 }  // namespace rcsim::replay::campaign

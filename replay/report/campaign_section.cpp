@@ -91,7 +91,8 @@ std::string verdict_counts(const CampaignData& data) {
   if (!v.criteria.empty()) {
     out += fmt::format(R"(<tr><th>Verdict</th><td class="{0}" data-key="verdict">{1}</td><td>{2}</td></tr>)",
                        v.passed() ? "pass" : "fail", v.passed() ? "PASS" : "FAIL",
-                       v.passed() ? "every criterion passed" : "a criterion failed (rcsim merge exits with status 3)");
+                       v.passed() ? "every criterion passed"
+                                  : (data.name.empty() ? "a criterion failed" : "a criterion failed (rcsim merge exits with status 3)"));
   }
   return out + "</table>";
 }
@@ -248,7 +249,8 @@ std::vector<std::int64_t> overview_linked_runs(const CampaignData& data, const C
 std::string campaign_overview(const CampaignData& data, const RunLinks& links, const CampaignOverviewOptions& options) {
   const campaign::Verdicts& v = data.verdicts;
   std::string out = R"(<section class="campaign" id="campaign">)";
-  out += data.name.empty() ? std::string("<h2>Campaign overview</h2>")
+  // A report of no campaign (many replays into one database) gets the same overview, not called a campaign.
+  out += data.name.empty() ? std::string("<h2>Verdicts of all runs</h2>")
                            : fmt::format("<h2>Campaign overview: {}</h2>", escape(data.name));
   out += R"(<p class="hint">Every run of the database, judged by the criteria stored in it (schemas/campaign.md), )"
          "ranked and summarised by the figures campaigns are judged by. ";

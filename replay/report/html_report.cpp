@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <fmt/format.h>
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "replay/campaign/default_criteria.hpp"
 #include "replay/report/campaign_section.hpp"
+#include "replay/report/verdict_section.hpp"
 #include "replay/report/speed_error_section.hpp"
 #include "replay/store/report_reader.hpp"
 #include "replay/report/html_cells.hpp"
@@ -52,6 +55,12 @@ details { margin: 4px 0; }
 nav ul { columns: 2; }
 tr.default td { background: #fff4e6; }
 td.pass { color: #2b8a3e; font-weight: 600; }
+.mark { display: inline-block; padding: 1px 8px; border-radius: 3px; color: #fff; font-weight: 700; }
+.mark.pass { background: #2b8a3e; }
+.mark.fail { background: #c92a2a; }
+div.verdict { border-left: 5px solid #2b8a3e; padding: 2px 12px; margin: 8px 0 16px; background: #f4fbf5; }
+div.verdict.fail { border-left-color: #c92a2a; background: #fdf3f3; }
+p.verdict-line { font-size: 1.1em; }
 td.fail, tr.fail td.fail { color: #c92a2a; font-weight: 600; }
 tr.fail td:first-child { border-left: 3px solid #c92a2a; }
 table.worst td { font-size: 12px; }
@@ -77,11 +86,26 @@ void write_birdseye_pictures(std::ostream& out, SQLite::Database& db, const repo
   out << "</div>";
 }
 
+// What the run sections open with: every run's verdict and label.
+struct RunVerdicts {
+  campaign::Verdicts verdicts;
+  std::map<std::int64_t, RunLabel> labels;
+  const campaign::RunVerdict* of(std::int64_t run_id) const {
+    const auto it = std::find_if(verdicts.runs.begin(), verdicts.runs.end(),
+                                 [&](const campaign::RunVerdict& r) { return r.run_id == run_id; });
+    return it == verdicts.runs.end() ? nullptr : &*it;
+  }
+};
+
 void write_run_section(std::ostream& out, SQLite::Database& db, const report::RunData& run,
-                       const HtmlReportOptions& options, int max_points) {
+                       const HtmlReportOptions& options, int max_points, const RunVerdicts& judged) {
   const report::RunInfo& i = run.info;
-  out << fmt::format(R"(<section class="run" id="run-{}"><h2>Run {}: {}</h2>)", i.run_id, i.run_id,
-                     escape(i.recording_name));
+  const campaign::RunVerdict* verdict = judged.of(i.run_id);
+  out << fmt::format(R"(<section class="run" id="run-{}"><h2>Run {}: {}{}</h2>)", i.run_id, i.run_id,
+                     escape(i.recording_name), verdict == nullptr ? "" : " " + report::verdict_mark(verdict->passed));
+  if (verdict != nullptr && judged.labels.count(i.run_id) != 0) {
+    out << report::run_verdict_block(run, judged.verdicts, *verdict, judged.labels.at(i.run_id));
+  }
   out << R"(<div class="cols"><div><h3>Run</h3>)" << report::run_information_table(run)
       << "</div><div><h3>Summary</h3>" << report::summary_table(run) << "</div></div>";
   out << R"(<h3>Sensors</h3><div class="scroll">)" << report::sensor_table(run) << "</div>";
@@ -188,6 +212,11 @@ void write_page(SQLite::Database& db, const std::string& db_label, const HtmlRep
       selection.bench_id ? std::optional<report::BenchData>(report::load_bench(db, *selection.bench_id)) : std::nullopt;
   std::vector<report::RunData> runs;
   for (const std::int64_t id : selection.ids) runs.push_back(report::load_run(db, id));
+  RunVerdicts judged;
+  if (!runs.empty()) {
+    judged.verdicts = campaign::judge_report(db);
+    judged.labels = read_run_labels(db);
+  }
   const int n = static_cast<int>(runs.size());
   const int max_points = n <= 4 ? options.max_points : std::max(250, 4 * options.max_points / n);
   const report::CampaignData* campaign = context.campaign;
@@ -227,19 +256,25 @@ void write_page(SQLite::Database& db, const std::string& db_label, const HtmlRep
   }
   out << "<nav><ul>";
   if (campaign != nullptr) {
-    out << fmt::format(R"(<li><a href="#campaign">Campaign overview</a>: {} runs{}</li>)", campaign->runs.size(),
+    out << fmt::format(R"(<li><a href="#campaign">{}</a>: {} runs{}</li>)",
+                       campaign->name.empty() ? "Verdicts of all runs" : "Campaign overview", campaign->runs.size(),
                        campaign->verdicts.criteria.empty()
                            ? std::string()
                            : fmt::format(", {} failed, {}", campaign->verdicts.runs_failed,
                                          campaign->verdicts.passed() ? "PASS" : "FAIL"));
   }
-  if (bench) {
-    out << fmt::format(R"(<li><a href="#bench-{0}">Speed against error</a>: bench {0}, {1} recordings</li>)",
-                       bench->info.bench_id, bench->recordings().size());
-  }
   for (const auto& r : runs) {
-    out << fmt::format(R"(<li><a href="#run-{0}">Run {0}</a>: {1}, seed {2}</li>)", r.info.run_id,
-                       escape(r.info.recording_name), r.info.seed);
+    const campaign::RunVerdict* verdict = judged.of(r.info.run_id);
+    const auto label = judged.labels.find(r.info.run_id);
+    out << fmt::format(R"(<li>{}<a href="#run-{}">Run {}</a>: {}{}</li>)",
+                       verdict == nullptr ? "" : report::verdict_mark(verdict->passed) + " ", r.info.run_id,
+                       r.info.run_id, escape(r.info.recording_name),
+                       label == judged.labels.end() ? fmt::format(", seed {}", r.info.seed)
+                                                    : ", " + escape(label->second.text()));
+  }
+  if (bench) {
+    out << fmt::format(R"(<li><a href="#bench-{0}">Speed against error</a> (after the runs): bench {0}, {1} recordings</li>)",
+                       bench->info.bench_id, bench->recordings().size());
   }
   out << "</ul></nav>\n";
   if (campaign != nullptr) {
@@ -251,11 +286,12 @@ void write_page(SQLite::Database& db, const std::string& db_label, const HtmlRep
     links.pages = context.pages;
     out << report::campaign_overview(*campaign, links, overview_options(options));
   }
-  if (bench) out << report::bench_section(*bench);
   if (runs.size() > 1) {
-    out << "<h2>Runs side by side</h2>" << report::comparison_table(runs) << "\n";
+    out << "<h2>Runs side by side</h2>" << report::comparison_table(runs, judged.labels) << "\n";
   }
-  for (const auto& run : runs) write_run_section(out, db, run, options, max_points);
+  for (const auto& run : runs) write_run_section(out, db, run, options, max_points, judged);
+  // The bench measures rcsim, not the model against a recording: after the runs.
+  if (bench) out << report::bench_section(*bench);
   out << "</body></html>\n";
 }
 

@@ -216,7 +216,7 @@ std::string provenance_blocks(const RunData& run) {
   return out;
 }
 
-std::string comparison_table(const std::vector<RunData>& runs) {
+std::string comparison_table(const std::vector<RunData>& runs, const std::map<std::int64_t, RunLabel>& labels) {
   std::string out = R"(<div class="scroll"><table class="comparison"><tr><th>quantity</th>)";
   for (const RunData& r : runs) {
     out += fmt::format(R"(<th><a href="#run-{0}">run {0}</a></th>)", r.info.run_id);
@@ -224,13 +224,32 @@ std::string comparison_table(const std::vector<RunData>& runs) {
   out += "</tr>";
   const auto row = [&](const std::string& label, const std::function<std::string(const RunData&)>& value) {
     out += "<tr><th>" + escape(label) + "</th>";
-    for (const RunData& r : runs) out += (label.rfind("recording", 0) == 0 ? cell(value(r)) : cell_num(value(r)));
+    const bool text = label.rfind("recording", 0) == 0 || label == "sensor profiles" || label == "fidelity" ||
+                      label == "effects" || label == "calibration" || label == "compared";
+    for (const RunData& r : runs) out += text ? cell(value(r)) : cell_num(value(r));
     out += "</tr>";
   };
   const auto summary = [](const std::function<std::string(const RunSummary&)>& f) {
     return [f](const RunData& r) { return r.summary ? f(*r.summary) : std::string("-"); };
   };
   row("recording", [](const RunData& r) { return r.info.recording_name; });
+  // What tells the runs apart (run_identity.hpp's RunLabel).
+  const auto labelled = [&labels](std::string RunLabel::*field) {
+    return [&labels, field](const RunData& r) {
+      const auto it = labels.find(r.info.run_id);
+      return it == labels.end() ? std::string("-") : it->second.*field;
+    };
+  };
+  row("compared", labelled(&RunLabel::level));
+  row("sensor profiles", labelled(&RunLabel::sensors));
+  row("fidelity", labelled(&RunLabel::fidelity));
+  row("effects", labelled(&RunLabel::effects));
+  row("calibration", [&labels](const RunData& r) {
+    const auto it = labels.find(r.info.run_id);
+    if (it == labels.end() || it->second.calibration.empty()) return std::string("none");
+    const RunLabel& l = it->second;
+    return l.calibration + (l.calibration_checksum.empty() ? "" : " #" + l.calibration_checksum.substr(0, 8));
+  });
   row("seed", [](const RunData& r) { return std::to_string(r.info.seed); });
   row("cycles x sensors", [](const RunData& r) { return fmt::format("{} x {}", r.info.cycles, r.sensors.size()); });
   row("targets recorded", summary([](const RunSummary& s) { return std::to_string(s.targets_recorded); }));

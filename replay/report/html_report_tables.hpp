@@ -1,10 +1,12 @@
 #pragma once
 // The HTML tables of the report, rendered from what html_report_data.hpp read. Every text
 // from the database is escaped here; numbers carry their units in the header or the row.
+#include <map>
 #include <string>
 #include <vector>
 
 #include "replay/store/report_reader.hpp"
+#include "replay/store/run_identity.hpp"
 
 namespace rcsim::replay::report {
 
@@ -20,7 +22,7 @@ std::string latency_table(const RunData& run);
 std::string parameter_table(const RunData& run);
 // The recording's provenance and the sensor configurations, verbatim (escaped), folded.
 std::string provenance_blocks(const RunData& run);
-// Several runs side by side: one column per run.
-std::string comparison_table(const std::vector<RunData>& runs);
+// Several runs side by side: one column per run, first what tells them apart (their labels).
+std::string comparison_table(const std::vector<RunData>& runs, const std::map<std::int64_t, RunLabel>& labels);
 
 }  // namespace rcsim::replay::report

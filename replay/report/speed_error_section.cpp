@@ -9,6 +9,7 @@
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "replay/evaluate/speed_error.hpp"
+#include "replay/report/html_cells.hpp"
 #include "replay/report/svg_pareto.hpp"
 #include "replay/report/svg_writer.hpp"
 
@@ -49,15 +50,8 @@ std::string opt_speed(const std::optional<double>& value) {
   return value ? svg::speed_text(*value) : std::string(kNull);
 }
 
-std::string cell(const std::string& text) { return "<td>" + escape(text) + "</td>"; }
-std::string cell_num(const std::string& text) { return R"(<td class="num">)" + escape(text) + "</td>"; }
 std::string cell_int(std::int64_t value) { return cell_num(std::to_string(value)); }
 
-std::string header_row(std::initializer_list<const char*> names) {
-  std::string out = "<tr>";
-  for (const char* n : names) out += fmt::format("<th>{}</th>", n);
-  return out + "</tr>";
-}
 
 std::string row_open(const std::string& level) {
   return fmt::format(R"(<tr data-level="{}"{}>)", escape(level), level == kDefaultLevel ? R"( class="default")" : "");

@@ -99,6 +99,25 @@ TEST_F(HtmlReportChromium, RendersPicturesTablesAndNoInjectedScript) {
   EXPECT_GE(testing::count_occurrences(dom, "<polygon class=\"fov\""), 6u);
   EXPECT_GE(testing::count_occurrences(dom, "<polygon class=\"box\""), 3u);
   EXPECT_GT(testing::count_occurrences(dom, "<rect class=\"bar\""), 4u);
+  // The verdict is the first thing under each run's title, as the browser laid the page out: the
+  // title's mark, then the verdict block with the track tolerances' headline figure first.
+  std::size_t sections = 0;
+  for (std::size_t at = dom.find("<section class=\"run\""); at != std::string::npos;
+       at = dom.find("<section class=\"run\"", at + 1)) {
+    ++sections;
+    const std::size_t title_end = dom.find("</h2>", at);
+    ASSERT_NE(title_end, std::string::npos);
+    const std::string title = dom.substr(at, title_end - at);
+    EXPECT_TRUE(title.find("<span class=\"mark pass\">PASS</span>") != std::string::npos ||
+                title.find("<span class=\"mark fail\">FAIL</span>") != std::string::npos)
+        << title;
+    const std::string next = dom.substr(title_end + 5, 120);
+    EXPECT_EQ(next.rfind("<div class=\"verdict ", 0), 0u) << next;
+    const std::size_t first_row = dom.find("<tr class=", title_end);
+    ASSERT_NE(first_row, std::string::npos);
+    EXPECT_NE(dom.substr(first_row, 120).find(">gospa_mean_m<"), std::string::npos) << dom.substr(first_row, 120);
+  }
+  EXPECT_EQ(sections, 1u);
   // The summary value, as parsed by the browser.
   EXPECT_NE(dom.find("data-key=\"targets_recorded\">" + std::to_string(targets_recorded) + "<"), std::string::npos);
   // Escaped text stayed text: no script element, no image, the handlers never ran.
