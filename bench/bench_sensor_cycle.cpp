@@ -2,6 +2,8 @@
 // with the heap allocations per cycle counted.
 #include <benchmark/benchmark.h>
 
+#include "benchmark_main.hpp"
+
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -230,4 +232,7 @@ BENCHMARK(BM_SceneCycle)->Arg(1)->Arg(10)->Arg(100);
 }  // namespace
 }  // namespace rcsim
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rcsim::bench_tools::run_benchmark_main(argc, argv, "rcsim_bench_sensor_cycle",
+                                                "One sensor cycle (paper Fig. 13, all stages, noise on) for 1, 10 and 100 vehicles in view, with the\nheap allocations per cycle counted; the culling stage on a traffic scene and an imported recording.");
+}

@@ -5,6 +5,8 @@
 // per sensor and cycle.
 #include <benchmark/benchmark.h>
 
+#include "benchmark_main.hpp"
+
 #include <memory>
 #include <string>
 
@@ -102,4 +104,7 @@ BENCHMARK(BM_ReferenceStages)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
 }  // namespace
 }  // namespace rcsim
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rcsim::bench_tools::run_benchmark_main(argc, argv, "rcsim_bench_synth",
+                                                "Time per sensor cycle of the signal-level reference (rcsim synth) against the reflection-center\nmodel (rcsim simulate) on the scenes of recordings_synthetic/scenes, and the reference's stages.");
+}

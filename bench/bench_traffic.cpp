@@ -2,6 +2,8 @@
 // lane, every vehicle driven by IDM + MOBIL), and the scene text it makes.
 #include <benchmark/benchmark.h>
 
+#include "benchmark_main.hpp"
+
 #include "common/rng.hpp"
 #include "traffic/scene_writer.hpp"
 #include "traffic/traffic_sim.hpp"
@@ -40,4 +42,7 @@ BENCHMARK(BM_TrafficHourThreeLanes)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rcsim::bench_tools::run_benchmark_main(argc, argv, "rcsim_bench_traffic",
+                                                "One hour of a three-lane road with about 200 vehicles (IDM + MOBIL), and the scene text it makes.");
+}

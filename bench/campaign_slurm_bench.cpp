@@ -12,6 +12,7 @@
 
 #include "campaign/campaign_figures.hpp"
 #include "campaign/slurm_cluster.hpp"
+#include "tool_arguments.hpp"
 
 namespace {
 
@@ -35,17 +36,31 @@ fs::path plan(const fs::path& work, const std::string& name, int shards) {
   return dir;
 }
 
+const rcsim::bench_tools::ToolUsage kCampaignBenchUsage{
+    "rcsim_bench_campaign", "WORK_DIR [DRIVES=200] [DURATION_S=600] [SHARDS=2]",
+    "The campaign goal (docs/campaigns.md): DRIVES generated drives of DURATION_S seconds replayed\n"
+    "serially and as a Slurm job array of SHARDS shards on a one-node cluster started here, then merged;\n"
+    "prints the times and whether the merged report equals the serial one. Works in WORK_DIR.",
+    1, 4};
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "usage: rcsim_bench_campaign WORK_DIR [DRIVES=200] [DURATION_S=600] [SHARDS=2]\n";
-    return 2;
+  int exit_status = 0;
+  const auto arguments = rcsim::bench_tools::tool_arguments(argc, argv, kCampaignBenchUsage, exit_status);
+  if (!arguments) return exit_status;
+  // DRIVES, DURATION_S and SHARDS: whole numbers of at least 1, else the usage.
+  const auto count_argument = [&](std::size_t index, int fallback) -> std::optional<int> {
+    if (arguments->size() <= index) return fallback;
+    const auto value = rcsim::bench_tools::number_argument<int>((*arguments)[index]);
+    return value && *value >= 1 ? value : std::nullopt;
+  };
+  const auto drives_arg = count_argument(1, 200), duration_arg = count_argument(2, 600), shards_arg = count_argument(3, 2);
+  if (!drives_arg || !duration_arg || !shards_arg) {
+    return rcsim::bench_tools::refuse_command_line(kCampaignBenchUsage, "DRIVES, DURATION_S and SHARDS must be whole numbers >= 1");
   }
-  const fs::path work = fs::absolute(argv[1]);
-  const int drives = argc > 2 ? std::atoi(argv[2]) : 200;
-  const int duration_s = argc > 3 ? std::atoi(argv[3]) : 600;
-  const int shards = argc > 4 ? std::atoi(argv[4]) : 2;
+  const int drives = *drives_arg, duration_s = *duration_arg, shards = *shards_arg;
+  const fs::path work = fs::absolute(arguments->front());
   try {
     fs::create_directories(work / "drives");
     const fs::path generator = fs::path(RCSIM_BINARY).parent_path() / "rcsim_make_long_recording";

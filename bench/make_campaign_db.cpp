@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "replay/campaign/criteria.hpp"
+#include "tool_arguments.hpp"
 #include "replay/run/replay_run.hpp"
 #include "replay/store/report_store.hpp"
 
@@ -62,22 +63,27 @@ std::vector<campaign::Criterion> campaign_criteria() {
   return c;
 }
 
+const bench_tools::ToolUsage kCampaignDbUsage{
+    "rcsim_make_campaign_db", "OUTPUT.sqlite [RUNS=10000] [RECORDING_DIR=recordings_synthetic/front_approach] [SEED=1]",
+    "Writes a generated campaign report database for the campaign report's benchmark\n"
+    "(scripts/bench-report.sh): one replay of RECORDING_DIR, copied RUNS - 1 times with varied figures,\n"
+    "a campaign row and criteria. OUTPUT.sqlite must not exist.",
+    1, 4};
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "usage: rcsim_make_campaign_db OUTPUT.sqlite [RUNS=10000] "
-                 "[RECORDING_DIR=recordings_synthetic/front_approach] [SEED=1]\n";
-    return 2;
-  }
-  const std::string out = argv[1];
-  const long runs = argc > 2 ? std::atol(argv[2]) : 10000;
-  const std::filesystem::path recording = argc > 3 ? argv[3] : "recordings_synthetic/front_approach";
-  const unsigned seed = argc > 4 ? static_cast<unsigned>(std::strtoul(argv[4], nullptr, 10)) : 1u;
-  if (runs < 1) {
-    std::cerr << "rcsim_make_campaign_db: RUNS must be at least 1\n";
-    return 2;
-  }
+  int exit_status = 0;
+  const auto arguments = bench_tools::tool_arguments(argc, argv, kCampaignDbUsage, exit_status);
+  if (!arguments) return exit_status;
+  const std::string out = arguments->front();
+  const std::optional<long> runs =
+      arguments->size() > 1 ? bench_tools::number_argument<long>((*arguments)[1]) : std::optional<long>(10000);
+  const std::filesystem::path recording = arguments->size() > 2 ? (*arguments)[2] : "recordings_synthetic/front_approach";
+  const std::optional<unsigned> seed =
+      arguments->size() > 3 ? bench_tools::number_argument<unsigned>((*arguments)[3]) : std::optional<unsigned>(1u);
+  if (!runs || *runs < 1) return bench_tools::refuse_command_line(kCampaignDbUsage, "RUNS must be a whole number >= 1");
+  if (!seed) return bench_tools::refuse_command_line(kCampaignDbUsage, "SEED must be a whole number >= 0");
   if (std::filesystem::exists(out)) {
     std::cerr << "rcsim_make_campaign_db: " << out << " exists; remove it first\n";
     return 2;
@@ -134,13 +140,13 @@ WHERE run_id = ?7)SQL");
     SQLite::Statement vary_distances(*db, "UPDATE distribution_distances SET wasserstein1 = wasserstein1 * ?1, "
                                           "kolmogorov_smirnov = min(1.0, kolmogorov_smirnov * sqrt(?1)) WHERE run_id = ?2");
 
-    std::mt19937_64 rng(seed);
+    std::mt19937_64 rng(*seed);
     std::lognormal_distribution<double> quality(0.0, 0.35);
     std::normal_distribution<double> noise(0.0, 1.0);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     // The source run last, so that every copy is of its figures as replayed.
-    for (std::int64_t k = 1; k <= runs; ++k) {
-      const std::int64_t id = k == runs ? source : k + 1;
+    for (std::int64_t k = 1; k <= *runs; ++k) {
+      const std::int64_t id = k == *runs ? source : k + 1;
       if (id != source) {
         copy_run.bind(1, id);
         copy_run.bind(2, source);
@@ -196,7 +202,7 @@ WHERE run_id = ?7)SQL");
                              recording.string()));
     name.exec();
     transaction.commit();
-    std::cout << "wrote " << out << ": " << runs << " runs copied from " << recording.string() << ", "
+    std::cout << "wrote " << out << ": " << *runs << " runs copied from " << recording.string() << ", "
               << criteria.size() << " criteria\n";
   } catch (const std::exception& e) {
     std::cerr << "rcsim_make_campaign_db: " << e.what() << '\n';

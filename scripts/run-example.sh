@@ -16,7 +16,7 @@ for recording in recordings_synthetic/*/; do
   runs=$((runs + 1))
 done
 if [ "${RCSIM_SKIP_BENCH:-0}" != 1 ]; then
-  ./build/bin/rcsim bench --db out/report.sqlite
+  ./build/bin/rcsim bench --db out/report.sqlite --seed 1
 fi
 ./build/bin/rcsim report out/report.sqlite -o out/report.html --last "$runs"
 echo "== open out/report.html in a browser (or query out/report.sqlite with sqlite3)"

@@ -210,6 +210,10 @@ SchemaState read_schema_state_once(SQLite::Database& db, const std::string& path
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create) {
   const bool existed = std::filesystem::exists(path);
   if (!create && !existed) throw InputError(path, "", "no such report database");
+  if (const auto parent = std::filesystem::path(path).parent_path(); !existed && !parent.empty() &&
+                                                                    !std::filesystem::is_directory(parent)) {
+    throw InputError(path, "", "cannot create the report database: no directory " + parent.string());
+  }
   check_database_file(path);
   std::unique_ptr<SQLite::Database> db;
   try {
@@ -256,6 +260,21 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
     throw InputError(path, "", std::string("cannot use as a report database: ") + e.what());
   }
   return db;
+}
+
+void discard_if_unused(std::unique_ptr<SQLite::Database>& db, const std::string& path) {
+  if (db == nullptr) return;
+  try {
+    const auto rows = [&](const char* table) {
+      return db->tableExists(table) ? db->execAndGet(fmt::format("SELECT count(*) FROM {}", table)).getInt64() : 0;
+    };
+    if (rows("runs") + rows("bench_runs") + rows("campaign") > 0) return;
+  } catch (const SQLite::Exception&) {
+    return;  // not readable now: left as it is
+  }
+  db.reset();
+  std::error_code ignored;
+  for (const char* suffix : {"", "-journal", "-wal", "-shm"}) std::filesystem::remove(path + suffix, ignored);
 }
 
 std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::string& path) {

@@ -28,6 +28,11 @@ inline constexpr int kReportSchemaVersion = 5;
 // `full`), and the rows of `cycles`, `targets` and `object_states` are converted into blocks.
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
 
+// Closes `db` and removes the report database at `path` with its -wal and -shm, if it holds no
+// run, bench or campaign: what a command that created it and was then refused calls, so that it
+// leaves no file behind. Call it only for a database this process created.
+void discard_if_unused(std::unique_ptr<SQLite::Database>& db, const std::string& path);
+
 // Opens a report database to read it: as open_report_database(path, false) when this process may
 // write the file, else read-only (a read-only copy of an older schema is refused, saying why).
 std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::string& path);

@@ -11,6 +11,7 @@
 #include "cli/fidelity_option.hpp"
 #include "cli/recording_dirs.hpp"
 #include "cli/replay_options.hpp"
+#include "cli/seed_option.hpp"
 #include "common/input_error.hpp"
 #include "replay/evaluate/speed_error.hpp"
 #include "replay/store/speed_error_store.hpp"
@@ -24,7 +25,7 @@ namespace {
 struct BenchArgs {
   std::vector<std::string> recordings;
   std::string db_path;
-  std::int64_t seed = 1;
+  std::uint64_t seed = kDefaultSeed;
   std::string levels = "full,no_monopulse,points_only,no_tracking";
   bool no_reference = false;
   bool json = false;
@@ -175,7 +176,7 @@ nlohmann::ordered_json bench_json(const replay::BenchOptions& options, const std
 
 void run_bench(const BenchArgs& args) {
   replay::BenchOptions options;
-  options.seed = static_cast<std::uint64_t>(args.seed);
+  options.seed = args.seed;
   options.levels = parse_levels(args.levels);
   options.reference = !args.no_reference;
   options.min_timing_cpu_s = args.min_timing_cpu_s;
@@ -245,9 +246,7 @@ void add_bench_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("bench", "speed against error: every fidelity level, the signal-level reference and the noise floor over recordings");
   cmd->add_option("RECORDING_DIR", args->recordings, "recordings (rcsim-recording); default: every one in ./recordings_synthetic");
   cmd->add_option("--db", args->db_path, "report database (rcsim-report) to store the bench in; created if missing");
-  cmd->add_option("--seed", args->seed, "seed of the model (the reference's are seed + 1 and seed + 2)")
-      ->check(kNonNegative)
-      ->capture_default_str();
+  add_seed_option(*cmd, args->seed, "seed of the model (the reference's are seed + 1 and seed + 2)");
   cmd->add_option("--levels", args->levels, std::string("comma-separated model levels: ") + std::string(kFidelityNames) + ", or none")
       ->capture_default_str();
   cmd->add_flag("--no-reference", args->no_reference, "skip the signal-level reference and the noise floor (the slow rows)");

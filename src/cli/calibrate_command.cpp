@@ -7,6 +7,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/recording_dirs.hpp"
+#include "cli/seed_option.hpp"
 #include "common/input_error.hpp"
 #include "common/atomic_file.hpp"
 #include "replay/calibrate/calibration_fit.hpp"
@@ -20,7 +21,7 @@ struct CalibrateArgs {
   std::vector<std::string> recordings;
   std::string output_dir;
   std::string fit = "ercs,slope";
-  std::int64_t seed = 1;
+  std::uint64_t seed = kDefaultSeed;
   double initial_step_db = replay::CalibrationOptions{}.initial_step_db;
   double final_step_db = replay::CalibrationOptions{}.final_step_db;
   bool cross_validate = false;
@@ -81,7 +82,7 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
     replay::check_fittable(recordings.back());
   }
   replay::ReplayOptions options;
-  options.seed = static_cast<std::uint64_t>(args.seed);
+  options.seed = args.seed;
   options.fidelity = Fidelity::no_tracking;
   std::vector<const Recording*> all;
   for (const Recording& r : recordings) all.push_back(&r);
@@ -147,7 +148,7 @@ void run_calibrate(const CalibrateArgs& args) {
   if (args.hold_out) throw InputError("--hold-out", "", "goes with --real-drive");
   replay::CalibrationOptions options;
   options.groups = parse_groups(args.fit);
-  options.seed = static_cast<std::uint64_t>(args.seed);
+  options.seed = args.seed;
   options.initial_step_db = args.initial_step_db;
   options.final_step_db = args.final_step_db;
   options.start_dir = args.start_dir;
@@ -197,9 +198,7 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output_dir, "calibration directory to write (rcsim-calibration)")->required();
   cmd->add_option("--fit", args->fit, std::string("comma-separated parameter groups: ") + std::string(replay::kParameterGroupNames))
       ->capture_default_str();
-  cmd->add_option("--seed", args->seed, "seed of the model's random draws during the search")
-      ->check(kNonNegative)
-      ->capture_default_str();
+  add_seed_option(*cmd, args->seed, "seed of the model's random draws during the search");
   cmd->add_option("--initial-step-db", args->initial_step_db, "first search step")
       ->check(CLI::Range(0.01, 40.0))
       ->capture_default_str();

@@ -11,6 +11,7 @@
 #include "cli/control_token.hpp"
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "stream/endpoints.hpp"
 #include "stream/listener.hpp"
 #include "stream/streamer.hpp"
 
@@ -48,14 +49,63 @@ std::uint32_t sensor_mask(const std::string& list) {
       used = 0;
     }
     if (used != item.size() || index < 0 || index > 31) {
-      throw std::invalid_argument("--sensors '" + list + "': expected sensor indices 0..31 separated by commas");
+      throw InputError("--sensors", list, "expected sensor indices 0..31 separated by commas");
     }
     mask |= 1u << index;
   }
   return mask;
 }
 
+// The addresses and the control port are checked here, before any socket or file: a wrong one is
+// bad input (exit status 2), named with its option, not a socket's "Invalid argument".
+void check_address(const std::string& option, const std::string& text, bool multicast) {
+  if (text.empty()) return;
+  boost::system::error_code error;
+  const auto address = boost::asio::ip::make_address(text, error);
+  if (error) throw InputError(option, text, "not an IP address");
+  if (multicast && !address.is_multicast()) throw InputError(option, text, "not a multicast group (224.0.0.0 to 239.255.255.255)");
+}
+
+void check_listen_arguments(const ListenArgs& args) {
+  check_address("--bind", args.bind, false);
+  check_address("--group", args.group, true);
+  if (!args.group.empty() && !boost::asio::ip::make_address(args.group).is_v4()) {
+    throw InputError("--group", args.group, "an IPv4 multicast group is joined (224.0.0.0 to 239.255.255.255)");
+  }
+  check_address("--interface", args.interface, false);
+  if (args.subscribe.empty()) return;
+  try {
+    stream::parse_endpoint(args.subscribe, "127.0.0.1");
+  } catch (const std::invalid_argument& e) {
+    throw InputError("rcsim listen", "--subscribe", e.what());
+  }
+}
+
+std::uint32_t listen_message_mask(const ListenArgs& args, stream::MessageType print) {
+  if (args.messages.empty()) return stream::message_bit(print) | (args.truth_output.empty() ? 0u : stream::kTruthBit);
+  try {
+    return stream::parse_message_mask(args.messages);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("rcsim listen", "--messages", e.what());
+  }
+}
+
+// A --truth-output that stayed empty says why: a streamer sends ground truth only when asked.
+void print_truth_hint(const ListenArgs& args, const stream::ListenSummary& summary) {
+  if (args.truth_output.empty() || summary.truth_messages > 0) return;
+  std::cerr << "rcsim listen: no ground truth arrived, so " << args.truth_output << " holds the header only: ";
+  if (args.subscribe.empty()) {
+    std::cerr << "a streamer sends it to its --to destinations only with --messages simulated,truth (or "
+                 "recorded,truth), or subscribe at its control port with --subscribe\n";
+  } else if (!args.messages.empty() && (listen_message_mask(args, stream::MessageType::simulated_targets) & stream::kTruthBit) == 0) {
+    std::cerr << "--messages " << args.messages << " does not ask for it; add truth\n";
+  } else {
+    std::cerr << "the streamer sent none\n";
+  }
+}
+
 void run_listen(const ListenArgs& args) {
+  check_listen_arguments(args);
   stream::ListenOptions options;
   options.port = args.port;
   options.bind_address = args.bind;
@@ -64,11 +114,7 @@ void run_listen(const ListenArgs& args) {
   options.subscribe = args.subscribe;
   if (!args.control_token_file.empty()) options.control_token = read_control_token(args.control_token_file);
   options.print = args.print == "recorded" ? stream::MessageType::recorded_targets : stream::MessageType::simulated_targets;
-  if (args.messages.empty()) {
-    options.messages = stream::message_bit(options.print) | (args.truth_output.empty() ? 0u : stream::kTruthBit);
-  } else {
-    options.messages = stream::parse_message_mask(args.messages);
-  }
+  options.messages = listen_message_mask(args, options.print);
   options.sensor_mask = args.sensors.empty() ? 0u : sensor_mask(args.sensors);
   options.format = args.format == "jsonl" ? TargetListFormat::Jsonl : TargetListFormat::Csv;
   options.truth_output = args.truth_output;
@@ -100,6 +146,7 @@ void run_listen(const ListenArgs& args) {
     throw;
   }
   std::cerr << summary.line() << std::endl;
+  print_truth_hint(args, summary);
 }
 
 }  // namespace

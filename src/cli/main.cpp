@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/suggestions.hpp"
 #include "cli/verdict_options.hpp"
 #include "common/input_error.hpp"
 
@@ -26,24 +27,19 @@ int main(int argc, char** argv) {
   rcsim::cli::add_merge_command(app);
   rcsim::cli::add_campaign_command(app);
   rcsim::cli::add_models_command(app);
-  const auto known = [&app](const std::string& name) {
-    const auto commands = app.get_subcommands([&name](const CLI::App* c) { return c->check_name(name); });
-    return !commands.empty();
-  };
-  if (argc > 1 && argv[1][0] != '-' && !known(argv[1])) {
-    std::string names;
-    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
-      names += (names.empty() ? "" : ", ") + command->get_name();
-    }
-    std::cerr << "rcsim: unknown command '" << argv[1] << "' (commands: " << names << "; rcsim --help)\n";
-    return 2;
-  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version end here with 0; any wrong option or value is bad input (README's
-    // exit statuses), not CLI11's own numbers (105, 109, ...).
-    return app.exit(e) == 0 ? 0 : 2;
+    // exit statuses), not CLI11's own numbers (105, 109, ...). A mistyped option or command is
+    // named first, with what was probably meant: it is often why a required one is missing.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    if (const auto unknown = rcsim::cli::unknown_argument_message(app)) {
+      std::cerr << *unknown << '\n';
+      return 2;
+    }
+    app.exit(e);
+    return 2;
   } catch (const rcsim::cli::VerdictsFailed& e) {
     std::cerr << "rcsim: failed: " << e.what() << '\n';
     return rcsim::cli::kExitVerdictsFailed;

@@ -1,6 +1,7 @@
 // rcsim replay RECORDING_DIR --db REPORT.sqlite: import, re-simulate, compare per cycle, store.
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -241,6 +242,11 @@ bool print_if_stored(SQLite::Database& db, const ReplayArgs& args, const Recordi
   return false;
 }
 
+void store_and_print(SQLite::Database& db, ReplayArgs& args, const Recording& recording,
+                     const replay::ReplayOptions& options);
+
+// Reads the criteria and the recording's header, opens the report, and stores the run unless one
+// of its identity is there already.
 void replay_and_store(ReplayArgs& args) {
   read_verdict_criteria(args.verdicts);  // a bad criteria file is refused before the replay
   // The header only: the rows are read as the replay goes (replay_recording_dir).
@@ -253,21 +259,36 @@ void replay_and_store(ReplayArgs& args) {
   options.gospa = {args.cutoff_m, args.order_p};
   options.association_gate_m = args.gate_m;
   options.stationary_gate_mps = args.stationary_gate_mps;
-  const auto db = replay::open_report_database(args.db_path, true);
-  if (!args.again && print_if_stored(*db, args, recording, options)) return;
-  replay::ReportWriter writer(*db, replay::store_level_from_name(args.store));
+  const bool existed = std::filesystem::exists(args.db_path);
+  auto db = replay::open_report_database(args.db_path, true);
+  try {
+    if (!args.again && print_if_stored(*db, args, recording, options)) return;
+    store_and_print(*db, args, recording, options);
+  } catch (const VerdictsFailed&) {
+    throw;  // the run is stored
+  } catch (...) {
+    // A replay refused (a damaged row found as it went) leaves no report it created behind.
+    if (!existed) replay::discard_if_unused(db, args.db_path);
+    throw;
+  }
+}
+
+// The replay stored as one run, judged, and printed verdict first.
+void store_and_print(SQLite::Database& db, ReplayArgs& args, const Recording& recording,
+                     const replay::ReplayOptions& options) {
+  replay::ReportWriter writer(db, replay::store_level_from_name(args.store));
   replay::KillAfterCycles killer(writer);  // only with RCSIM_TEST_KILL_AFTER_CYCLES set
   PrintImportWarnings sink(killer);
   const replay::ReplaySummary summary = replay::replay_recording_dir(args.recording_dir, options, sink);
   // The run judged: by --criteria, else the report's own criteria, else the default tolerances of
   // its kind (per-recording criteria only).
-  const auto verdicts = judge_runs(*db, args.verdicts, writer.run_id(), recording.name, true);
+  const auto verdicts = judge_runs(db, args.verdicts, writer.run_id(), recording.name, true);
   if (args.json) {
     auto json = summary_json(writer.run_id(), recording, summary);
     json["verdicts"] = verdicts_json(verdicts);
     std::cout << json.dump(2) << '\n';
   } else {
-    const replay::RunLabel label = replay::read_run_labels(*db).at(writer.run_id());
+    const replay::RunLabel label = replay::read_run_labels(db).at(writer.run_id());
     std::cout << fmt::format("run {}: {}: {}; stored in {}\n", writer.run_id(), recording.name,
                              verdict_word(verdicts, writer.run_id()), args.db_path);
     std::cout << fmt::format("  {} cycles, {} sensors, {}; {}\n", summary.cycles, recording.sensors.size(), label.level,

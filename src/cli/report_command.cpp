@@ -1,7 +1,8 @@
 // rcsim report REPORT.sqlite -o REPORT.html [--run ID ...] [--bench ID] [--campaign WHEN] [--runs-dir DIR]:
 // the validation report a person reads, a campaign's overview first (docs/report.md).
 #include <iostream>
-#include <map>
+#include <string>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "replay/report/html_report.hpp"
@@ -13,8 +14,19 @@ namespace {
 struct ReportArgs {
   std::string db_path;
   std::string html_path;
+  std::string campaign = "auto";  // one of kCampaignOverviewNames, shown as such in --help
   replay::HtmlReportOptions options;
 };
+
+// --campaign's words, in the order --help shows them, and what each means.
+const std::vector<std::string> kCampaignOverviewNames = {"auto", "always", "never", "only"};
+
+replay::CampaignOverview campaign_overview_from_name(const std::string& name) {
+  if (name == "always") return replay::CampaignOverview::always;
+  if (name == "never") return replay::CampaignOverview::never;
+  if (name == "only") return replay::CampaignOverview::only;
+  return replay::CampaignOverview::automatic;
+}
 
 }  // namespace
 
@@ -39,16 +51,12 @@ void add_report_command(CLI::App& app) {
   cmd->add_option("--trace-cycles", args->options.trace_cycles, "earlier cycles drawn as fading traces")
       ->check(CLI::Range(0, 50))
       ->capture_default_str();
-  const std::map<std::string, replay::CampaignOverview> when = {{"auto", replay::CampaignOverview::automatic},
-                                                                 {"always", replay::CampaignOverview::always},
-                                                                 {"never", replay::CampaignOverview::never},
-                                                                 {"only", replay::CampaignOverview::only}};
-  cmd->add_option("--campaign", args->options.campaign,
+  cmd->add_option("--campaign", args->campaign,
                   "the campaign overview (verdicts, worst runs by each figure, distributions): auto (without --run, "
                   "when the database has criteria, a campaign or more than 20 runs), always, never, or only (no run "
                   "sections)")
-      ->transform(CLI::CheckedTransformer(when, CLI::ignore_case))
-      ->default_str("auto");
+      ->check(CLI::IsMember(kCampaignOverviewNames, CLI::ignore_case))
+      ->capture_default_str();
   cmd->add_option("--runs-dir", args->options.runs_dir,
                   "also write the page of each run the campaign overview lists (worst and failed runs) into DIR as "
                   "run-ID.html, and link them from the overview");
@@ -57,6 +65,7 @@ void add_report_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   cmd->callback([args] {
+    args->options.campaign = campaign_overview_from_name(args->campaign);
     const int pages = replay::write_html_report_file(args->db_path, args->html_path, args->options);
     std::cerr << "rcsim report: wrote " << args->html_path;
     if (!args->options.runs_dir.empty()) std::cerr << " and " << pages << " run pages in " << args->options.runs_dir;

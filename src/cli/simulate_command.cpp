@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/fidelity_option.hpp"
+#include "cli/seed_option.hpp"
 #include "common/atomic_file.hpp"
 #include "sim/target_list_writer.hpp"
 #include "scene/scene.hpp"
@@ -16,7 +17,7 @@ namespace {
 struct SimulateArgs {
   std::string scene_path;
   std::string level = "tracks";
-  std::uint64_t seed = 0;
+  std::uint64_t seed = kDefaultSeed;
   bool no_noise = false;
   std::string fidelity = "full";
   bool no_culling = false;
@@ -62,7 +63,7 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--level", args->level, "ideal | detections | tracks")
       ->check(CLI::IsMember({"ideal", "detections", "tracks"}))
       ->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of every random draw")->capture_default_str();
+  add_seed_option(*cmd, args->seed, "Seed of every random draw");
   cmd->add_flag("--no-noise", args->no_noise, "Turn every random draw off: outputs follow the equations exactly");
   add_fidelity_option(*cmd, args->fidelity);
   cmd->add_flag("--no-culling", args->no_culling, "Visit every object's reflectors (the output is the same; for checking and timing)");

@@ -3,10 +3,13 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 
 #include "cli/commands.hpp"
 #include "cli/control_token.hpp"
 #include "cli/fidelity_option.hpp"
+#include "cli/seed_option.hpp"
 #include "common/input_error.hpp"
 #include "stream/streamer.hpp"
 
@@ -23,7 +26,7 @@ struct StreamArgs {
   bool stepped = false;
   std::string messages;
   std::string level = "tracks";
-  std::uint64_t seed = 0;
+  std::uint64_t seed = kDefaultSeed;
   bool no_noise = false;
   std::string fidelity = "full";
   int wait_clients = 0;
@@ -38,6 +41,17 @@ struct StreamArgs {
   int realtime = 0;
 };
 
+// The streamer's own checks of the command line (speed, message types, destinations, control
+// port) throw std::invalid_argument: bad input, exit status 2 (README, "Exit status").
+template <typename Parse>
+auto parsed_or_input_error(const std::string& option, Parse parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw InputError("rcsim stream", option, e.what());
+  }
+}
+
 void run_stream(const StreamArgs& args) {
   stream::SourceOptions source_options;
   source_options.simulation.level = args.level == "detections" ? OutputLevel::detections : OutputLevel::tracks;
@@ -51,11 +65,12 @@ void run_stream(const StreamArgs& args) {
   options.control = args.control;
   if (!args.control_token_file.empty()) options.control_token = read_control_token(args.control_token_file);
   options.open_control = args.open_control;
-  options.speed = stream::parse_speed(args.speed);
+  options.speed = parsed_or_input_error("", [&] { return stream::parse_speed(args.speed); });
   options.stepped = args.stepped;
   const std::uint32_t available = source->available_messages();
-  options.destination_messages = args.messages.empty() ? (available & (stream::kSimulatedBit | stream::kRecordedBit))
-                                                       : stream::parse_message_mask(args.messages);
+  options.destination_messages =
+      args.messages.empty() ? (available & (stream::kSimulatedBit | stream::kRecordedBit))
+                            : parsed_or_input_error("--messages", [&] { return stream::parse_message_mask(args.messages); });
   if ((options.destination_messages & ~available) != 0) {
     throw InputError(args.input, "--messages", "a scene has no recorded target lists (stream a recording directory for those)");
   }
@@ -64,14 +79,24 @@ void run_stream(const StreamArgs& args) {
   options.max_clients = args.max_clients;
   options.late_tolerance = std::chrono::nanoseconds(static_cast<std::int64_t>(args.late_ms * 1e6));
   options.multicast_ttl = args.ttl;
+  if (!args.multicast_interface.empty()) {
+    boost::system::error_code error;
+    boost::asio::ip::make_address_v4(args.multicast_interface, error);
+    if (error) throw InputError("rcsim stream", "--multicast-interface", "'" + args.multicast_interface + "' is not an IPv4 address");
+  }
   options.multicast_interface = args.multicast_interface;
+  if (args.from_cycle >= source->cycle_count()) {
+    throw InputError(args.input, "--from-cycle", fmt::format("cycle {} is not in 0..{}", args.from_cycle, source->cycle_count() - 1));
+  }
   options.first_cycle = args.from_cycle;
   options.hold_at_end = args.hold;
   options.handle_signals = true;
   options.queue_cycles = args.queue_cycles;
   options.realtime_priority = args.realtime;
 
-  stream::Streamer streamer(*source, options, std::cerr);
+  std::optional<stream::Streamer> streamer_holder;
+  parsed_or_input_error("", [&] { return &streamer_holder.emplace(*source, options, std::cerr); });
+  stream::Streamer& streamer = *streamer_holder;
   std::string sensors;
   for (const auto& id : source->sensor_ids()) sensors += (sensors.empty() ? "" : ", ") + id;
   std::cerr << fmt::format("rcsim stream: {}: {} cycles, sensors {}; speed {}{}", args.input, source->cycle_count(), sensors,
@@ -110,7 +135,7 @@ void add_stream_command(CLI::App& app) {
   cmd->add_option("--messages", args->messages,
                   "What --to destinations get: simulated,recorded,truth (default: the target lists the input has)");
   cmd->add_option("--level", args->level, "tracks | detections")->check(CLI::IsMember({"tracks", "detections"}))->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of every random draw")->capture_default_str();
+  add_seed_option(*cmd, args->seed, "Seed of every random draw");
   cmd->add_flag("--no-noise", args->no_noise, "Turn every random draw off");
   add_fidelity_option(*cmd, args->fidelity);
   cmd->add_option("--wait-clients", args->wait_clients, "Hold the first cycle until this many clients have subscribed")

@@ -1,11 +1,12 @@
 // rcsim synth SCENE.json -o RECORDING_DIR: the signal-level reference simulation into a recording
 // (docs/synth.md), optionally with a bird's-eye SVG of its targets against another target list.
-#include <charconv>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/seed_option.hpp"
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
@@ -13,6 +14,7 @@
 #include "replay/report/recording_birdseye.hpp"
 #include "scene/scene.hpp"
 #include "synth/reference_simulator.hpp"
+#include "synth/sensor_design.hpp"
 
 namespace rcsim::cli {
 namespace {
@@ -22,20 +24,11 @@ namespace fs = std::filesystem;
 struct SynthArgs {
   std::string scene_path;
   std::string output;
-  std::string seed = "0";
+  std::uint64_t seed = kDefaultSeed;
   std::string svg;
   std::string svg_compare;
   double svg_time_s = -1.0;
 };
-
-std::uint64_t parse_seed(const std::string& text) {
-  std::uint64_t seed = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), seed);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-    throw InputError("--seed", "", "'" + text + "' is not a whole number in 0..18446744073709551615");
-  }
-  return seed;
-}
 
 void require_parent_directory(const std::string& path, const std::string& what) {
   const fs::path target = fs::absolute(path).lexically_normal();
@@ -44,7 +37,7 @@ void require_parent_directory(const std::string& path, const std::string& what) 
 }
 
 void run_synth(const SynthArgs& args) {
-  const std::uint64_t seed = parse_seed(args.seed);
+  const std::uint64_t seed = args.seed;
   if (args.output.empty()) throw InputError("-o", "", "an output recording directory is required");
   require_parent_directory(args.output, "output recording directory");
   check_output_directory(fs::absolute(args.output).lexically_normal(), "recording.json");  // before the work
@@ -66,8 +59,15 @@ void run_synth(const SynthArgs& args) {
   }
   info.scene_file = fs::path(args.scene_path).filename().string();
 
-  const synth::SynthConfig config;
-  const Recording recording = synth::make_recording(scene, config, seed, info);
+  // Each sensor as its own radar (docs/synth.md, "One radar per profile"), all on one cycle clock:
+  // or refused, naming the scene and the sensors, before the work.
+  const synth::SynthConfig design;
+  try {
+    synth::require_one_recording(scene, design);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(args.scene_path, "ego.sensors", e.what());
+  }
+  const Recording recording = synth::make_recording(scene, design, seed, info);
   if (!args.svg.empty()) {
     replay::svg::RecordingPictureOptions options;
     options.time_s = args.svg_time_s;
@@ -90,8 +90,7 @@ void add_synth_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("synth", "Signal-level reference simulation of a scene into a recording");
   cmd->add_option("scene", args->scene_path, "Scene file (rcsim-scene, JSON)")->required();
   cmd->add_option("-o,--output", args->output, "Recording directory to write (atomically)")->required();
-  cmd->add_option("--seed", args->seed, "Seed of every random draw (receiver noise, clutter, annotation)")
-      ->capture_default_str();
+  add_seed_option(*cmd, args->seed, "Seed of every random draw (receiver noise, clutter, annotation)");
   cmd->add_option("--svg", args->svg, "Also write a bird's-eye SVG of the targets (last 10 cycles before --svg-time)");
   cmd->add_option("--svg-compare", args->svg_compare,
                   "Target list CSV (rcsim simulate output) drawn against the reference in the SVG");

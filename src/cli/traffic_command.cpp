@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/seed_option.hpp"
 #include "common/input_error.hpp"
 #include "common/rng.hpp"
 #include "traffic/scene_writer.hpp"
@@ -29,7 +30,7 @@ struct TrafficArgs {
   std::optional<double> density_vpkm;
   std::optional<double> inflow_vph;
   double truck_share = 0.15;
-  std::uint64_t seed = 1;
+  std::uint64_t seed = kDefaultSeed;
   double sample_interval_s = 0.3;
   double cycle_time_s = 0.0;
   std::vector<std::string> sensors;
@@ -112,7 +113,7 @@ void add_traffic_command(CLI::App& app) {
   cmd->add_option("--density-vpkm", a->density_vpkm, "Initial vehicles per km and lane (highway, ring: 20; intersection: 8)");
   cmd->add_option("--inflow-vph", a->inflow_vph, "Vehicles per hour entering each road; default: equilibrium flow at the density");
   cmd->add_option("--truck-share", a->truck_share, "Fraction of trucks with trailer")->capture_default_str();
-  cmd->add_option("--seed", a->seed, "Seed of every random draw")->capture_default_str();
+  add_seed_option(*cmd, a->seed, "Seed of every random draw");
   cmd->add_option("--sample-interval-s", a->sample_interval_s, "Trajectory sample spacing (multiple of 0.1 s)")
       ->capture_default_str();
   cmd->add_option("--cycle-time-s", a->cycle_time_s, "Scene cycle time; 0 = the first sensor's")->capture_default_str();

@@ -91,10 +91,10 @@ void print_run_verdict(std::ostream& out, const Verdicts& v, const RunVerdict& r
   const std::vector<FigureVerdict> figures = figure_verdicts(v, run);
   const auto met = std::count_if(figures.begin(), figures.end(), [](const FigureVerdict& f) { return f.passed; });
   const std::string what = v.source == CriteriaSource::defaults
-                               ? fmt::format("default tolerances for {} (docs/verdicts.md){}", replay::run_kind_name(run.kind),
+                               ? fmt::format("the default tolerances for {} (docs/verdicts.md){}", replay::run_kind_name(run.kind),
                                              v.gate ? "" : "; --criteria defaults makes them a gate")
-                               : (v.source == CriteriaSource::file ? "criteria of --criteria" : "the report's criteria");
-  out << fmt::format("verdict: {}, {} of {} figures within the {}\n", run.passed ? "PASS" : "FAIL", met, figures.size(), what);
+                               : (v.source == CriteriaSource::file ? "the criteria of --criteria" : "the report's criteria");
+  out << fmt::format("verdict: {}, {} of {} figures within {}\n", run.passed ? "PASS" : "FAIL", met, figures.size(), what);
   for (const FigureVerdict& f : figures) {
     out << fmt::format("  {:<4}  {:<38} {:>10}  {}\n", f.passed ? "pass" : "FAIL", f.figure,
                        f.value ? fmt::format("{:.4g}", *f.value) : std::string("missing"), f.tolerance());

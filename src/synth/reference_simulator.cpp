@@ -1,5 +1,6 @@
 #include "synth/reference_simulator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -15,31 +16,48 @@ constexpr std::uint64_t kAnnotationStream = 7;
 // Road clutter lies low: beyond the sensor's range the two-ray path cancels it (Lloyd's mirror).
 double clutter_radius_m(const SynthConfig& config) { return config.antenna.max_range_m + 5.0; }
 
+// A detection as the target list reports it when the sensor reports raw detections: no track id.
+ReportedTarget as_reported(const Detection& d) { return {-1, d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db}; }
+
 }  // namespace
 
-ReferenceSimulator::ReferenceSimulator(const Scene& scene, const SynthConfig& config, std::uint64_t seed)
-    : scene_(scene), config_(config), seed_(seed), propagation_(config) {
+ReferenceSimulator::ReferenceSimulator(const Scene& scene, const SynthConfig& design, std::uint64_t seed)
+    : scene_(scene), seed_(seed), configs_(sensor_designs(scene, design)) {
   for (const auto& object : scene_.objects) {
     if (object.model.polyline_points > 0) {
       throw std::invalid_argument("object \"" + object.id + "\" is a polyline (" + object.model_name +
                                   "), which the signal-level reference does not model (docs/static-world.md)");
     }
-    bodies_.push_back(make_body(object.model_name, object.model.length_m, object.model.width_m));
   }
-  const SignalChain prototype(config_);  // calibrated once, copied per sensor
+  std::vector<double> set_wavelengths_m;
   for (std::size_t s = 0; s < scene_.sensors.size(); ++s) {
-    chains_.push_back(prototype);
-    trackers_.emplace_back(config_.tracker, scene_.cycle_time_s);
+    const SynthConfig& config = configs_[s];
+    // Sensors of one design share its calibrated chain (copied) and its bodies.
+    std::size_t same = 0;
+    while (same < s && !(configs_[same] == config)) ++same;
+    chains_.push_back(same < s ? chains_[same] : SignalChain(config));
+    propagators_.emplace_back(config);
+    const double lambda_m = config.propagation.facet_wavelength_m;
+    const auto set = std::find(set_wavelengths_m.begin(), set_wavelengths_m.end(), lambda_m);
+    body_set_.push_back(static_cast<std::size_t>(set - set_wavelengths_m.begin()));
+    if (set == set_wavelengths_m.end()) {
+      set_wavelengths_m.push_back(lambda_m);
+      auto& bodies = body_sets_.emplace_back();
+      for (const auto& object : scene_.objects) {
+        bodies.push_back(make_body(object.model_name, object.model.length_m, object.model.width_m, lambda_m));
+      }
+    }
+    trackers_.emplace_back(config.tracker, scene_.cycle_time_s);
     noise_rngs_.emplace_back(seed_, kNoiseStream + s);
   }
   last_.resize(scene_.sensors.size());
 }
 
-std::vector<PlacedBody> ReferenceSimulator::placed_bodies(double t_s) const {
+std::vector<PlacedBody> ReferenceSimulator::placed_bodies(const std::vector<ScattererBody>& bodies, double t_s) const {
   std::vector<PlacedBody> placed;
   for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
     if (!scene_.objects[i].present_at(t_s)) continue;
-    placed.push_back({&bodies_[i], scene_.objects[i].trajectory.state_at(t_s)});
+    placed.push_back({&bodies[i], scene_.objects[i].trajectory.state_at(t_s)});
   }
   return placed;
 }
@@ -55,9 +73,10 @@ SensorState ReferenceSimulator::sensor_state(std::size_t sensor, double t_s) con
 
 std::vector<Echo> ReferenceSimulator::echoes_at(std::size_t sensor, double t_s) const {
   const SensorState state = sensor_state(sensor, t_s);
+  const SynthConfig& config = configs_[sensor];
   std::vector<WorldScatterer> clutter;
-  if (scene_.effects.clutter) clutter = road_clutter_near(config_.clutter, seed_, state.X_WS.translation(), clutter_radius_m(config_));
-  return propagation_.echoes(state, placed_bodies(t_s), clutter);
+  if (scene_.effects.clutter) clutter = road_clutter_near(config.clutter, seed_, state.X_WS.translation(), clutter_radius_m(config));
+  return propagators_[sensor].echoes(state, placed_bodies(body_sets_[body_set_[sensor]], t_s), clutter);
 }
 
 void ReferenceSimulator::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }
@@ -67,7 +86,12 @@ void ReferenceSimulator::run_at(double t_s) {
     SensorCycle& out = last_[s];
     out.echoes = echoes_at(s, t_s);                                  // scene => echoes
     out.detections = chains_[s].process(out.echoes, noise_rngs_[s]);  // echoes => detections
-    out.targets = trackers_[s].step(out.detections);                   // detections => target list
+    if (configs_[s].reports_detections) {                              // detections => target list
+      out.targets.clear();
+      for (const Detection& d : out.detections) out.targets.push_back(as_reported(d));
+    } else {
+      out.targets = trackers_[s].step(out.detections);
+    }
   }
 }
 
@@ -91,15 +115,35 @@ AnnotatedBox Annotator::annotate(std::size_t object, double t_s, const BodyState
   return box;
 }
 
-Recording make_recording(const Scene& scene, const SynthConfig& config, std::uint64_t seed, const RecordingInfo& info) {
+Recording make_recording(const Scene& scene, const SynthConfig& design, std::uint64_t seed, const RecordingInfo& info) {
+  require_one_recording(scene, design);  // one cycle clock, one level: or refused naming the sensors
+  ReferenceSimulator simulator(scene, design, seed);
   Recording rec;
   rec.name = info.name;
   rec.description = info.description;
   rec.cycle_time_s = scene.cycle_time_s;
-  for (const auto& s : scene.sensors) {
-    rec.sensors.push_back({s.id, s.config.name, s.X_VS.x_m, s.X_VS.y_m, s.X_VS.yaw_rad});
+  // Per sensor, the radar it was synthesised as.
+  nlohmann::json signal_chains = nlohmann::json::object();
+  // The annotator labels what the farthest-reaching sensor sees.
+  Annotation annotation = design.annotation;
+  annotation.max_range_m = 0.0;
+  for (std::size_t s = 0; s < scene.sensors.size(); ++s) {
+    const MountedSensor& sensor = scene.sensors[s];
+    const SynthConfig& config = simulator.sensor_config(s);
+    rec.sensors.push_back({sensor.id, sensor.config.name, sensor.X_VS.x_m, sensor.X_VS.y_m, sensor.X_VS.yaw_rad,
+                           config.reports_detections ? ReportedLevel::detections : ReportedLevel::tracks});
+    const Derived derived = derive(config);
+    signal_chains[sensor.id] = {{"carrier_hz", config.waveform.carrier_hz},
+                                {"bandwidth_hz", config.waveform.bandwidth_hz},
+                                {"chirps", config.waveform.chirps},
+                                {"samples_per_chirp", config.waveform.samples_per_chirp},
+                                {"chirp_period_s", config.waveform.chirp_period_s},
+                                {"range_bin_m", std::round(derived.range_bin_m * 1e4) / 1e4},
+                                {"range_rate_bin_mps", std::round(derived.range_rate_bin_mps * 1e4) / 1e4},
+                                {"max_range_m", config.antenna.max_range_m},
+                                {"azimuth_half_fov_deg", config.antenna.azimuth_half_fov_deg}};
+    annotation.max_range_m = std::max(annotation.max_range_m, config.annotation.max_range_m);
   }
-  const Derived derived = derive(config);
   rec.source = {{"generator", "rcsim synth"},
                 {"rcsim_version", RCSIM_VERSION},
                 {"scene", info.scene_file},
@@ -108,16 +152,9 @@ Recording make_recording(const Scene& scene, const SynthConfig& config, std::uin
                  {{"clutter", scene.effects.clutter},
                   {"multibounce", scene.effects.multibounce},
                   {"occlusion", scene.effects.occlusion}}},
-                {"signal_chain",
-                 {{"carrier_hz", config.waveform.carrier_hz},
-                  {"bandwidth_hz", config.waveform.bandwidth_hz},
-                  {"chirps", config.waveform.chirps},
-                  {"samples_per_chirp", config.waveform.samples_per_chirp},
-                  {"range_bin_m", std::round(derived.range_bin_m * 1e4) / 1e4},
-                  {"range_rate_bin_mps", std::round(derived.range_rate_bin_mps * 1e4) / 1e4}}}};
+                {"signal_chain", signal_chains}};
 
-  ReferenceSimulator simulator(scene, config, seed);
-  Annotator annotator(config.annotation, seed, scene.objects.size());
+  Annotator annotator(annotation, seed, scene.objects.size());
   std::vector<std::vector<AnnotatedBox>> boxes(scene.objects.size());
   for (int k = 0; k < simulator.cycle_count(); ++k) {
     const double t_s = scene.cycle_time_at(k);
@@ -129,7 +166,7 @@ Recording make_recording(const Scene& scene, const SynthConfig& config, std::uin
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       if (!scene.objects[i].present_at(t_s)) continue;
       const BodyState truth = scene.objects[i].trajectory.state_at(t_s);
-      if ((truth.X_WB.translation() - ego.X_WB.translation()).norm() > config.annotation.max_range_m) continue;
+      if ((truth.X_WB.translation() - ego.X_WB.translation()).norm() > annotation.max_range_m) continue;
       boxes[i].push_back(annotator.annotate(i, t_s, truth));
     }
     simulator.run_cycle(k);

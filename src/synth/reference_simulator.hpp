@@ -15,6 +15,7 @@
 #include "scene/scene.hpp"
 #include "synth/propagation.hpp"
 #include "synth/scatterers.hpp"
+#include "synth/sensor_design.hpp"
 #include "synth/signal_chain.hpp"
 #include "synth/synth_config.hpp"
 #include "synth/synth_tracker.hpp"
@@ -29,7 +30,9 @@ struct SensorCycle {
 
 class ReferenceSimulator {
  public:
-  ReferenceSimulator(const Scene& scene, const SynthConfig& config, std::uint64_t seed);
+  // Each sensor is the design adapted to its own profile (sensor_design.hpp); a profile that
+  // cannot be synthesised is refused by name (std::invalid_argument).
+  ReferenceSimulator(const Scene& scene, const SynthConfig& design, std::uint64_t seed);
 
   int cycle_count() const { return scene_.cycle_count(); }
   std::size_t sensor_count() const { return scene_.sensors.size(); }
@@ -42,16 +45,20 @@ class ReferenceSimulator {
   // The echoes of one sensor at time t (no processing), for tests and the benchmark.
   std::vector<Echo> echoes_at(std::size_t sensor, double t_s) const;
   const Scene& scene() const { return scene_; }
+  // The radar one sensor is synthesised as.
+  const SynthConfig& sensor_config(std::size_t sensor) const { return configs_[sensor]; }
 
  private:
-  std::vector<PlacedBody> placed_bodies(double t_s) const;
+  std::vector<PlacedBody> placed_bodies(const std::vector<ScattererBody>& bodies, double t_s) const;
   SensorState sensor_state(std::size_t sensor, double t_s) const;
 
   const Scene& scene_;
-  SynthConfig config_;
   std::uint64_t seed_;
-  Propagator propagation_;
-  std::vector<ScattererBody> bodies_;  // per scene object
+  std::vector<SynthConfig> configs_;   // per sensor
+  std::vector<Propagator> propagators_;  // per sensor
+  // Per scene object, one set per facet wavelength among the sensors; body_set_[sensor] picks one.
+  std::vector<std::vector<ScattererBody>> body_sets_;
+  std::vector<std::size_t> body_set_;
   std::vector<SignalChain> chains_;    // per sensor
   std::vector<SynthTracker> trackers_;
   std::vector<Rng> noise_rngs_;
@@ -64,8 +71,10 @@ struct RecordingInfo {
   std::string scene_file;   // the scene file's name, for provenance
 };
 
-// Runs the whole scene and returns the recording: ego log, annotated boxes, target lists.
-Recording make_recording(const Scene& scene, const SynthConfig& config, std::uint64_t seed, const RecordingInfo& info);
+// Runs the whole scene and returns the recording: ego log, annotated boxes, target lists (tracks,
+// or raw detections for sensors whose profile reports those). Refuses (std::invalid_argument)
+// what require_one_recording refuses: sensors of other cycle times than the scene's, mixed levels.
+Recording make_recording(const Scene& scene, const SynthConfig& design, std::uint64_t seed, const RecordingInfo& info);
 
 // Imperfect manual annotation of one object's box at one instant (objects.csv rows).
 class Annotator {

@@ -28,8 +28,7 @@ struct OutlineSpec {
 // differ by ds / rho, which must stay well inside one facet's lobe (first null at lambda / 2 ds),
 // or the specular return falls between facets: ds <= sqrt(lambda rho) / 2. The facet is then also
 // flat for the physical-optics formula (sagitta ds^2 / 8 rho < lambda / 32).
-double facet_step_on_curve(double radius_m, double face_step_m) {
-  const double lambda_m = 0.0125;
+double facet_step_on_curve(double radius_m, double face_step_m, double lambda_m) {
   return std::clamp(0.5 * std::sqrt(radius_m * lambda_m), 0.01, face_step_m);
 }
 
@@ -48,10 +47,10 @@ void add_facet(std::vector<Scatterer>& out, const Vec2& a, const Vec2& b, const 
 
 // A parabolic face x = x0 - s (t/a)^2 along t in [-a, a], in a frame rotated by face_yaw.
 void add_face(std::vector<Scatterer>& out, double x0, double half_span, double sagitta, double face_yaw,
-              double face_step_m, const FaceProfile& profile) {
+              double face_step_m, const FaceProfile& profile, double lambda_m) {
   if (half_span <= 1e-6) return;
   const double radius_m = sagitta > 1e-6 ? half_span * half_span / (2.0 * sagitta) : 1e3;  // apex curvature
-  const double step_m = facet_step_on_curve(radius_m, face_step_m);
+  const double step_m = facet_step_on_curve(radius_m, face_step_m, lambda_m);
   const int n = std::max(1, static_cast<int>(std::ceil(2.0 * half_span / step_m)));
   const auto point = [&](double t) { return rotate(face_yaw, Vec2(x0 - sagitta * (t / half_span) * (t / half_span), t)); };
   for (int i = 0; i < n; ++i) {
@@ -65,9 +64,9 @@ void add_face(std::vector<Scatterer>& out, double x0, double half_span, double s
 
 // A quarter ellipse joining two face ends: centre c, semi-axes (rx, ry), from angle a0 to a0 + pi/2.
 void add_corner(std::vector<Scatterer>& out, const Vec2& c, double rx, double ry, double a0, double face_step_m,
-                const FaceProfile& profile) {
+                const FaceProfile& profile, double lambda_m) {
   if (rx <= 1e-6 || ry <= 1e-6) return;
-  const double step = facet_step_on_curve(std::min(rx, ry), face_step_m);
+  const double step = facet_step_on_curve(std::min(rx, ry), face_step_m, lambda_m);
   const double arc_m = 0.25 * kPi * (rx + ry);
   const int n = std::max(2, static_cast<int>(std::ceil(arc_m / step)));
   const auto point = [&](double t) { return Vec2(c.x() + rx * std::cos(t), c.y() + ry * std::sin(t)); };
@@ -82,19 +81,19 @@ void add_corner(std::vector<Scatterer>& out, const Vec2& c, double rx, double ry
 
 // The outline of a box: four bulged faces joined by quarter ellipses; the outermost points touch
 // the annotated box.
-void add_outline(std::vector<Scatterer>& out, double length_m, double width_m, const OutlineSpec& spec) {
+void add_outline(std::vector<Scatterer>& out, double length_m, double width_m, const OutlineSpec& spec, double lambda_m) {
   const double hl = 0.5 * length_m, hw = 0.5 * width_m;
   const double r = std::min({spec.corner_radius_m, 0.45 * length_m, 0.45 * width_m});
   const double sf = std::min(spec.sagitta_front_m, 0.5 * r), sr = std::min(spec.sagitta_rear_m, 0.5 * r);
   const double ss = std::min(spec.sagitta_side_m, 0.5 * r);
-  add_face(out, hl, hw - r, sf, 0.0, spec.face_step_m, spec.front);
-  add_face(out, hl, hw - r, sr, kPi, spec.face_step_m, spec.rear);
-  add_face(out, hw, hl - r, ss, 0.5 * kPi, spec.face_step_m, spec.side);
-  add_face(out, hw, hl - r, ss, -0.5 * kPi, spec.face_step_m, spec.side);
-  add_corner(out, {hl - r, hw - r}, r - sf, r - ss, 0.0, spec.face_step_m, spec.front);
-  add_corner(out, {-(hl - r), hw - r}, r - sr, r - ss, 0.5 * kPi, spec.face_step_m, spec.rear);
-  add_corner(out, {-(hl - r), -(hw - r)}, r - sr, r - ss, kPi, spec.face_step_m, spec.rear);
-  add_corner(out, {hl - r, -(hw - r)}, r - sf, r - ss, 1.5 * kPi, spec.face_step_m, spec.front);
+  add_face(out, hl, hw - r, sf, 0.0, spec.face_step_m, spec.front, lambda_m);
+  add_face(out, hl, hw - r, sr, kPi, spec.face_step_m, spec.rear, lambda_m);
+  add_face(out, hw, hl - r, ss, 0.5 * kPi, spec.face_step_m, spec.side, lambda_m);
+  add_face(out, hw, hl - r, ss, -0.5 * kPi, spec.face_step_m, spec.side, lambda_m);
+  add_corner(out, {hl - r, hw - r}, r - sf, r - ss, 0.0, spec.face_step_m, spec.front, lambda_m);
+  add_corner(out, {-(hl - r), hw - r}, r - sr, r - ss, 0.5 * kPi, spec.face_step_m, spec.rear, lambda_m);
+  add_corner(out, {-(hl - r), -(hw - r)}, r - sr, r - ss, kPi, spec.face_step_m, spec.rear, lambda_m);
+  add_corner(out, {hl - r, -(hw - r)}, r - sf, r - ss, 1.5 * kPi, spec.face_step_m, spec.front, lambda_m);
 }
 
 // Exponent p of cos(theta)^p with half power (amplitude 1/sqrt 2) at the given angle.
@@ -126,13 +125,13 @@ Scatterer isotropic(const Vec2& p_O, double height_m, double extent_m, double si
   return s;
 }
 
-ScattererBody car_body(double length_m, double width_m) {
+ScattererBody car_body(double length_m, double width_m, double lambda_m) {
   ScattererBody body{{}, length_m, width_m, 1.45};
   OutlineSpec spec;
   spec.front = {0.50, 0.25, 0.20, true};   // bumper with its metal beam
   spec.rear = {0.55, 0.25, 0.17, true};
   spec.side = {0.65, 0.40, 0.10, false};   // doors: curved in elevation, little coherent height
-  add_outline(body.scatterers, length_m, width_m, spec);
+  add_outline(body.scatterers, length_m, width_m, spec, lambda_m);
   auto& s = body.scatterers;
   const double hl = 0.5 * length_m, hw = 0.5 * width_m;
   // Headlamp/tail-lamp housings and bumper corners: broad lobes just inside the box corners,
@@ -166,7 +165,7 @@ ScattererBody car_body(double length_m, double width_m) {
   return body;
 }
 
-ScattererBody truck_body(double length_m, double width_m) {
+ScattererBody truck_body(double length_m, double width_m, double lambda_m) {
   ScattererBody body{{}, length_m, width_m, 4.0};
   OutlineSpec spec;
   spec.corner_radius_m = 0.12;
@@ -176,7 +175,7 @@ ScattererBody truck_body(double length_m, double width_m) {
   spec.front = {1.0, 0.6, 0.25, true};
   spec.rear = {1.0, 0.8, 0.15, true};   // trailer doors, ribbed
   spec.side = {1.1, 0.9, 0.08, false};  // ribbed trailer walls
-  add_outline(body.scatterers, length_m, width_m, spec);
+  add_outline(body.scatterers, length_m, width_m, spec, lambda_m);
   auto& s = body.scatterers;
   const double hl = 0.5 * length_m, hw = 0.5 * width_m;
   for (const double sx : {1.0, -1.0}) {
@@ -198,14 +197,14 @@ ScattererBody truck_body(double length_m, double width_m) {
   return body;
 }
 
-ScattererBody guide_board_body(double length_m, double width_m) {
+ScattererBody guide_board_body(double length_m, double width_m, double lambda_m) {
   ScattererBody body{{}, length_m, width_m, 2.2};
   const double hl = 0.5 * length_m, hw = 0.5 * width_m;
   // The board faces: flat, 1.3 m centre height, 0.5 m tall.
   const FaceProfile face_front{1.3, 0.5, 0.10, false};
   const FaceProfile face_back{1.3, 0.5, 0.05, false};
-  add_face(body.scatterers, hl, hw, 0.01, 0.0, 0.1, face_front);
-  add_face(body.scatterers, hl, hw, 0.01, kPi, 0.1, face_back);
+  add_face(body.scatterers, hl, hw, 0.01, 0.0, 0.1, face_front, lambda_m);
+  add_face(body.scatterers, hl, hw, 0.01, kPi, 0.1, face_back, lambda_m);
   auto& s = body.scatterers;
   s.push_back(lobe({0.0, hw}, 1.3, 0.5, 0.5 * kPi, 0.15, 60.0));
   s.push_back(lobe({0.0, -hw}, 1.3, 0.5, -0.5 * kPi, 0.15, 60.0));
@@ -230,13 +229,13 @@ double facet_sqrt_rcs_m(const Scatterer& facet, double incidence_rad, double wav
   return std::sqrt(4.0 * kPi) * facet.strength / wavelength_m * c * si;
 }
 
-ScattererBody make_body(const std::string& object_class, double length_m, double width_m) {
-  if (object_class == "passenger_car") return car_body(length_m, width_m);
-  if (object_class == "truck_trailer") return truck_body(length_m, width_m);
-  if (object_class == "guide_board") return guide_board_body(length_m, width_m);
+ScattererBody make_body(const std::string& object_class, double length_m, double width_m, double facet_wavelength_m) {
+  if (object_class == "passenger_car") return car_body(length_m, width_m, facet_wavelength_m);
+  if (object_class == "truck_trailer") return truck_body(length_m, width_m, facet_wavelength_m);
+  if (object_class == "guide_board") return guide_board_body(length_m, width_m, facet_wavelength_m);
   if (object_class == "pole") return pole_body(length_m, width_m);
   if (length_m < 0.5 && width_m < 0.5) return pole_body(length_m, width_m);
-  return car_body(length_m, width_m);
+  return car_body(length_m, width_m, facet_wavelength_m);
 }
 
 std::vector<WorldScatterer> road_clutter_near(const Clutter& clutter, std::uint64_t seed, const Vec2& p_WS_W, double radius_m) {

@@ -49,8 +49,10 @@ struct ScattererBody {
 };
 
 // The scatterers of one object of the given class ("passenger_car", "truck_trailer",
-// "guide_board", "pole"; any other class is treated as a generic vehicle body of its box).
-ScattererBody make_body(const std::string& object_class, double length_m, double width_m);
+// "guide_board", "pole"; any other class is treated as a generic vehicle body of its box). Curved
+// faces are cut into facets fine enough for the given wavelength (Propagation::facet_wavelength_m).
+ScattererBody make_body(const std::string& object_class, double length_m, double width_m,
+                        double facet_wavelength_m = Propagation{}.facet_wavelength_m);
 
 // Road clutter near a world point: static isotropic scatterers on the road surface, drawn per
 // tile from Rng(seed, tile) so that a tile's content does not depend on the order of the visits.

@@ -3,7 +3,7 @@
 //   echoes => beat signals of the sum and delta channels (chirp sequence, I/Q samples) + noise
 //          => windows, range FFT, Doppler FFT (Eigen's FFT module)
 //          => OS-CFAR on |sum|^2, local maxima, sidelobe blanking
-//          => range, range rate (interpolated), monopulse azimuth, amplitude in dB (eq. (1) scale)
+//          => range, range rate (interpolated), monopulse azimuth, amplitude in dB (the sensor's scale)
 #include <complex>
 #include <vector>
 
@@ -19,7 +19,7 @@ struct Detection {
   double range_m = 0.0;
   double range_rate_mps = 0.0;
   double azimuth_rad = 0.0;
-  double amplitude_db = 0.0;  // paper eq. (1) scale
+  double amplitude_db = 0.0;  // paper eq. (1) scale, or an SNR (sensor_design.cpp)
   double snr_db = 0.0;        // against the CFAR noise estimate
   int range_bin = 0;
   int doppler_bin = 0;        // 0 = -v_max, chirps/2 = 0 m/s
@@ -36,7 +36,8 @@ struct RangeDopplerMap {
 class SignalChain {
  public:
   // Calibrates the amplitude scale: a unit isotropic scatterer on boresight at the calibration
-  // range, in free space and without noise, reads calibration_level_db (paper eq. (1) at 10 m).
+  // range, in free space and without noise, reads calibration_level_db (paper eq. (1) at 10 m, or
+  // its SNR for a sensor whose amplitude is one).
   explicit SignalChain(const SynthConfig& config);
 
   // One frame; noise drawn from rng unless add_noise is false.

@@ -1,10 +1,11 @@
 #pragma once
 // Parameters of the signal-level reference simulator (`rcsim synth`, docs/synth.md): a 24 GHz
 // chirp-sequence FMCW radar with one transmit element and two receive elements forming the sum
-// and delta channels, its propagation, its processing (windows, range-Doppler FFT, CA-CFAR,
-// monopulse) and its own tracker. Independent of the reflection-center sensor model (src/sim):
-// only the carrier, the +-35 deg field of view and the lambda/2 two-element monopulse geometry are
-// shared with srr24 by design. Built once, passed as const&.
+// and delta channels, its propagation, its processing (windows, range-Doppler FFT, OS-CFAR,
+// monopulse) and its own tracker. Independent of the reflection-center sensor model (src/sim).
+// The defaults are the reference design, a radar with srr24's facts (carrier, +-35 deg field of
+// view, 0.2-40 m, lambda/2 monopulse pair, 0.30 m x 0.5 m/s cells); sensor_design.hpp adapts it
+// to each sensor's profile. Built once per sensor, passed as const&.
 #include <cstdint>
 
 namespace rcsim::synth {
@@ -13,13 +14,14 @@ inline constexpr double kSpeedOfLight_mps = 299792458.0;
 inline constexpr double kBoltzmann_JpK = 1.380649e-23;
 
 struct Waveform {
-  double carrier_hz = 24.0e9;         // same carrier as srr24
+  double carrier_hz = 24.0e9;         // srr24's carrier
   double bandwidth_hz = 500.0e6;      // range bin c / 2B = 0.30 m
   double ramp_sampling_s = 80.0e-6;   // ADC window of one chirp
   double chirp_period_s = 97.6e-6;    // chirp repetition: v bin lambda / (2 N_c T_c) = 0.50 m/s
   int samples_per_chirp = 256;        // complex (I/Q) samples: 76.8 m unambiguous range
   int chirps = 128;                   // 12.5 ms frame: +-32 m/s unambiguous range rate
   int chirps_per_block = 32;          // range migration: beat frequency updated every 3.1 ms
+  bool operator==(const Waveform&) const = default;
 };
 
 struct Antenna {
@@ -32,6 +34,7 @@ struct Antenna {
   double azimuth_half_illuminated_deg = 70.0;  // scatterers beyond are not synthesized (< -25 dB two-way)
   double min_range_m = 0.2;
   double max_range_m = 40.0;
+  bool operator==(const Antenna&) const = default;
 };
 
 // Radar equation (one unit scatterer = sigma_ref_m2): gives the SNR per ADC sample. A low-power
@@ -45,6 +48,7 @@ struct LinkBudget {
   double system_losses_db = 7.0;  // bumper fascia two-way 5 dB, implementation 2 dB
   double temperature_k = 290.0;
   double sigma_ref_m2 = 30.0;     // the unit scatterer: about the frontal RCS of a mid-size car
+  bool operator==(const LinkBudget&) const = default;
 };
 
 // IF filters. The beat frequency is proportional to range, so the IF response is a range
@@ -60,6 +64,7 @@ struct IfFilter {
   double lowpass_corner_range_m = 55.0;
   int lowpass_order = 6;
   double synthesis_max_range_m = 70.0;
+  bool operator==(const IfFilter&) const = default;
 };
 
 struct Propagation {
@@ -69,6 +74,10 @@ struct Propagation {
   double multibounce_ego_reflectivity = 0.5;
   double multibounce_max_incidence_deg = 15.0;
   double occluder_shrink_m = 0.05;       // boxes shrunk so that grazing rays pass
+  // Curved faces are cut into facets of ds <= sqrt(lambda rho) / 2 for this wavelength (scatterers.cpp):
+  // about the carrier's (12.5 mm at 24 GHz).
+  double facet_wavelength_m = 0.0125;
+  bool operator==(const Propagation&) const = default;
 };
 
 struct Processing {
@@ -84,6 +93,7 @@ struct Processing {
   int max_detections = 40;               // strongest detections passed to the tracker
   double calibration_range_m = 10.0;     // unit scatterer on boresight reads eq. (1) here
   double calibration_level_db = 19.0;    // 26.5 - 0.75 * 10
+  bool operator==(const Processing&) const = default;
 };
 
 // Road clutter: small static scatterers on the road surface (drains, joints, debris), a Poisson
@@ -93,6 +103,7 @@ struct Clutter {
   double median_rcs_rel_db = -14.0;  // re sigma_ref
   double rcs_spread_db = 5.0;
   double tile_m = 8.0;
+  bool operator==(const Clutter&) const = default;
 };
 
 // The sensor-internal tracker (alpha-beta filters, nearest-neighbour association).
@@ -108,6 +119,7 @@ struct TrackerConfig {
   double alpha_range_rate = 0.6;
   double alpha_amplitude = 0.5;
   int max_tracks = 48;
+  bool operator==(const TrackerConfig&) const = default;
 };
 
 // Imperfect manual annotation of the boxes in objects.csv.
@@ -118,6 +130,7 @@ struct Annotation {
   double yaw_jitter_sigma_rad = 0.008;
   double speed_sigma_mps = 0.05;
   double max_range_m = 60.0;  // objects are annotated while within this distance of the ego
+  bool operator==(const Annotation&) const = default;
 };
 
 struct SynthConfig {
@@ -130,6 +143,10 @@ struct SynthConfig {
   Clutter clutter;
   TrackerConfig tracker;
   Annotation annotation;
+  // The sensor reports its raw detections of each cycle (no tracker; profile "reports":
+  // "detections"), not confirmed tracks.
+  bool reports_detections = false;
+  bool operator==(const SynthConfig&) const = default;
 };
 
 // Quantities that follow from the configuration.

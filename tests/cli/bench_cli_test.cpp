@@ -1,11 +1,14 @@
 // rcsim bench as a user runs it: the table, --json (rcsim-bench v2), storage in the report
-// database, determinism of the error columns, and refusals that leave the database alone.
+// database, determinism of the error columns, and refusals that leave the database alone; the
+// bench programs beside rcsim (--help, wrong command lines).
 #include <gtest/gtest.h>
 
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
 #include <sys/wait.h>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "scratch_dir.hpp"
@@ -124,3 +127,73 @@ TEST_F(BenchCli, RefusalsNameTheInputAndStoreNothing) {
 
 }  // namespace
 }  // namespace rcsim
+
+namespace {
+
+// The programs built from bench/ beside rcsim in build/bin: --help and -h print the usage and end
+// with 0, an unknown option or a wrong number of arguments ends with 2, and neither writes
+// anything (`rcsim_make_long_recording --help` once wrote 52 MB into a directory named --help).
+
+namespace fs = std::filesystem;
+using rcsim::testing::CommandResult;
+
+fs::path bench_tool_path(const std::string& name) { return fs::path(RCSIM_BINARY).parent_path() / name; }
+
+// TOOL ARGS run in `dir`, stderr joined; ended after 60 s should it start real work.
+CommandResult run_bench_tool(const fs::path& dir, const std::string& name, const std::string& args) {
+  return rcsim::testing::run_shell_command("cd " + dir.string() + " && timeout 60 " + bench_tool_path(name).string() + " " + args);
+}
+
+class BenchToolsCli : public rcsim::testing::ScratchDirTest {
+ protected:
+  BenchToolsCli() : ScratchDirTest("bench_tools_cli") {}
+  void SetUp() override {
+    ScratchDirTest::SetUp();
+    if (!fs::exists(bench_tool_path("rcsim_make_long_recording"))) {
+      GTEST_SKIP() << "the bench programs are not built here (RCSIM_BUILD_BENCHMARKS=OFF)";
+    }
+  }
+  bool dir_is_empty() const { return fs::is_empty(dir_); }
+};
+
+const std::vector<std::string> kArgumentTools = {"rcsim_make_long_recording", "rcsim_make_campaign_db", "rcsim_bench_campaign"};
+const std::vector<std::string> kGoogleBenchmarks = {"rcsim_bench_sensor_cycle", "rcsim_bench_synth", "rcsim_bench_traffic"};
+
+TEST_F(BenchToolsCli, EveryProgramPrintsItsUsageForHelp) {
+  std::vector<std::string> all = kArgumentTools;
+  all.insert(all.end(), kGoogleBenchmarks.begin(), kGoogleBenchmarks.end());
+  for (const std::string& tool : all) {
+    for (const char* help : {"--help", "-h"}) {
+      const auto r = run_bench_tool(dir_, tool, help);
+      EXPECT_EQ(r.exit_code, 0) << tool << " " << help << ": " << r.output;
+      EXPECT_EQ(r.output.rfind("usage: " + tool + " ", 0), 0u) << tool << " " << help << ": " << r.output;
+    }
+    const auto after_argument = run_bench_tool(dir_, tool, "out --help");
+    EXPECT_EQ(after_argument.exit_code, 0) << tool << ": " << after_argument.output;
+    EXPECT_TRUE(dir_is_empty()) << tool << " --help wrote into " << dir_;
+  }
+}
+
+TEST_F(BenchToolsCli, WrongCommandLinesEndWithStatusTwoAndWriteNothing) {
+  for (const std::string& tool : kArgumentTools) {
+    for (const std::string args : {"", "out --bogus", "-x", "a 1 2 3 4 5"}) {
+      const auto r = run_bench_tool(dir_, tool, args);
+      EXPECT_EQ(r.exit_code, 2) << tool << " " << args << ": " << r.output;
+      EXPECT_NE(r.output.find("usage: " + tool), std::string::npos) << tool << " " << args << ": " << r.output;
+    }
+  }
+  for (const std::string args : {"out abc", "out 0", "out 10 -3", "out 10 1.5"}) {
+    const auto r = run_bench_tool(dir_, "rcsim_make_long_recording", args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+  }
+  EXPECT_EQ(run_bench_tool(dir_, "rcsim_make_campaign_db", "out.sqlite 0").exit_code, 2);
+  EXPECT_EQ(run_bench_tool(dir_, "rcsim_bench_campaign", "work 10 x").exit_code, 2);
+  for (const std::string& tool : kGoogleBenchmarks) {
+    const auto r = run_bench_tool(dir_, tool, "--benchmark_filter=none --bogus");
+    EXPECT_EQ(r.exit_code, 2) << tool << ": " << r.output;
+    EXPECT_NE(r.output.find("--bogus"), std::string::npos) << tool << ": " << r.output;
+  }
+  EXPECT_TRUE(dir_is_empty());
+}
+
+}  // namespace

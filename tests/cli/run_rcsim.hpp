@@ -27,6 +27,16 @@ inline CommandResult run_rcsim(const std::string& args, bool with_stderr = true)
   return result;
 }
 
+// A whole shell command line (several commands, pipes, redirections), stderr joined to stdout.
+inline CommandResult run_shell_command(const std::string& command) {
+  CommandResult result{0, {}};
+  FILE* pipe = popen(("(" + command + ") 2>&1").c_str(), "r");
+  std::array<char, 4096> buffer{};
+  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  result.exit_code = WEXITSTATUS(pclose(pipe));
+  return result;
+}
+
 inline std::string read_file(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;

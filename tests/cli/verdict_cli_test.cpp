@@ -5,6 +5,7 @@
 
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -90,6 +91,28 @@ TEST_F(VerdictCli, TheRealDriveIsJudgedOnItsObjectsAndBackgroundNotOnAllTargetGo
   EXPECT_NE(verdict.find("FAIL  background_target_count_ratio"), std::string::npos) << r.output;
   SQLite::Database d(db());
   EXPECT_EQ(d.execAndGet("SELECT level FROM runs").getString(), "detections");
+}
+
+TEST_F(VerdictCli, AReplayRefusedForADamagedRowLeavesNoDatabaseItCreated) {
+  const fs::path damaged = dir_ / "overtaking";
+  fs::copy(testing::kBundledRecordings / "overtaking", damaged);
+  {
+    std::ofstream(damaged / "targets.csv", std::ios::app) << "garbage,row\n";  // found at the end of the replay
+  }
+  const auto r = run_rcsim(fmt::format("replay {} --db {}", damaged.string(), db()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("targets.csv"), std::string::npos) << r.output;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) EXPECT_FALSE(fs::exists(db() + suffix)) << suffix;
+  // A report that existed keeps its runs, and is not removed.
+  ASSERT_EQ(run_rcsim(fmt::format("replay {} --db {}", bundled("overtaking"), db())).exit_code, 0);
+  EXPECT_EQ(run_rcsim(fmt::format("replay {} --db {}", damaged.string(), db())).exit_code, 2);
+  EXPECT_EQ(runs(), 1);
+  // A report in a directory that does not exist is refused by name, before the replay.
+  const std::string orphan = (dir_ / "no_such_dir" / "r.sqlite").string();
+  const auto no_dir = run_rcsim(fmt::format("replay {} --db {}", bundled("overtaking"), orphan));
+  EXPECT_EQ(no_dir.exit_code, 2) << no_dir.output;
+  EXPECT_NE(no_dir.output.find(orphan + ": cannot create the report database: no directory"), std::string::npos)
+      << no_dir.output;
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 // `rcsim synth` as a user runs it: determinism, a readable recording, refusals without output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -88,7 +90,7 @@ TEST_F(SynthCli, RefusesBadInputWithoutPartialOutput) {
 
   const auto bad_seed = run("synth " + kScenes + "standstill_1m.json --seed=-3 -o " + out);
   EXPECT_EQ(bad_seed.exit_code, 2);
-  EXPECT_NE(bad_seed.output.find("rcsim: error: --seed: '-3' is not a whole number"), std::string::npos) << bad_seed.output;
+  EXPECT_NE(bad_seed.output.find("--seed: must be a whole number in 0..9223372036854775807, got '-3'"), std::string::npos) << bad_seed.output;
   EXPECT_EQ(run("synth " + kScenes + "standstill_1m.json --seed 12x -o " + out).exit_code, 2);
 
   const std::string orphan = (dir_ / "no_such_dir" / "rec").string();
@@ -104,6 +106,89 @@ TEST_F(SynthCli, RefusesBadInputWithoutPartialOutput) {
   EXPECT_NE(invalid.output.find("rcsim: error: " + bad_scene.string()), std::string::npos) << invalid.output;
 
   EXPECT_EQ(entries(), std::vector<std::string>{"bad.json"});  // no recording, no temporary directory
+}
+
+// A scene of one sensor of the given type and a car standing straight ahead at the given
+// distance from the sensor, the ego standing; further sensors of type `other_type` if given.
+std::string synth_cli_car_ahead_scene(const std::string& type, double car_range_m, const std::string& other_type = "") {
+  const double sensor_x_m = 3.7;
+  std::string sensors = R"({"id": "front", "type": ")" + type + R"(", "x_m": 3.7, "y_m": 0, "yaw_rad": 0})";
+  if (!other_type.empty()) {
+    sensors += R"(, {"id": "corner", "type": ")" + other_type + R"(", "x_m": 3.6, "y_m": 0.8, "yaw_rad": 0.6})";
+  }
+  // The car's box centre: its rear face (half of 4.6 m) at car_range_m from the sensor.
+  const std::string car_x_m = std::to_string(sensor_x_m + car_range_m + 2.3);
+  return R"({"format": "rcsim-scene", "version": 1, "duration_s": 1.0,
+  "ego": {"trajectory": [{"t_s": 0, "x_m": 0, "y_m": 0, "yaw_rad": 0, "speed_mps": 0}],
+          "sensors": [)" + sensors + R"(]},
+  "objects": [{"id": "car", "model": "passenger_car",
+               "trajectory": [{"t_s": 0, "x_m": )" + car_x_m + R"(, "y_m": 0, "yaw_rad": 3.14159265, "speed_mps": 0}]}]})";
+}
+
+// aimotive_lrr was synthesised as the 24 GHz srr24 (40 m range, 2.4e10 Hz) under its own name
+// (issue 31): now a 77 GHz radar that sees a car at 120 m and reports raw detections.
+TEST_F(SynthCli, AimotiveLrrIsSynthesisedAsA77GhzLongRangeRadar) {
+  const auto scene = dir_ / "lrr.json";
+  std::ofstream(scene) << synth_cli_car_ahead_scene("aimotive_lrr", 120.0);
+  const auto out = dir_ / "lrr";
+  const auto r = run("synth " + scene.string() + " --seed 3 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const rcsim::Recording rec = rcsim::read_recording(out);
+  ASSERT_EQ(rec.sensors.size(), 1u);
+  EXPECT_EQ(rec.sensors[0].type, "aimotive_lrr");
+  EXPECT_EQ(rec.sensors[0].reports, rcsim::ReportedLevel::detections);
+  EXPECT_NEAR(rec.cycle_time_s, 0.0554, 1e-12);  // its own cycle time
+  EXPECT_EQ(rec.cycle_count(), 19);               // 0 .. 0.9972 s
+  const auto& chain = rec.source["signal_chain"]["front"];
+  EXPECT_EQ(chain["carrier_hz"].get<double>(), 77.0e9);
+  EXPECT_EQ(chain["max_range_m"].get<double>(), 180.0);
+  EXPECT_NEAR(chain["range_bin_m"].get<double>(), 1.4, 0.01);
+  // The car's rear at 120 m is detected in most cycles (the srr24 design stopped at 40 m); no
+  // detection lies beyond the sensor's 180 m; detections have no track ids.
+  std::vector<int> car_cycles(static_cast<std::size_t>(rec.cycle_count()), 0);
+  for (const auto& t : rec.targets) {
+    EXPECT_LE(t.range_m, 180.0);
+    EXPECT_EQ(t.id, -1);
+    if (std::abs(t.range_m - 120.0) < 2.0 && std::abs(t.range_rate_mps) < 0.5) car_cycles[static_cast<std::size_t>(t.cycle)] = 1;
+  }
+  int detected = 0;
+  for (const int c : car_cycles) detected += c;
+  EXPECT_GE(detected, 15) << "of " << rec.cycle_count() << " cycles";
+  // The annotator labels what the sensor sees: the car at 120 m is in objects.csv.
+  ASSERT_EQ(rec.objects.size(), 1u);
+  EXPECT_EQ(rec.boxes[0].size(), static_cast<std::size_t>(rec.cycle_count()));
+}
+
+// srr24 (0.04 s) and aimotive_lrr (0.0554 s) cannot share one recording's cycle clock: refused,
+// naming the scene, both sensors and their cycle times, before any output.
+TEST_F(SynthCli, RefusesMixedCycleTimesNamingTheSensors) {
+  const auto scene = dir_ / "mixed.json";
+  std::ofstream(scene) << synth_cli_car_ahead_scene("srr24", 20.0, "aimotive_lrr");
+  const auto r = run("synth " + scene.string() + " -o " + (dir_ / "rec").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("rcsim: error: " + scene.string() + ": ego.sensors: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"front\" (srr24) 0.04 s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"corner\" (aimotive_lrr) 0.0554 s"), std::string::npos) << r.output;
+  EXPECT_EQ(entries(), std::vector<std::string>{"mixed.json"});
+}
+
+// A profile the reference cannot be made into (a frame longer than its cycle) is refused naming
+// the scene, the sensor and the profile.
+TEST_F(SynthCli, RefusesASensorItCannotSynthesiseNamingIt) {
+  std::string profile = read(fs::path(RCSIM_SOURCE_DIR) / "src" / "sensor" / "sensors" / "srr24.json");
+  profile.replace(profile.find("\"srr24\""), 7, "\"fast_srr\"");
+  profile.replace(profile.find("\"cycle_time_s\": 0.04"), 20, "\"cycle_time_s\": 0.005");
+  std::ofstream(dir_ / "fast_srr.json") << profile;
+  const auto scene = dir_ / "fast.json";
+  std::ofstream(scene) << synth_cli_car_ahead_scene("fast_srr.json", 10.0);
+  const auto r = run("synth " + scene.string() + " -o " + (dir_ / "rec").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("rcsim: error: " + scene.string() + ": ego.sensors: sensor \"front\": sensor profile "
+                          "\"fast_srr\" cannot be synthesised: "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("cycle time of 0.005 s"), std::string::npos) << r.output;
+  EXPECT_EQ(entries(), (std::vector<std::string>{"fast.json", "fast_srr.json"}));
 }
 
 }  // namespace
