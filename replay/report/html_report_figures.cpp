@@ -231,13 +231,13 @@ ResidualHistograms::ResidualHistograms(const ResidualSampleStats& sample, int bi
     h.counts.assign(static_cast<std::size_t>(std::max(1, bins)), 0);
     double a = 0.0, b = 0.0;
     if (sample.count > 0) {
-      const double mean = sample.mean[i] * quantity.scale;
-      const double mean_sq = sample.mean_square[i] * quantity.scale * quantity.scale;
-      const double sigma = std::sqrt(std::max(0.0, mean_sq - mean * mean));
-      // The view: the data, but no more than four standard deviations about the mean, so that
-      // a few gross mismatches do not squeeze the bulk into one bin.
-      a = std::max(sample.min[i] * quantity.scale, mean - 4.0 * sigma);
-      b = std::min(sample.max[i] * quantity.scale, mean + 4.0 * sigma);
+      // The view: the quartiles and three interquartile ranges beyond each (Tukey's far fences),
+      // within the data. Quantiles, not the standard deviation: on a real drive a few pairs
+      // 30 m/s apart made sigma so wide that the bulk fell into one bar. The rest is counted in
+      // the end bins and noted.
+      const double q1 = sample.q1[i] * quantity.scale, q3 = sample.q3[i] * quantity.scale;
+      a = std::max(sample.min[i] * quantity.scale, q1 - 3.0 * (q3 - q1));
+      b = std::min(sample.max[i] * quantity.scale, q3 + 3.0 * (q3 - q1));
     }
     svg::widen(a, b, quantity.min_span, 0.02);
     h.lo = a;

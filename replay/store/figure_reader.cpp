@@ -1,6 +1,9 @@
 #include "replay/store/figure_reader.hpp"
 
 #include <algorithm>
+#include <array>
+
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -147,10 +150,12 @@ ResidualSampleStats read_residual_sample_stats(SQLite::Database& db, std::int64_
   stride = std::max(1, stride);
   ResidualSampleStats stats;
   Residuals sum{}, sum_square{};
+  std::array<std::vector<double>, 4> values;  // for the percentiles: the sample is bounded by the stride
   for_each_target_list(db, run_id, {}, [&](const StoredTargetList& list) {
     if (list.cycle % stride != 0) return;
     visit_residuals(list, [&](const Residuals& r) {
       for (std::size_t k = 0; k < 4; ++k) {
+        values[k].push_back(r[k]);
         if (stats.count == 0 || r[k] < stats.min[k]) stats.min[k] = r[k];
         if (stats.count == 0 || r[k] > stats.max[k]) stats.max[k] = r[k];
         sum[k] += r[k];
@@ -159,9 +164,16 @@ ResidualSampleStats read_residual_sample_stats(SQLite::Database& db, std::int64_
       ++stats.count;
     });
   });
+  const auto percentile = [](std::vector<double>& v, double q) {
+    const auto rank = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(rank), v.end());
+    return v[rank];
+  };
   for (std::size_t k = 0; k < 4 && stats.count > 0; ++k) {
     stats.mean[k] = sum[k] / static_cast<double>(stats.count);
     stats.mean_square[k] = sum_square[k] / static_cast<double>(stats.count);
+    stats.q1[k] = percentile(values[k], 0.25);
+    stats.q3[k] = percentile(values[k], 0.75);
   }
   return stats;
 }

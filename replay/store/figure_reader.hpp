@@ -91,6 +91,7 @@ using Residuals = std::array<double, 4>;
 struct ResidualSampleStats {
   std::int64_t count = 0;
   Residuals mean{}, mean_square{}, min{}, max{};
+  Residuals q1{}, q3{};  // the quartiles (nearest rank)
 };
 // Over the pairs of every stride-th cycle.
 ResidualSampleStats read_residual_sample_stats(SQLite::Database& db, std::int64_t run_id, int stride);

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   rcsim::cli::add_import_command(app);
   rcsim::cli::add_replay_command(app);
   rcsim::cli::add_report_command(app);
+  rcsim::cli::add_export_command(app);
   rcsim::cli::add_stream_command(app);
   rcsim::cli::add_listen_command(app);
   rcsim::cli::add_synth_command(app);

@@ -77,9 +77,11 @@ TEST(HtmlReportFigures, ResidualHistogramsBinClampAndAverage) {
   ResidualSampleStats sample;
   sample.count = 4;
   sample.mean = {0.0, 0.0, 0.0, 0.0};
-  sample.mean_square = {1.0, 1.0, 1.0, 1.0};  // sigma 1: the view is at most +-4
+  sample.mean_square = {1.0, 1.0, 1.0, 1.0};
   sample.min = {-1.0, -0.01, -1.0, -1.0};
   sample.max = {1.0, 0.01, 1.0, 100.0};
+  sample.q1 = {-0.5, -0.005, -0.5, -0.5};  // interquartile range 1: the view is at most 3 beyond the quartiles
+  sample.q3 = {0.5, 0.005, 0.5, 0.5};
   ResidualHistograms histograms(sample, 10);
   for (const double v : {-1.0, -0.5, 0.5, 1.0}) histograms.add({v, v / 100.0, v, v});
   histograms.add({0.0, 0.0, 0.0, 50.0});  // beyond the amplitude view
@@ -90,10 +92,10 @@ TEST(HtmlReportFigures, ResidualHistogramsBinClampAndAverage) {
   for (const long long c : specs[0].counts) total += c;
   EXPECT_EQ(total, 5);
   EXPECT_EQ(specs[0].note, "5 pairs, mean 0, RMS 0.707");  // sqrt(2.5 / 5)
-  EXPECT_EQ(specs[3].above, 1);                               // 50 dB lies beyond mean + 4 sigma
-  // The view [min, mean + 4 sigma] = [-1, 4], padded by 2 % of its span on either side.
-  EXPECT_NEAR(specs[3].lo, -1.1, 1e-9);
-  EXPECT_NEAR(specs[3].lo + 10 * specs[3].bin_width, 4.1, 1e-9);
+  EXPECT_EQ(specs[3].above, 1);                               // 50 dB lies beyond q3 + 3 IQR
+  // The view [min, q3 + 3 IQR] = [-1, 3.5], padded by 2 % of its span (0.09) on either side.
+  EXPECT_NEAR(specs[3].lo, -1.09, 1e-9);
+  EXPECT_NEAR(specs[3].lo + 10 * specs[3].bin_width, 3.59, 1e-9);
   // The azimuth is shown in degrees: 0.01 rad is 0.573 deg.
   EXPECT_NEAR(specs[1].lo, -0.01 * 180.0 / kPi, 0.05);
 }
