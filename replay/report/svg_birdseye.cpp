@@ -47,6 +47,9 @@ struct View {
   std::string px(const Vec2& p_V) const { return fmt::format("{},{}", coord(sx(p_V.y())), coord(sy(p_V.x()))); }
 };
 
+// How far from the ego a target of no annotated object still widens the view.
+constexpr double kNearFieldM = 40.0;
+
 // Everything worth seeing (targets, sensors, the vehicle origin, boxes near the sensors), padded,
 // made square at equal scale.
 View make_view(const BirdsEyeSpec& spec) {
@@ -55,7 +58,13 @@ View make_view(const BirdsEyeSpec& spec) {
   Bounds bounds;
   bounds.add(Vec2::Zero());
   for (const auto& s : spec.sensors) bounds.add(s.X_VS.translation());
-  for (const auto& t : spec.targets) bounds.add(t.p_V);
+  // The annotated objects and their targets set the view; the background and other targets only
+  // within the near field: on a real drive they reach 170 m ahead and behind, and a view that held
+  // them all drew the cars 2 px wide. Those farther out are clipped (the plot area's viewport).
+  for (const auto& t : spec.targets) {
+    const bool unannotated = t.target_class == "background" || t.target_class == "other";
+    if (!unannotated || t.p_V.norm() <= kNearFieldM) bounds.add(t.p_V);
+  }
   for (const auto& box : spec.boxes) {
     if (box.X_VO.translation().norm() > reach_m + 10.0) continue;
     for (const Vec2& c : box_corners_V(box)) bounds.add(c);

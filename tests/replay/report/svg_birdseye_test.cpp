@@ -90,6 +90,24 @@ TEST(SvgBirdseye, ABoxAheadIsAboveTheSensorAndABoxToTheLeftIsLeftOfIt) {
   EXPECT_NEAR((sensor_y - ahead_y) / 10.0, (sensor_x - left_x) / 8.0, 2.0);
 }
 
+// A real drive's background reaches 170 m ahead: it must not shrink the annotated cars to a few
+// pixels. Targets of no annotated object widen the view only within the near field (40 m).
+TEST(SvgBirdseye, FarBackgroundDoesNotWidenTheViewAnObjectTargetDoes) {
+  const auto label_to_ego_px = [](const std::string& target_class) {
+    svg::BirdsEyeSpec spec;
+    spec.sensors.push_back({"s", {3.7, 0.0, 0.0}, 1.0, 200.0});
+    spec.boxes.push_back({"car", {15.0, 0.0, 0.0}, 4.5, 1.8, false});
+    spec.targets.push_back({{150.0, 2.0}, false, 0, false, target_class});
+    spec.targets.push_back({{30.0, -3.0}, false, 0, false, "background"});  // in the near field
+    const std::string out = svg::birdseye_svg(spec);
+    const auto label = box_label_xy(out, "car");
+    const auto ego = screen_xy(out, "<g class=\"ego\"[^>]*><line x1=\"([-0-9.]+)\" y1=\"([-0-9.]+)\"");
+    return ego.second - label.second;  // pixels from the ego up to the car's label
+  };
+  const double fitted = label_to_ego_px("background"), wide = label_to_ego_px("object");
+  EXPECT_GT(fitted, 3.0 * wide) << fitted << " px against " << wide << " px";
+}
+
 TEST(SvgBirdseye, EveryTextFromDataIsEscaped) {
   const std::string hostile = "<script>&\"";
   svg::BirdsEyeSpec spec;
