@@ -19,4 +19,4 @@ if [ "${RCSIM_SKIP_BENCH:-0}" != 1 ]; then
   ./build/bin/rcsim bench --db out/report.sqlite --seed 1
 fi
 ./build/bin/rcsim report out/report.sqlite -o out/report.html --last "$runs"
-echo "== open out/report.html in a browser (or query out/report.sqlite with sqlite3)"
+echo "== open out/report.html in a browser; a run's rows as CSV: build/bin/rcsim export out/report.sqlite --run 1 --table cycles"
