@@ -77,12 +77,17 @@ std::string RunLabel::text() const {
   return fmt::format("{}, fidelity {}, {}, {}, seed {}", sensors, fidelity, effects, calibrated, seed);
 }
 
-std::map<std::int64_t, RunLabel> read_run_labels(SQLite::Database& db) {
+std::map<std::int64_t, RunLabel> read_run_labels(SQLite::Database& db, std::optional<std::int64_t> only_run) {
   std::map<std::int64_t, RunLabel> out;
   std::map<std::int64_t, std::vector<std::string>> types;
-  SQLite::Statement sensors(db, "SELECT run_id, type FROM run_sensors ORDER BY run_id, sensor");
+  const char* const where = only_run ? " WHERE run_id = ?" : "";
+  SQLite::Statement sensors(db, fmt::format("SELECT run_id, type FROM run_sensors{} ORDER BY run_id, sensor", where));
+  SQLite::Statement runs(db, fmt::format("SELECT run_id, seed, level, parameters FROM runs{}", where));
+  if (only_run) {
+    sensors.bind(1, *only_run);
+    runs.bind(1, *only_run);
+  }
   while (sensors.executeStep()) types[sensors.getColumn(0).getInt64()].push_back(sensors.getColumn(1).getString());
-  SQLite::Statement runs(db, "SELECT run_id, seed, level, parameters FROM runs");
   while (runs.executeStep()) {
     const std::int64_t run_id = runs.getColumn(0).getInt64();
     RunLabel& label = out[run_id];

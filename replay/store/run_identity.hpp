@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,8 +49,8 @@ struct RunLabel {
   std::string text() const;
 };
 
-// The label of every run stored, by run id.
-std::map<std::int64_t, RunLabel> read_run_labels(SQLite::Database& db);
+// The label of every run stored, or of the one run given, by run id.
+std::map<std::int64_t, RunLabel> read_run_labels(SQLite::Database& db, std::optional<std::int64_t> only_run = std::nullopt);
 
 // The recording directory of every run stored, as given to the replay (`rcsim campaign status`
 // finds a plan's recordings in its shard reports by them, without reading the recordings); none

@@ -199,20 +199,19 @@ void print_figures(const Recording& recording, const replay::ReplaySummary& summ
   print_class_figures(summary, recording.sensors.size());
 }
 
-// The run's first line: its verdict where there is one.
-std::string verdict_word(const std::optional<replay::campaign::Verdicts>& verdicts, std::int64_t run_id) {
-  if (!verdicts) return "stored";
+// The verdict of one run among `verdicts`, if it was judged.
+const replay::campaign::RunVerdict* verdict_of(const std::optional<replay::campaign::Verdicts>& verdicts,
+                                               std::int64_t run_id) {
+  if (!verdicts) return nullptr;
   for (const auto& r : verdicts->runs) {
-    if (r.run_id == run_id) return r.passed ? "PASS" : "FAIL";
+    if (r.run_id == run_id) return &r;
   }
-  return "stored";
+  return nullptr;
 }
 
-void print_verdict_block(const std::optional<replay::campaign::Verdicts>& verdicts, std::int64_t run_id) {
-  if (!verdicts) return;
-  for (const auto& r : verdicts->runs) {
-    if (r.run_id == run_id) print_run_verdict(std::cout, *verdicts, r);
-  }
+// The run's first line says its verdict where it has one.
+std::string verdict_word(const replay::campaign::RunVerdict* verdict) {
+  return verdict == nullptr ? "stored" : (verdict->passed ? "PASS" : "FAIL");
 }
 
 // A run of this identity stored already (the same recording, seed, sensors and parameters give
@@ -231,10 +230,11 @@ bool print_if_stored(SQLite::Database& db, const ReplayArgs& args, const Recordi
       json["verdicts"] = verdicts_json(verdicts);
       std::cout << json.dump(2) << '\n';
     } else {
+      const auto* verdict = verdict_of(verdicts, run_id);
       std::cout << fmt::format("run {}: {}: {}, stored already in {} (same recording, seed, sensors and parameters); "
                                "nothing stored, --again stores another copy\n",
-                               run_id, recording.name, verdict_word(verdicts, run_id), args.db_path);
-      print_verdict_block(verdicts, run_id);
+                               run_id, recording.name, verdict_word(verdict), args.db_path);
+      if (verdict != nullptr) print_run_verdict(std::cout, *verdicts, *verdict);
     }
     throw_if_failed(verdicts);
     return true;
@@ -264,10 +264,9 @@ void replay_and_store(ReplayArgs& args) {
   try {
     if (!args.again && print_if_stored(*db, args, recording, options)) return;
     store_and_print(*db, args, recording, options);
-  } catch (const VerdictsFailed&) {
-    throw;  // the run is stored
   } catch (...) {
-    // A replay refused (a damaged row found as it went) leaves no report it created behind.
+    // A replay refused (a damaged row found as it went) leaves no report it created behind; a
+    // stored run keeps it (a failed verdict).
     if (!existed) replay::discard_if_unused(db, args.db_path);
     throw;
   }
@@ -288,12 +287,13 @@ void store_and_print(SQLite::Database& db, ReplayArgs& args, const Recording& re
     json["verdicts"] = verdicts_json(verdicts);
     std::cout << json.dump(2) << '\n';
   } else {
-    const replay::RunLabel label = replay::read_run_labels(db).at(writer.run_id());
-    std::cout << fmt::format("run {}: {}: {}; stored in {}\n", writer.run_id(), recording.name,
-                             verdict_word(verdicts, writer.run_id()), args.db_path);
+    const replay::RunLabel label = replay::read_run_labels(db, writer.run_id()).at(writer.run_id());
+    const auto* verdict = verdict_of(verdicts, writer.run_id());
+    std::cout << fmt::format("run {}: {}: {}; stored in {}\n", writer.run_id(), recording.name, verdict_word(verdict),
+                             args.db_path);
     std::cout << fmt::format("  {} cycles, {} sensors, {}; {}\n", summary.cycles, recording.sensors.size(), label.level,
                              label.text());
-    print_verdict_block(verdicts, writer.run_id());
+    if (verdict != nullptr) print_run_verdict(std::cout, *verdicts, *verdict);
     print_figures(recording, summary, replay::run_kind(label.level, label.fidelity));
   }
   throw_if_failed(verdicts);
