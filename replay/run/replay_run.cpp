@@ -70,10 +70,11 @@ void project_boxes(const RunContext& run, std::size_t s, double t_scene_s, const
 // Each target's Cartesian position, the object it belongs to (nearest box within the gate) and
 // its offset in that object's frame, its class (object, stationary background, other) and the
 // merge pair it is an artefact of, if any (pair_of_cell: the cycle's pair of each merge cell).
-// v_WS_S: the sensor's own velocity, sensor frame.
+// v_WS_S: the sensor's own velocity, sensor frame (unused where the ego motion is unknown).
 void classify_targets(std::vector<ComparedTarget>& targets, const std::vector<metrics::BoxInSensor>& boxes,
                       const std::vector<metrics::MergeCell>& cells, const std::vector<int>& pair_of_cell,
-                      const Vec2& v_WS_S, const ReplayOptions& options, const metrics::MergeParameters& merge) {
+                      const Vec2& v_WS_S, bool ego_motion_known, const ReplayOptions& options,
+                      const metrics::MergeParameters& merge) {
   for (ComparedTarget& t : targets) {
     t.p_ST_S = cartesian_S(t.range_m, t.azimuth_rad);
     // A merge artefact first: it belongs to no object, whatever box it lies near.
@@ -82,9 +83,15 @@ void classify_targets(std::vector<ComparedTarget>& targets, const std::vector<me
     const int box = cell >= 0 ? -1 : metrics::nearest_box(boxes, t.p_ST_S, options.association_gate_m);
     t.object = box >= 0 ? boxes[box].object : -1;
     t.p_OT_O = box >= 0 ? inverse_transform_point(boxes[box].X_SO, t.p_ST_S) : Vec2::Zero();
-    t.target_class = cell >= 0 ? metrics::TargetClass::other
-                               : metrics::classify_target(t.object, t.range_rate_mps, t.azimuth_rad, v_WS_S,
-                                                          options.stationary_gate_mps);
+    if (cell >= 0) {
+      t.target_class = metrics::TargetClass::other;
+    } else if (!ego_motion_known) {
+      // No ego motion to compensate the radial speed by (schemas/recording.md): every target of no
+      // object is taken for the stationary background, by its position alone.
+      t.target_class = t.object >= 0 ? metrics::TargetClass::object : metrics::TargetClass::stationary_background;
+    } else {
+      t.target_class = metrics::classify_target(t.object, t.range_rate_mps, t.azimuth_rad, v_WS_S, options.stationary_gate_mps);
+    }
   }
 }
 
@@ -172,11 +179,16 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
     if (t.sensor == static_cast<int>(s)) cycle.recorded.push_back(compared_target(t));
   }
   source.append_targets(s, cycle.simulated);
-  const std::vector<metrics::MergeCell>& cells = run.geometry.merge_cells(s);
+  // An array that resolves azimuth gives the stronger reflector's beam, not a merged angle: no
+  // merge artefacts to tell apart (docs/imaging-radar.md).
+  static const std::vector<metrics::MergeCell> kNoMergeCells;
+  const std::vector<metrics::MergeCell>& cells =
+      config.resolution.resolves_azimuth() ? kNoMergeCells : run.geometry.merge_cells(s);
   merge_pairs_of(cells, cycle, buffers.pair_of_cell);
   const Vec2 v_WS_S = rotate(-cycle.X_WS.yaw_rad, ego.point_velocity_W(cycle.X_WS.translation()));
-  classify_targets(cycle.recorded, boxes, cells, buffers.pair_of_cell, v_WS_S, run.options, merge);
-  classify_targets(cycle.simulated, boxes, cells, buffers.pair_of_cell, v_WS_S, run.options, merge);
+  const bool ego_known = run.rec.ego_motion_known;
+  classify_targets(cycle.recorded, boxes, cells, buffers.pair_of_cell, v_WS_S, ego_known, run.options, merge);
+  classify_targets(cycle.simulated, boxes, cells, buffers.pair_of_cell, v_WS_S, ego_known, run.options, merge);
   match_targets(cycle, run.options.gospa);
   const MergeCounts merges = match_merge_artefacts(cycle, run.options.merge_match_distance_m);
   latency.note_targets(s, cycle, t_rec_s);
@@ -252,7 +264,7 @@ ReplaySummary compare_cycles(const Recording& rec, const ImportedScene& imported
   SceneGeometry geometry(scene);
   RunContext run{rec, imported, scene, options, geometry};
   LatencyEpisodes latency(n_sensors, n_objects);
-  RunAccumulators acc;
+  RunAccumulators acc(rec.ego_motion_known);
   ObjectFigures objects(n_sensors, n_objects, options.object_range_bin_m);
   double simulate_cpu_s = 0.0;
   CycleComparison cycle;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/angles.hpp"
 
@@ -42,7 +43,7 @@ void RunAccumulators::add_cycle(const CycleComparison& cycle, long long merge_re
     for (const auto& t : list) {
       range_m_[origin].add(static_cast<float>(t.range_m));
       azimuth_rad_[origin].add(static_cast<float>(t.azimuth_rad));
-      rate_mps_[origin].add(static_cast<float>(t.range_rate_mps));
+      if (compare_range_rates_) rate_mps_[origin].add(static_cast<float>(t.range_rate_mps));
       amplitude_db_[origin].add(static_cast<float>(t.amplitude_db));
       switch (t.target_class) {
         case metrics::TargetClass::object: ++classes_.object[origin]; break;
@@ -79,7 +80,8 @@ void RunAccumulators::finish(ReplaySummary& summary) {
   const double m = std::max<double>(1.0, static_cast<double>(targets_matched_));
   summary.residual_range_rms_m = std::sqrt(range_sq_m2_ / m);
   summary.residual_azimuth_rms_rad = std::sqrt(azimuth_sq_rad2_ / m);
-  summary.residual_range_rate_rms_mps = std::sqrt(rate_sq_m2ps2_ / m);
+  summary.residual_range_rate_rms_mps =
+      compare_range_rates_ ? std::sqrt(rate_sq_m2ps2_ / m) : std::numeric_limits<double>::quiet_NaN();
   summary.residual_amplitude_mean_db = amplitude_sum_db_ / m;
   summary.object_pairs_matched = object_pairs_;
   const double m_object = std::max<double>(1.0, static_cast<double>(object_pairs_));

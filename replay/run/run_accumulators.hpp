@@ -28,6 +28,9 @@ inline constexpr std::array<ComparedQuantity, 8> kComparedQuantities = {{{"range
 
 class RunAccumulators {
  public:
+  // compare_range_rates false (a recording whose ego motion is unknown, schemas/recording.md):
+  // no range-rate residual (NaN) and no range-rate distribution distance.
+  explicit RunAccumulators(bool compare_range_rates = true) : compare_range_rates_(compare_range_rates) {}
   // One compared cycle of one sensor, after matching (ComparedTarget::match set); the merge
   // artefacts each list holds of the cycle's pairs.
   void add_cycle(const CycleComparison& cycle, long long merge_recorded, long long merge_simulated);
@@ -35,6 +38,7 @@ class RunAccumulators {
   void finish(ReplaySummary& summary);
 
  private:
+  bool compare_range_rates_ = true;
   long long targets_recorded_ = 0, targets_simulated_ = 0, targets_matched_ = 0;
   long long merge_recorded_ = 0, merge_simulated_ = 0, merge_matched_ = 0;
   double gospa_sum_ = 0.0, ospa_sum_ = 0.0, localisation_sum_ = 0.0, missed_sum_ = 0.0, false_sum_ = 0.0;

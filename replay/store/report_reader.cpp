@@ -1,5 +1,6 @@
 #include "replay/store/report_reader.hpp"
 
+#include <limits>
 #include <algorithm>
 #include <fmt/format.h>
 #include <map>
@@ -108,6 +109,7 @@ void read_summary(SQLite::Database& db, std::int64_t run_id, RunData& run) {
     s.residual_range_rms_m = q.getColumn(c++).getDouble();
     s.residual_azimuth_rms_rad = q.getColumn(c++).getDouble();
     s.residual_range_rate_rms_mps = q.getColumn(c++).getDouble();
+    if (s.residual_range_rate_rms_mps < 0.0) s.residual_range_rate_rms_mps = std::numeric_limits<double>::quiet_NaN();  // -1: not compared
     s.residual_amplitude_mean_db = q.getColumn(c++).getDouble();
     s.simulate_cpu_s = q.getColumn(c++).getDouble();
     s.total_wall_s = q.getColumn(c++).getDouble();

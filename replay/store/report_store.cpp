@@ -29,6 +29,10 @@ void convert_row_tables_to_blocks(SQLite::Database& db);  // report_migration.cp
 
 namespace {
 
+// A figure that was not compared, in a REAL NOT NULL column where a negative value cannot occur
+// (schemas/report-database.md).
+constexpr double kNotCompared = -1.0;
+
 std::string sensor_configuration_text(const std::string& type, const std::filesystem::path& base_dir) {
   for (const auto& file : embedded_sensor_configs()) {
     if (std::filesystem::path(std::string(file.name)).stem() == type) return std::string(file.text);
@@ -482,7 +486,8 @@ void ReportWriter::insert_summary(const ReplaySummary& r) {
   summary.bind(i++, r.latency_pairs);
   summary.bind(i++, r.residual_range_rms_m);
   summary.bind(i++, r.residual_azimuth_rms_rad);
-  summary.bind(i++, r.residual_range_rate_rms_mps);
+  // -1: not compared (a recording whose ego motion is unknown); the column is NOT NULL since v1.
+  summary.bind(i++, std::isnan(r.residual_range_rate_rms_mps) ? kNotCompared : r.residual_range_rate_rms_mps);
   summary.bind(i++, r.residual_amplitude_mean_db);
   summary.bind(i++, r.simulate_cpu_s);
   summary.bind(i++, r.total_wall_s);

@@ -54,10 +54,18 @@ class Rng {
 
   // Poisson variate by Knuth's multiplication method (fine for small means).
   int poisson(double mean) {
+    // Knuth's product of uniforms holds while exp(-mean) is far from underflow; a larger mean is a
+    // sum of Poisson draws of at most kPoissonChunk each (exact: Poisson means add).
+    if (mean > kPoissonChunk) {
+      const double chunks = std::ceil(mean / kPoissonChunk);
+      int count = 0;
+      for (double k = 0; k < chunks; ++k) count += poisson(mean / chunks);
+      return count;
+    }
     const double limit = std::exp(-mean);
     int count = 0;
     double product = uniform01();
-    while (product > limit && count < 1000) {
+    while (product > limit && count < 4 * static_cast<int>(kPoissonChunk)) {
       ++count;
       product *= uniform01();
     }
@@ -65,6 +73,7 @@ class Rng {
   }
 
  private:
+  static constexpr double kPoissonChunk = 500.0;
   static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   static std::uint64_t splitmix64(std::uint64_t& x) {
     std::uint64_t z = (x += 0x9E3779B97F4A7C15ULL);

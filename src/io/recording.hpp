@@ -1,5 +1,5 @@
 #pragma once
-// A recorded measurement campaign (`rcsim-recording` v1 and v2, schemas/recording.md): a directory with
+// A recorded measurement campaign (`rcsim-recording` v1 to v3, schemas/recording.md): a directory with
 // recording.json, ego.csv (one row per sensor cycle), objects.csv (annotated boxes) and
 // targets.csv (what the sensors reported). Read once, validated, then read-only.
 #include <cstdint>
@@ -7,8 +7,11 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "common/amplitude_unit.hpp"
 
 namespace rcsim {
 
@@ -17,17 +20,33 @@ namespace rcsim {
 // interfaces). Replay compares the simulation at that level by default.
 enum class ReportedLevel { tracks, detections };
 
+// A radar with a small unambiguous Doppler interval reports radial speeds wrapped into it
+// (version 3): a measured v lies in [min, max), and v + k (max - min) reads the same.
+struct RangeRateInterval {
+  double min_mps = 0.0, max_mps = 0.0;
+};
+
+// How the cycles relate (version 3): a drive (one clock, objects followed from cycle to cycle) or
+// snapshots (every cycle a frame of its own, as a labelled dataset of single frames: nothing is
+// carried from one cycle to the next, and `t_s` only orders them).
+enum class Timeline { drive, snapshots };
+
 struct RecordingSensor {
   std::string id;
   std::string type;  // built-in sensor configuration name or a path relative to the recording
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  // pose in the ego vehicle frame
   ReportedLevel reports = ReportedLevel::tracks;  // version 2; version 1 recordings report tracks
+  AmplitudeUnit amplitude_unit = AmplitudeUnit::snr_db;     // version 3
+  std::optional<RangeRateInterval> range_rate_interval_mps = std::nullopt;  // version 3: none, unambiguous
 };
 
 struct RecordingObject {
   std::string id;
   std::string object_class;  // names a model of the object library
   double length_m = 0.0, width_m = 0.0;
+  // Version 3: what the dataset says besides (its own class name, occlusion, certainty, height):
+  // a flat object of strings and numbers, kept for reports and per-class figures.
+  nlohmann::json attributes = nlohmann::json::object();
 };
 
 // One ego.csv row; row k is the ego state at sensor cycle k.
@@ -58,6 +77,10 @@ struct Recording {
   std::string name;
   std::string description;
   double cycle_time_s = 0.0;
+  Timeline timeline = Timeline::drive;  // version 3
+  // Version 3: false where the dataset holds no ego motion (ego.csv's speed and yaw rate are 0
+  // placeholders); replay then neither compares radial speeds nor classes targets by them.
+  bool ego_motion_known = true;
   std::vector<RecordingSensor> sensors;
   std::vector<RecordingObject> objects;
   nlohmann::json source = nlohmann::json::object();  // free-form provenance (generator, seed, ...)

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "common/angles.hpp"
 #include "common/embedded_data.hpp"
@@ -15,6 +16,8 @@ namespace {
 // No configuration value is near this (the largest, a carrier frequency, is about 1e11 Hz): 1e308
 // is a broken file, not a sensor (schemas/limits.md).
 constexpr double kMaxConfigValue = 1e12;
+// Diffuse pieces per face: 256 cells of 7.5 cm are a 19-m face seen end-on.
+constexpr int kMaxPiecesPerFace = 256;
 
 double positive(const JsonField& f, std::string_view key, double max = kMaxConfigValue) {
   const double x = f.number_within(key, 0.0, max, "");
@@ -35,6 +38,14 @@ int positive_int(const JsonField& f, std::string_view key, int max = limits::kMa
   return static_cast<int>(x);
 }
 
+// [a, b]: an array of two finite numbers.
+std::pair<double, double> number_pair(const JsonField& f, std::string_view key) {
+  const auto items = f.array(key);
+  const auto finite = [](const JsonField& item) { return item.json().is_number() && std::isfinite(item.json().get<double>()); };
+  if (items.size() != 2 || !finite(items[0]) || !finite(items[1])) f.fail(key, "must be an array of two numbers [min, max]");
+  return {items[0].json().get<double>(), items[1].json().get<double>()};
+}
+
 // Amplitudes and levels in dB beyond this are no sensor's (schemas/sensor-config.md).
 constexpr double kMaxLevelMagnitudeDb = limits::kMaxLevel_dB;
 
@@ -48,28 +59,39 @@ AmplitudeLaw parse_amplitude_law(const JsonField& amp) {
   AmplitudeLaw law;
   const std::string kind = amp.has("law") ? amp.string("law") : "paper_eq1";
   if (kind == "paper_eq1") {
-    amp.expect_only({"law", "reference_level_db", "reference_slope_db_per_m", "detection_threshold_db"});
+    amp.expect_only({"law", "unit", "reference_level_db", "reference_slope_db_per_m", "detection_threshold_db"});
     law.kind = AmplitudeLawKind::paper_eq1;
     law.reference_level_db = level_db(amp, "reference_level_db");
     law.reference_slope_db_per_m = non_negative(amp, "reference_slope_db_per_m");
   } else if (kind == "radar_equation") {
-    amp.expect_only({"law", "snr_at_1m_for_1m2_db", "reference_rcs_dbsm", "range_exponent", "detection_threshold_db"});
+    amp.expect_only({"law", "unit", "snr_at_1m_for_1m2_db", "reference_rcs_dbsm", "range_exponent", "detection_threshold_db"});
     law.kind = AmplitudeLawKind::radar_equation;
     law.snr_at_1m_for_1m2_db = level_db(amp, "snr_at_1m_for_1m2_db");
     law.reference_rcs_dbsm = level_db(amp, "reference_rcs_dbsm");
     if (const auto n = amp.optional_number("range_exponent")) {
-      if (!(*n >= 1.0 && *n <= 6.0)) amp.fail("range_exponent", fmt::format("must be in [1, 6] (4: the radar equation's 1/R^4), got {}", *n));
+      if (!(*n >= 0.0 && *n <= 6.0)) {
+        amp.fail("range_exponent",
+                 fmt::format("must be in [0, 6] (4: the radar equation's 1/R^4; 0: a range-compensated amplitude), got {}", *n));
+      }
       law.range_exponent = *n;
     }
   } else {
     amp.fail("law", fmt::format("unknown amplitude law \"{}\" (known: paper_eq1, radar_equation)", kind));
   }
   law.detection_threshold_db = level_db(amp, "detection_threshold_db");
+  if (amp.has("unit")) {
+    const std::string unit = amp.string("unit");
+    if (unit == "relative_db") {
+      law.unit = AmplitudeUnit::relative_db;
+    } else if (unit != "snr_db") {
+      amp.fail("unit", fmt::format("must be \"snr_db\" or \"relative_db\", got \"{}\"", unit));
+    }
+  }
   return law;
 }
 
 DetectionModel parse_detection_model(const JsonField& detection) {
-  detection.expect_only({"fluctuation", "local_maxima_only"});
+  detection.expect_only({"fluctuation", "local_maxima_only", "reported_beams"});
   DetectionModel model;
   const std::string name = detection.string("fluctuation");
   if (name == "none" || name == "swerling0") {
@@ -82,6 +104,15 @@ DetectionModel parse_detection_model(const JsonField& detection) {
     detection.fail("fluctuation", fmt::format("unknown fluctuation \"{}\" (known: none, swerling0, swerling1, swerling3)", name));
   }
   model.local_maxima_only = detection.boolean_or("local_maxima_only", false);
+  if (detection.has("reported_beams")) {
+    const std::string beams = detection.string("reported_beams");
+    if (beams == "strongest_per_range_doppler_cell") {
+      model.strongest_beam_per_cell = true;
+    } else if (beams != "every") {
+      detection.fail("reported_beams",
+                     fmt::format("must be \"every\" or \"strongest_per_range_doppler_cell\", got \"{}\"", beams));
+    }
+  }
   return model;
 }
 
@@ -129,7 +160,7 @@ MultibounceConfig parse_multibounce(const JsonField& mb) {
 
 SensorConfig parse_sensor_config(const JsonField& root) {
   root.expect_only({"format", "version", "name", "description", "reports", "carrier_frequency_hz", "cycle_time_s",
-                    "field_of_view", "amplitude", "detection", "extended_objects", "occlusion", "antenna", "resolution", "monopulse", "measurement_noise",
+                    "field_of_view", "amplitude", "detection", "extended_objects", "occlusion", "antenna", "resolution", "array", "monopulse", "measurement_noise",
                     "tracking", "clutter", "multibounce", "background"});
   root.expect_format("rcsim-sensor", 1);
   SensorConfig c;
@@ -163,7 +194,10 @@ SensorConfig parse_sensor_config(const JsonField& root) {
     if (c.occlusion.loss_db > kMaxLevelMagnitudeDb) occlusion->fail("loss_db", fmt::format("must be at most {}", kMaxLevelMagnitudeDb));
   }
   if (const auto extended = root.optional_member("extended_objects")) {
-    extended->expect_only({"diffuse_relative_ercs_per_sqrt_m"});
+    extended->expect_only({"diffuse_relative_ercs_per_sqrt_m", "max_pieces_per_face"});
+    if (extended->has("max_pieces_per_face")) {
+      c.extended_objects.max_pieces_per_face = positive_int(*extended, "max_pieces_per_face", kMaxPiecesPerFace);
+    }
     c.extended_objects.diffuse_relative_ercs_per_sqrt_m = non_negative(*extended, "diffuse_relative_ercs_per_sqrt_m");
     if (c.extended_objects.diffuse_relative_ercs_per_sqrt_m > 100.0) {
       extended->fail("diffuse_relative_ercs_per_sqrt_m", "must be at most 100");
@@ -188,13 +222,41 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   }
 
   const auto res = root.member("resolution");
-  res.expect_only({"range_cell_m", "range_rate_cell_mps"});
+  res.expect_only({"range_cell_m", "range_rate_cell_mps", "azimuth_cell_deg", "unambiguous_range_rate_mps"});
   c.resolution.range_cell_m = positive(res, "range_cell_m");
   c.resolution.range_rate_cell_mps = positive(res, "range_rate_cell_mps");
+  if (res.has("azimuth_cell_deg")) c.resolution.azimuth_cell_rad = deg_to_rad(positive(res, "azimuth_cell_deg", 30.0));
+  if (res.has("unambiguous_range_rate_mps")) {
+    const auto interval = number_pair(res, "unambiguous_range_rate_mps");
+    if (!(interval.first < 0.0 && interval.second > 0.0 && interval.second - interval.first <= 2.0 * limits::kMaxSpeed_mps)) {
+      res.fail("unambiguous_range_rate_mps",
+               fmt::format("must be [min, max] with min < 0 < max and max - min at most {} m/s, got [{}, {}]",
+                           2.0 * limits::kMaxSpeed_mps, interval.first, interval.second));
+    }
+    c.resolution.unambiguous_min_mps = interval.first;
+    c.resolution.unambiguous_max_mps = interval.second;
+  }
+  if (c.detection.strongest_beam_per_cell && !c.resolution.resolves_azimuth()) {
+    root.fail("detection.reported_beams", "needs an array that resolves azimuth (resolution.azimuth_cell_deg)");
+  }
 
-  const auto mono = root.member("monopulse");
-  mono.expect_only({"pointer_noise_sigma"});
-  c.pointer_noise_sigma = non_negative(mono, "pointer_noise_sigma");
+  // An array that resolves azimuth has beams, not monopulse: `array` (angle and pointer noise)
+  // instead of `monopulse`.
+  if (c.resolution.resolves_azimuth()) {
+    const auto array = root.member("array");
+    array.expect_only({"azimuth_sigma_deg", "pointer_noise_sigma"});
+    c.array.azimuth_sigma_rad = deg_to_rad(non_negative(array, "azimuth_sigma_deg", 30.0));
+    c.pointer_noise_sigma = non_negative(array, "pointer_noise_sigma");
+  } else if (root.has("array")) {
+    root.fail("array", "only for an array that resolves azimuth (resolution.azimuth_cell_deg)");
+  }
+  if (c.resolution.resolves_azimuth()) {
+    if (root.has("monopulse")) root.fail("monopulse", "an array that resolves azimuth has beams: its noise is in `array`");
+  } else {
+    const auto mono = root.member("monopulse");
+    mono.expect_only({"pointer_noise_sigma"});
+    c.pointer_noise_sigma = non_negative(mono, "pointer_noise_sigma");
+  }
 
   const auto noise = root.member("measurement_noise");
   noise.expect_only({"range_sigma_at_threshold_m", "range_sigma_min_m", "range_rate_sigma_at_threshold_mps",

@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "common/amplitude_unit.hpp"
 #include "common/json_reader.hpp"
 #include "sensor/stationary_background.hpp"
 
@@ -23,11 +24,12 @@ enum class AmplitudeLawKind {
 
 struct AmplitudeLaw {
   AmplitudeLawKind kind = AmplitudeLawKind::paper_eq1;
+  AmplitudeUnit unit = AmplitudeUnit::snr_db;
   double reference_level_db = 26.5;        // paper eq. (1): level at R = 0
   double reference_slope_db_per_m = 0.75;  // paper eq. (1): fall per metre
   // Radar equation: SNR = snr_at_1m_for_1m2_db + sigma_dbsm - 10 n log10(R / 1 m) on boresight, where
   // a reflector of ERCS e stands for sigma_dbsm = reference_rcs_dbsm + 20 log10(e) (docs/amplitude.md)
-  // and n = range_exponent (4: P ~ 1/R^4).
+  // and n = range_exponent (4: P ~ 1/R^4; down to 0 for a range-compensated amplitude).
   double snr_at_1m_for_1m2_db = 0.0;
   double reference_rcs_dbsm = 0.0;
   double range_exponent = 4.0;
@@ -48,6 +50,10 @@ struct DetectionModel {
   // range/range-rate map: no stronger detection within 1.5 cells in both (the peak search of a
   // CFAR detector; docs/extended-objects.md). false: every cell above threshold (the paper's).
   bool local_maxima_only = false;
+  // An array that resolves azimuth (resolution.azimuth_cell_rad > 0) reports either every beam
+  // over the threshold, or in each range/range-rate cell only its strongest beam (one detection
+  // per range-Doppler cell, with the angle of that beam: the Astyx HiRes).
+  bool strongest_beam_per_cell = false;
 };
 
 struct AntennaGeometry {
@@ -62,6 +68,21 @@ struct AntennaGeometry {
 struct ResolutionCell {
   double range_cell_m = 0.30;
   double range_rate_cell_mps = 0.5;
+  // An imaging array's beam width: > 0, cells are range x range rate x azimuth and each cell's
+  // angle is its beam's (docs/imaging-radar.md); 0, the paper's range x range-rate cells with one
+  // monopulse angle each.
+  double azimuth_cell_rad = 0.0;
+  // The unambiguous range-rate interval [min, max): measured radial speeds are wrapped into it
+  // (Doppler aliasing); min == max: no aliasing.
+  double unambiguous_min_mps = 0.0, unambiguous_max_mps = 0.0;
+  bool aliases_range_rate() const { return unambiguous_max_mps > unambiguous_min_mps; }
+  bool resolves_azimuth() const { return azimuth_cell_rad > 0.0; }
+};
+
+// The angle of an array's beam cell: the amplitude-weighted azimuth of its members plus Gaussian
+// noise of this standard deviation (docs/imaging-radar.md).
+struct ArrayAngleNoise {
+  double azimuth_sigma_rad = 0.0;
 };
 
 struct MeasurementNoise {
@@ -103,6 +124,9 @@ struct ExtendedObjects {
   // ERCS of a piece of length l: this x the plane's ERCS x sqrt(l / 1 m) (power grows with l);
   // 0: no diffuse pieces (the paper's model).
   double diffuse_relative_ercs_per_sqrt_m = 0.0;
+  // At most this many pieces per face and cycle (a face spanning more cells is cut into this many
+  // longer pieces); an imaging radar of fine cells needs many (a car spans 60 cells of 7.5 cm).
+  int max_pieces_per_face = 16;
 };
 
 // What another object's box does to a line of sight it blocks (effects.occlusion). The paper's
@@ -129,7 +153,8 @@ struct SensorConfig {
   OcclusionConfig occlusion;
   AntennaGeometry antenna;
   ResolutionCell resolution;
-  double pointer_noise_sigma = 0.1;  // std. dev. of the complex pointer noise, eq. (8)
+  ArrayAngleNoise array;  // only for an array that resolves azimuth
+  double pointer_noise_sigma = 0.1;  // std. dev. of the complex pointer noise, eq. (8) (`monopulse` or `array`)
   MeasurementNoise noise;
   TrackerConfig tracker;
   ClutterConfig clutter;

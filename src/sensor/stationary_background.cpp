@@ -10,7 +10,7 @@
 namespace rcsim {
 namespace {
 
-constexpr double kMaxTargetsPerCycle = 500.0;  // Rng::poisson (Knuth) holds to about 700
+constexpr double kMaxTargetsPerCycle = 20000.0;  // an imaging radar reports thousands; schemas/limits.md
 constexpr std::size_t kMaxBins = 1000;
 
 std::vector<double> increasing_edges(const JsonField& f, std::string_view key, double scale) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace rcsim {
@@ -27,7 +28,9 @@ double reference_range_amplitude(const AmplitudeLaw& law, double range_m) {
 }
 
 bool has_detection_range_bound(const AmplitudeLaw& law) {
-  return law.kind == AmplitudeLawKind::radar_equation || law.reference_slope_db_per_m > 0.0;
+  // A range-compensated amplitude (exponent 0) does not fall with range: no bound.
+  if (law.kind == AmplitudeLawKind::radar_equation) return law.range_exponent > 0.0;
+  return law.reference_slope_db_per_m > 0.0;
 }
 
 double detection_range_bound_m(const AmplitudeLaw& law, double ercs, double headroom_db) {
@@ -36,6 +39,7 @@ double detection_range_bound_m(const AmplitudeLaw& law, double ercs, double head
       return (law.reference_level_db - law.detection_threshold_db + headroom_db + amplitude_to_db(ercs)) /
              law.reference_slope_db_per_m;  // eq. (1)
     case AmplitudeLawKind::radar_equation:
+      if (!(law.range_exponent > 0.0)) return std::numeric_limits<double>::infinity();  // no fall with range
       // R^n = 10^((level at 1 m + 20 log10 ERCS - threshold + headroom) / 10)
       return std::pow(db_to_power(reference_range_level_db(law, 1.0) - law.detection_threshold_db + headroom_db +
                                   amplitude_to_db(ercs)),
@@ -64,6 +68,7 @@ void compute_echoes(const AmplitudeLaw& law, const MonopulseAntenna& antenna, co
     e.sum_pointer = weight * h.sum;
     e.delta_pointer = weight * h.delta;
     e.amplitude = magnitude(e.sum_pointer);  // eqs. (2)-(3): A^phi = |H_sum|
+    e.azimuth_rad = t.azimuth_rad;  // an array that resolves azimuth forms its beams by it
     e.ideal_index = static_cast<int>(i);
   }
 }

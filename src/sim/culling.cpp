@@ -54,9 +54,10 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
       ++orders;
     }
   }
-  // Diffuse face pieces (visibility.hpp): at most kMaxDiffusePieces per plane, pieces of length
+  // Diffuse face pieces (visibility.hpp): at most max_pieces_per_face per plane, pieces of length
   // l_k summing to the chord L, each of ERCS r e sqrt(l_k): together at most r e sqrt(n L).
   const double diffuse = config.extended_objects.diffuse_relative_ercs_per_sqrt_m;
+  const double max_pieces = config.extended_objects.max_pieces_per_face;
   const auto diffuse_ercs_bound = [&](const PlaneReflector& p, double pieces) {
     return diffuse * p.ercs * std::sqrt(pieces * (p.radius_m * (p.u_end_O - p.u_start_O)).norm());
   };
@@ -69,10 +70,10 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
     echo_count += static_cast<double>(model.reflector_count());
     if (!(diffuse > 0.0)) continue;
     for (const auto& p : model.planes) {
-      ercs_sum += diffuse_ercs_bound(p, kMaxDiffusePieces);
+      ercs_sum += diffuse_ercs_bound(p, max_pieces);
       strongest_diffuse[i] = std::max(strongest_diffuse[i], diffuse_ercs_bound(p, 1.0));
     }
-    echo_count += static_cast<double>(kMaxDiffusePieces * model.planes.size());
+    echo_count += max_pieces * static_cast<double>(model.planes.size());
   }
   ercs_sum *= copies_ercs_factor;
   echo_count *= orders;

@@ -108,7 +108,7 @@ void add_visible_targets(const SensorFrame& frame, const ObjectModel& model, con
   // docs/extended-objects.md: a piece of length l has ERCS relative x plane ERCS x sqrt(l / 1 m).
   for (std::size_t k = 0; k < model.planes.size(); ++k) {
     const PlaneReflector& plane = model.planes[k];
-    for_each_diffuse_piece(plane, p_OS_O, filter.diffuse_piece_range_m, [&](const Vec2& p_OT_O, double length_m) {
+    for_each_diffuse_piece(plane, p_OS_O, filter.diffuse_piece, [&](const Vec2& p_OT_O, double length_m) {
       add(to_world(p_OT_O), filter.diffuse_relative_ercs_per_sqrt_m * plane.ercs * std::sqrt(length_m), k,
           ReflectorKind::PlaneDiffuse);
     });

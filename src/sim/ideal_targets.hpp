@@ -5,6 +5,7 @@
 #include "scene/scene.hpp"
 #include "sim/culling.hpp"
 #include "sim/stage_types.hpp"
+#include "sim/visibility.hpp"
 
 namespace rcsim {
 
@@ -30,7 +31,7 @@ struct IdealTargetFilter {
   std::vector<unsigned char>* may_occlude = nullptr;
   // The sensor's diffuse face pieces (ExtendedObjects; 0: none) and their range extent (its cell).
   double diffuse_relative_ercs_per_sqrt_m = 0.0;
-  double diffuse_piece_range_m = 1.0;
+  DiffusePieceSize diffuse_piece;
 };
 
 // Per reflection center of every object: range check, view-field check, visibility check;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/angles.hpp"
+
 namespace rcsim {
 
 void ResolutionCellBuffers::reserve(std::size_t echoes) {
@@ -40,6 +42,8 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
 
   const double half_range_m = 0.5 * cell.range_cell_m;
   const double half_rate_mps = 0.5 * cell.range_rate_cell_mps;
+  // An array that resolves azimuth: cells are range x range rate x azimuth (one beam wide).
+  const double half_azimuth_rad = cell.resolves_azimuth() ? 0.5 * cell.azimuth_cell_rad : kPi;
   // Gathers the echo at by_range[p] if it is free and within half a cell of the centre.
   const auto gather = [&](std::size_t p, const Echo& centre) {
     const int rank = by_range[p].rank;
@@ -47,7 +51,8 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
     if (echo < 0) return;
     const Echo& e = echoes[static_cast<std::size_t>(echo)];
     if (std::abs(e.range_m - centre.range_m) > half_range_m ||
-        std::abs(e.range_rate_mps - centre.range_rate_mps) > half_rate_mps) {
+        std::abs(e.range_rate_mps - centre.range_rate_mps) > half_rate_mps ||
+        std::abs(angle_difference_rad(e.azimuth_rad, centre.azimuth_rad)) > half_azimuth_rad) {
       return;
     }
     members.push_back(rank);
@@ -68,13 +73,14 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
     ResolutionCellSum c;
     c.strongest_ideal_index = centre.ideal_index;
     // Sums of A_n R_n and A_n v_n (amplitude times metres, times metres per second), eqs. (4)-(5).
-    double amplitude_range_sum_m = 0.0, amplitude_rate_sum_mps = 0.0;
+    double amplitude_range_sum_m = 0.0, amplitude_rate_sum_mps = 0.0, amplitude_azimuth_offset_sum_rad = 0.0;
     for (const int r : members) {
       const auto& rank = by_amplitude[static_cast<std::size_t>(r)];
       const Echo& e = echoes[static_cast<std::size_t>(rank.echo)];
       c.amplitude_upper += e.amplitude;
       amplitude_range_sum_m += e.amplitude * e.range_m;
       amplitude_rate_sum_mps += e.amplitude * e.range_rate_mps;
+      amplitude_azimuth_offset_sum_rad += e.amplitude * angle_difference_rad(e.azimuth_rad, centre.azimuth_rad);
       c.sum_pointer += e.sum_pointer;
       c.delta_pointer += e.delta_pointer;
       ++c.member_count;
@@ -88,6 +94,7 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
     if (!enters) continue;
     c.range_m = amplitude_range_sum_m / c.amplitude_upper;         // eqs. (4)-(5)
     c.range_rate_mps = amplitude_rate_sum_mps / c.amplitude_upper;
+    c.azimuth_rad = wrap_angle_rad(centre.azimuth_rad + amplitude_azimuth_offset_sum_rad / c.amplitude_upper);
     out.push_back(c);
   }
 }

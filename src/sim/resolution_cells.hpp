@@ -1,5 +1,6 @@
 #pragma once
-// Limited resolution (paper III-C): clustering of echoes into range x range-rate cells.
+// Limited resolution (paper III-C): clustering of echoes into range x range-rate cells (and, for an
+// array that resolves azimuth, x azimuth: its beams).
 #include <vector>
 
 #include "sensor/sensor_config.hpp"
@@ -26,11 +27,12 @@ struct ResolutionCellBuffers {
   void reserve(std::size_t echoes);
 };
 
-// Strongest echo first: it defines the centre of a cell of range_cell_m x range_rate_cell_mps;
-// every remaining echo within half a cell of that centre in both dimensions joins it. The cell's
+// Strongest echo first: it defines the centre of a cell of range_cell_m x range_rate_cell_mps (x
+// azimuth_cell_rad where the array resolves azimuth); every remaining echo within half a cell of
+// that centre in each dimension joins it. The cell's
 // upper amplitude bound A_cell^u is the sum of its members' amplitudes; a cell whose bound is
-// below `threshold_amplitude` yields no entry. Range and range rate are the amplitude-weighted
-// means, eqs. (4)-(5); the sum and delta pointers add up, strongest member first. Ties in
+// below `threshold_amplitude` yields no entry. Range, range rate and azimuth are the
+// amplitude-weighted means, eqs. (4)-(5); the sum and delta pointers add up, strongest member first. Ties in
 // amplitude go to the lower ideal index. The echoes stay where they are: echoes[i] still belongs to
 // ideal target i afterwards. With `cell_of_echo`, (*cell_of_echo)[i] is the index in `out` of the
 // cell echo i joined, or -1 when its cell yielded no entry (the harness's merge cells read it).

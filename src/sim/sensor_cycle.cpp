@@ -4,7 +4,9 @@
 
 #include "sim/amplitude.hpp"
 #include "sim/background.hpp"
+#include "sim/beamforming.hpp"
 #include "sim/detection.hpp"
+#include "sim/doppler_aliasing.hpp"
 #include "sim/effects.hpp"
 #include "sim/measurement_noise.hpp"
 #include "sim/monopulse.hpp"
@@ -29,9 +31,11 @@ SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflect
                                    std::uint64_t stream)
     : tracker(model.mount.config.tracker, cycle_time_s), rng(seed, stream) {
   // Every reflector with its multibounce copies, and with diffuse face pieces up to
-  // kMaxDiffusePieces more per reflector (a bound: only planes have them).
+  // max_pieces_per_face more per reflector (a bound: only planes have them).
   const SensorConfig& config = model.mount.config;
-  const std::size_t pieces = config.extended_objects.diffuse_relative_ercs_per_sqrt_m > 0.0 ? kMaxDiffusePieces : 0;
+  const std::size_t pieces = config.extended_objects.diffuse_relative_ercs_per_sqrt_m > 0.0
+                                 ? static_cast<std::size_t>(config.extended_objects.max_pieces_per_face)
+                                 : 0;
   const std::size_t capacity = reflector_capacity * (1 + pieces) * static_cast<std::size_t>(config.multibounce.max_order);
   // Clutter and background: a Poisson draw exceeds four times its mean + 64 about never.
   const auto drawn = static_cast<std::size_t>(4.0 * (config.clutter.false_detections_per_cycle + config.background.targets_per_cycle)) + 64;
@@ -66,7 +70,8 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   filter.culling = model.options.culling ? &model.culling : nullptr;
   filter.may_occlude = &state.may_occlude;
   filter.diffuse_relative_ercs_per_sqrt_m = config.extended_objects.diffuse_relative_ercs_per_sqrt_m;
-  filter.diffuse_piece_range_m = config.resolution.range_cell_m;
+  filter.diffuse_piece = {config.resolution.range_cell_m, config.resolution.azimuth_cell_rad,
+                         config.extended_objects.max_pieces_per_face};
   compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.visited_indices, state.ideal,
                         filter);
   // ideal targets => those not hidden (or weakened) behind another object (only those near the view)
@@ -84,13 +89,19 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   // cells => cells whose RCS fluctuates from cycle to cycle (Swerling 1, 3)      (III-B, detection.hpp)
   if (rng != nullptr) apply_fluctuation(config.detection.fluctuation, *rng, state.cells);
   // cells => detections: pointer noise, monopulse angle, resulting amplitude    (eqs. (7)-(8))
-  if (model.options.fidelity == Fidelity::no_monopulse) {
+  //   (an array that resolves azimuth: each beam cell's own angle, docs/imaging-radar.md)
+  if (config.resolution.resolves_azimuth()) {
+    estimate_beam_angles(config.array.azimuth_sigma_rad, config.pointer_noise_sigma, state.cells, state.ideal, rng,
+                         state.detections);
+  } else if (model.options.fidelity == Fidelity::no_monopulse) {
     estimate_ideal_angles(model.options.angle_noise_sigma_rad, state.cells, state.ideal, rng, state.detections);
   } else {
     estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
   }
   // detections => the local maxima of the range/range-rate map (CFAR peak search) (detection.hpp)
   if (config.detection.local_maxima_only) keep_local_maxima(config.resolution, state.detections, state.local_maxima);
+  // detections => the strongest beam of each range-Doppler cell, where the radar reports one  (imaging-radar.md)
+  if (config.detection.strongest_beam_per_cell) keep_strongest_beam_per_cell(config.resolution, state.detections, state.beam_order);
   // detections => those whose measured amplitude passes the threshold           (III-B)
   apply_detection_threshold(config.amplitude.detection_threshold_db, state.detections);
   // detections => with range and range-rate noise of amplitude-dependent variance (III-A)
@@ -99,6 +110,8 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   if (model.effects.clutter && rng != nullptr) add_clutter(config, state.kinematics, *rng, state.detections);
   // detections => plus the fitted stationary background of the sensor's environment (VI)
   if (rng != nullptr) add_stationary_background(config.background, state.kinematics, *rng, state.detections);
+  // detections => radial speeds wrapped into the unambiguous interval (Doppler aliasing)   (imaging-radar.md)
+  alias_range_rates(config.resolution, state.detections);
   if (model.options.level == OutputLevel::detections) return;
   // detections => tracked target list, reported after four measurements         (III-E)
   //   (a sensor that reports its detections, or fidelity no_tracking: the detections as they are)

@@ -54,6 +54,7 @@ struct SensorCycleState {
   ResolutionCells cells;
   Detections detections;
   LocalMaximaBuffers local_maxima;
+  std::vector<std::size_t> beam_order;  // keep_strongest_beam_per_cell
   ReportedTargets reported;
   Tracker tracker;
   Rng rng;

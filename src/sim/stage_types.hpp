@@ -42,6 +42,7 @@ using IdealTargets = std::vector<IdealTarget>;
 struct Echo {
   double range_m = 0.0;
   double range_rate_mps = 0.0;
+  double azimuth_rad = 0.0;
   double amplitude = 0.0;  // A_n, linear, eq. (3)
   std::complex<double> sum_pointer;
   std::complex<double> delta_pointer;
@@ -53,6 +54,7 @@ using Echoes = std::vector<Echo>;
 struct ResolutionCellSum {
   double range_m = 0.0;          // eq. (4)
   double range_rate_mps = 0.0;   // eq. (4)
+  double azimuth_rad = 0.0;      // eq. (4) applied to the azimuth: the beam's angle (imaging arrays)
   double amplitude_upper = 0.0;  // A_cell^u: sum of member amplitudes
   std::complex<double> sum_pointer;
   std::complex<double> delta_pointer;

@@ -16,17 +16,26 @@ namespace rcsim {
 // meets the arc; none if that line misses the sector or the sensor is inside the circle (Fig. 7).
 std::optional<Vec2> plane_reflection_point_O(const PlaneReflector& plane, const Vec2& p_OS_O);
 
-// At most this many diffuse pieces per face and cycle (a face spanning more range cells is cut
-// into this many longer pieces).
+// At most this many diffuse pieces per face and cycle by default (a face spanning more range cells
+// is cut into this many longer pieces); a profile may allow more (extended_objects.max_pieces_per_face).
 inline constexpr int kMaxDiffusePieces = 16;
+
+// How a face is cut into diffuse pieces: about one range cell each and, for an array that resolves
+// azimuth (piece_azimuth_rad > 0), about one beam each, at most max_pieces.
+struct DiffusePieceSize {
+  double piece_range_m = 1.0;
+  double piece_azimuth_rad = 0.0;
+  int max_pieces = kMaxDiffusePieces;
+};
 
 // The diffuse pieces of a plane reflector's face seen from p_OS_O (docs/extended-objects.md): the
 // chord between the arc's ends, cut into n equal pieces, n = the face's range extent seen from the
-// sensor over `piece_range_m` (rounded up, 1 to kMaxDiffusePieces), so that each piece spans about
-// one range cell. Calls visit(p_OT_O, piece_length_m) at each piece's centre. Nothing when the
-// sensor is not in front of the face (on the side of the arc's centre, or on the chord's line).
+// sensor over the piece's range (and, where given, its angular extent over the piece's azimuth,
+// whichever is more), rounded up, 1 to max_pieces, so that each piece spans about one cell. Calls
+// visit(p_OT_O, piece_length_m) at each piece's centre. Nothing when the sensor is not in front of
+// the face (on the side of the arc's centre, or on the chord's line).
 template <typename Visit>
-void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, double piece_range_m, Visit&& visit) {
+void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, const DiffusePieceSize& size, Visit&& visit) {
   const Vec2 a_O = plane.center_O + plane.radius_m * plane.u_start_O;
   const Vec2 b_O = plane.center_O + plane.radius_m * plane.u_end_O;
   const Vec2 mid_O = 0.5 * (a_O + b_O);
@@ -34,8 +43,14 @@ void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, dou
   // chord passes through the centre, so the chord's middle would not do).
   const Vec2 outward_O = plane.arc_point_O(plane.start_rad + 0.5 * plane.span_rad) - plane.center_O;
   if (!((p_OS_O - mid_O).dot(outward_O) > 0.0)) return;
-  const double range_extent_m = std::abs((p_OS_O - a_O).norm() - (p_OS_O - b_O).norm());
-  const int n = std::clamp(static_cast<int>(std::ceil(range_extent_m / piece_range_m)), 1, kMaxDiffusePieces);
+  const Vec2 p_SA_O = a_O - p_OS_O, p_SB_O = b_O - p_OS_O;
+  const double range_extent_m = std::abs(p_SA_O.norm() - p_SB_O.norm());
+  double cells = range_extent_m / size.piece_range_m;
+  if (size.piece_azimuth_rad > 0.0) {
+    const double angle_extent_rad = std::abs(std::atan2(p_SA_O.x() * p_SB_O.y() - p_SA_O.y() * p_SB_O.x(), p_SA_O.dot(p_SB_O)));
+    cells = std::max(cells, angle_extent_rad / size.piece_azimuth_rad);
+  }
+  const int n = std::clamp(static_cast<int>(std::ceil(cells)), 1, size.max_pieces);
   const double length_m = (b_O - a_O).norm() / n;
   for (int k = 0; k < n; ++k) visit(Vec2(a_O + ((k + 0.5) / n) * (b_O - a_O)), length_m);
 }

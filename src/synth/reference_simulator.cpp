@@ -130,8 +130,13 @@ Recording make_recording(const Scene& scene, const SynthConfig& design, std::uin
   for (std::size_t s = 0; s < scene.sensors.size(); ++s) {
     const MountedSensor& sensor = scene.sensors[s];
     const SynthConfig& config = simulator.sensor_config(s);
-    rec.sensors.push_back({sensor.id, sensor.config.name, sensor.X_VS.x_m, sensor.X_VS.y_m, sensor.X_VS.yaw_rad,
-                           config.reports_detections ? ReportedLevel::detections : ReportedLevel::tracks});
+    RecordingSensor& recorded = rec.sensors.emplace_back();
+    recorded.id = sensor.id;
+    recorded.type = sensor.config.name;
+    recorded.x_m = sensor.X_VS.x_m;
+    recorded.y_m = sensor.X_VS.y_m;
+    recorded.yaw_rad = sensor.X_VS.yaw_rad;
+    recorded.reports = config.reports_detections ? ReportedLevel::detections : ReportedLevel::tracks;
     const Derived derived = derive(config);
     signal_chains[sensor.id] = {{"carrier_hz", config.waveform.carrier_hz},
                                 {"bandwidth_hz", config.waveform.bandwidth_hz},

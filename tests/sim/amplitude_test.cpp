@@ -133,6 +133,24 @@ TEST(Amplitude, RadarEquationByHand) {
   EXPECT_TRUE(has_detection_range_bound(AmplitudeLaw{}));
 }
 
+TEST(Amplitude, ARangeCompensatedAmplitudeDoesNotFallWithRange) {
+  // The Astyx HiRes's Mag: range exponent 0, the level is the same at every range.
+  AmplitudeLaw law;
+  law.kind = AmplitudeLawKind::radar_equation;
+  law.snr_at_1m_for_1m2_db = 55.0;
+  law.reference_rcs_dbsm = -3.0;
+  law.range_exponent = 0.0;
+  law.detection_threshold_db = 45.0;
+  EXPECT_DOUBLE_EQ(reference_range_level_db(law, 1.0), 52.0);
+  EXPECT_DOUBLE_EQ(reference_range_level_db(law, 90.0), 52.0);
+  EXPECT_FALSE(has_detection_range_bound(law));
+  EXPECT_TRUE(std::isinf(detection_range_bound_m(law, 1.0)));
+  // Exponent 1.25: 12.5 dB per decade.
+  law.range_exponent = 1.25;
+  EXPECT_NEAR(reference_range_level_db(law, 100.0), 52.0 - 25.0, 1e-12);
+  EXPECT_NEAR(detection_range_bound_m(law, 1.0), std::pow(10.0, 7.0 / 12.5), 1e-9);  // 52 - 12.5 log10 R = 45
+}
+
 TEST(Amplitude, RadarEquationAtZeroRangeStaysFinite) {
   const AmplitudeLaw law = radar_equation_law();
   EXPECT_TRUE(std::isfinite(reference_range_level_db(law, 0.0)));
@@ -179,17 +197,17 @@ TEST(Amplitude, RangeExponentByHand) {
   EXPECT_NEAR(boresight_echo_db(law, 100.0, 2.0), 50.0 + 20.0 * std::log10(2.0), 1e-9);
 }
 
-TEST(Amplitude, RangeExponentIsOptionalAndRefusedOutsideOneToSix) {
+TEST(Amplitude, RangeExponentIsOptionalAndRefusedOutsideZeroToSix) {
   nlohmann::json doc = testing::builtin_sensor_json("srr24");
   ASSERT_FALSE(doc.is_null());
   doc["amplitude"] = {{"law", "radar_equation"}, {"snr_at_1m_for_1m2_db", 90.0}, {"reference_rcs_dbsm", 10.0},
                       {"detection_threshold_db", 14.0}};
   EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).amplitude.range_exponent, 4.0);  // absent: 1/R^4
-  for (const double n : {1.0, 2.53, 6.0}) {
+  for (const double n : {0.0, 0.5, 1.0, 2.53, 6.0}) {  // 0: a range-compensated amplitude
     doc["amplitude"]["range_exponent"] = n;
     EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).amplitude.range_exponent, n);
   }
-  for (const double n : {0.5, 7.0, 0.0, -4.0}) {
+  for (const double n : {-0.5, 7.0, -4.0}) {
     doc["amplitude"]["range_exponent"] = n;
     EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.range_exponent"), std::string::npos) << n << ": " << testing::sensor_config_error(doc);
   }

@@ -118,7 +118,7 @@ TEST(IdealTargets, DiffusePiecesByHand) {
   const FieldOfView wide{1.2, 0.2, 40.0};  // +-68.8 deg: the pieces lie at -40 .. -49 deg
   IdealTargetFilter filter;
   filter.diffuse_relative_ercs_per_sqrt_m = 0.1;
-  filter.diffuse_piece_range_m = 0.5;
+  filter.diffuse_piece.piece_range_m = 0.5;
   IdealTargets out;
   compute_ideal_targets(wide, SensorKinematics{}, w.objects, w.states, w.visited, out, filter);
   ASSERT_EQ(out.size(), 6u);
@@ -156,7 +156,7 @@ TEST(IdealTargets, WithoutDiffusePiecesTheOutputIsThePapers) {
   IdealTargets before, zero, diffuse;
   compute_ideal_targets(kFov, SensorKinematics{}, w.objects, w.states, w.visited, before);
   IdealTargetFilter filter;
-  filter.diffuse_piece_range_m = 0.3;
+  filter.diffuse_piece.piece_range_m = 0.3;
   filter.diffuse_relative_ercs_per_sqrt_m = 0.0;
   compute_ideal_targets(kFov, SensorKinematics{}, w.objects, w.states, w.visited, zero, filter);
   const auto same = [](const IdealTarget& a, const IdealTarget& b) {

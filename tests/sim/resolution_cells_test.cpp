@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "common/rng.hpp"
@@ -21,6 +22,30 @@ Echo echo(double range_m, double rate_mps, double amplitude, int index) {
   e.delta_pointer = 0.1 * amplitude;
   e.ideal_index = index;
   return e;
+}
+
+TEST(ResolutionCells, AnArrayThatResolvesAzimuthKeepsEchoesABeamApart) {
+  // Same range and range rate; azimuths 0, 0.4 deg and 2 deg; 1-deg beams.
+  Echoes echoes{echo(20.0, 0.0, 3.0, 0), echo(20.0, 0.0, 1.0, 1), echo(20.0, 0.0, 2.0, 2)};
+  echoes[0].azimuth_rad = 0.0;
+  echoes[1].azimuth_rad = 0.4 * std::numbers::pi / 180.0;
+  echoes[2].azimuth_rad = 2.0 * std::numbers::pi / 180.0;
+  ResolutionCell beams;
+  beams.azimuth_cell_rad = std::numbers::pi / 180.0;
+  ResolutionCellBuffers buffers;
+  ResolutionCells cells;
+  form_resolution_cells(beams, 0.5, echoes, buffers, cells);
+  ASSERT_EQ(cells.size(), 2u);
+  // The strongest beam holds echoes 0 and 1: azimuth (3 * 0 + 1 * 0.4) / 4 = 0.1 deg (eq. (4) on the angle).
+  EXPECT_EQ(cells[0].member_count, 2);
+  EXPECT_NEAR(cells[0].azimuth_rad, 0.1 * std::numbers::pi / 180.0, 1e-15);
+  EXPECT_DOUBLE_EQ(cells[0].amplitude_upper, 4.0);
+  EXPECT_EQ(cells[1].member_count, 1);
+  EXPECT_NEAR(cells[1].azimuth_rad, 2.0 * std::numbers::pi / 180.0, 1e-15);
+  // The paper's cells (no beams) merge all three.
+  form_resolution_cells(ResolutionCell{}, 0.5, echoes, buffers, cells);
+  ASSERT_EQ(cells.size(), 1u);
+  EXPECT_EQ(cells[0].member_count, 3);
 }
 
 TEST(ResolutionCells, MembersMergeWithAmplitudeWeights) {

@@ -128,7 +128,7 @@ TEST(Visibility, ScaledModelKeepsChordEndsAndApex) {
 // The diffuse pieces of a face (for_each_diffuse_piece) as (centre, length) pairs.
 std::vector<std::pair<Vec2, double>> diffuse_pieces(const PlaneReflector& plane, const Vec2& p_OS_O, double piece_range_m) {
   std::vector<std::pair<Vec2, double>> pieces;
-  for_each_diffuse_piece(plane, p_OS_O, piece_range_m, [&](const Vec2& p_OT_O, double length_m) {
+  for_each_diffuse_piece(plane, p_OS_O, DiffusePieceSize{piece_range_m}, [&](const Vec2& p_OT_O, double length_m) {
     pieces.emplace_back(p_OT_O, length_m);
   });
   return pieces;
@@ -190,6 +190,23 @@ TEST(DiffusePieces, AtMostTheMaximumNumberOfPieces) {
   EXPECT_EQ(kMaxDiffusePieces, 16);
   for (const auto& [p, length_m] : pieces) EXPECT_NEAR(length_m, 4.0 / 16.0, 1e-9);
   EXPECT_NEAR(std::abs(pieces[0].first.x()), 2.0 - 0.125, 1e-9);
+}
+
+TEST(DiffusePieces, AnArrayThatResolvesAzimuthCutsABroadsideFaceIntoBeams) {
+  const PlaneReflector face = four_metre_face();  // chord (-2, 1) .. (2, 1)
+  // Broadside from (0, 11): no range extent, but the chord spans 2 atan(2 / 10) = 22.62 deg:
+  // with 1-deg beams ceil(22.62) = 23 pieces of 4/23 m; without beams one piece.
+  std::vector<double> lengths_m;
+  for_each_diffuse_piece(face, {0.0, 11.0}, DiffusePieceSize{0.5, deg_to_rad(1.0), 64},
+                         [&](const Vec2&, double length_m) { lengths_m.push_back(length_m); });
+  ASSERT_EQ(lengths_m.size(), 23u);
+  EXPECT_NEAR(lengths_m[0], 4.0 / 23.0, 1e-12);
+  EXPECT_EQ(diffuse_pieces(face, {0.0, 11.0}, 0.5).size(), 1u);
+  // A profile's own maximum: 16 pieces of 0.25 m.
+  lengths_m.clear();
+  for_each_diffuse_piece(face, {0.0, 11.0}, DiffusePieceSize{0.5, deg_to_rad(1.0), 16},
+                         [&](const Vec2&, double length_m) { lengths_m.push_back(length_m); });
+  EXPECT_EQ(lengths_m.size(), 16u);
 }
 
 TEST(DiffusePieces, NothingFromBehindTheFace) {

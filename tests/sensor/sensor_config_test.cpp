@@ -1,0 +1,68 @@
+// The imaging-radar fields of an rcsim-sensor file (schemas/sensor-config.md): read, and refused
+// where they contradict each other, naming the field.
+#include "sensor/sensor_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "sensor_json.hpp"
+
+namespace rcsim {
+namespace {
+
+TEST(SensorConfigImaging, TheAstyxProfileIsAnArrayThatResolvesAzimuth) {
+  const SensorConfig c = builtin_sensor_config("astyx_hires");
+  EXPECT_TRUE(c.resolution.resolves_azimuth());
+  EXPECT_NEAR(c.resolution.azimuth_cell_rad, std::numbers::pi / 180.0, 1e-15);
+  EXPECT_TRUE(c.resolution.aliases_range_rate());
+  EXPECT_DOUBLE_EQ(c.resolution.unambiguous_min_mps, -5.1562);
+  EXPECT_DOUBLE_EQ(c.resolution.unambiguous_max_mps, 5.2374);
+  EXPECT_TRUE(c.detection.strongest_beam_per_cell);
+  EXPECT_EQ(c.amplitude.unit, AmplitudeUnit::relative_db);
+  EXPECT_EQ(c.extended_objects.max_pieces_per_face, 128);
+  EXPECT_GT(c.background.targets_per_cycle, 1000.0);  // more than the Knuth Poisson draw held
+  // The paper's sensor is none of that.
+  const SensorConfig srr24 = builtin_sensor_config("srr24");
+  EXPECT_FALSE(srr24.resolution.resolves_azimuth());
+  EXPECT_FALSE(srr24.resolution.aliases_range_rate());
+  EXPECT_EQ(srr24.amplitude.unit, AmplitudeUnit::snr_db);
+  EXPECT_EQ(srr24.extended_objects.max_pieces_per_face, 16);
+}
+
+TEST(SensorConfigImaging, ContradictionsAreRefusedNamingTheField) {
+  const nlohmann::json astyx = testing::builtin_sensor_json("astyx_hires");
+  ASSERT_FALSE(astyx.is_null());
+  EXPECT_EQ(testing::sensor_config_error(astyx), "");
+
+  auto doc = astyx;
+  doc["resolution"].erase("azimuth_cell_deg");  // beams reported without beams
+  EXPECT_NE(testing::sensor_config_error(doc).find("detection.reported_beams"), std::string::npos);
+  doc = astyx;
+  doc["monopulse"] = {{"pointer_noise_sigma", 0.1}};  // an array has no monopulse
+  EXPECT_NE(testing::sensor_config_error(doc).find("monopulse"), std::string::npos);
+  doc = astyx;
+  doc.erase("array");
+  EXPECT_NE(testing::sensor_config_error(doc).find("array"), std::string::npos);
+  doc = astyx;
+  doc["resolution"]["unambiguous_range_rate_mps"] = {1.0, 5.0};  // 0 must lie inside
+  EXPECT_NE(testing::sensor_config_error(doc).find("resolution.unambiguous_range_rate_mps"), std::string::npos);
+  doc["resolution"]["unambiguous_range_rate_mps"] = {-5.0};
+  EXPECT_NE(testing::sensor_config_error(doc).find("two numbers"), std::string::npos);
+  doc = astyx;
+  doc["amplitude"]["range_exponent"] = -0.5;
+  EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.range_exponent"), std::string::npos);
+  doc = astyx;
+  doc["amplitude"]["unit"] = "mag";
+  EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.unit"), std::string::npos);
+  doc = astyx;
+  doc["extended_objects"]["max_pieces_per_face"] = 1000;
+  EXPECT_NE(testing::sensor_config_error(doc).find("extended_objects.max_pieces_per_face"), std::string::npos);
+
+  auto srr24 = testing::builtin_sensor_json("srr24");
+  srr24["array"] = {{"azimuth_sigma_deg", 0.1}};  // an array section without beams
+  EXPECT_NE(testing::sensor_config_error(srr24).find("array"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rcsim
