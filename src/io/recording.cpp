@@ -1,6 +1,9 @@
-#include <algorithm>
-#include <stdexcept>
 #include "io/recording.hpp"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <stdexcept>
 
 #include <cerrno>
 #include <cmath>
@@ -25,26 +28,104 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Version 3's limits (schemas/recording.md): an object's attributes are a flat record for reports,
+// not a second data file; a range-rate interval is a radar's unambiguous Doppler span.
+constexpr std::size_t kMaxAttributes = 32;
+constexpr std::size_t kMaxAttributeText_bytes = 256;
+constexpr double kMaxRangeRateIntervalWidth_mps = 2.0 * limits::kMaxSpeed_mps;
+
+// What is wrong with an object's attributes, if anything: a flat object of at most 32 members
+// whose values are strings (at most 256 bytes, one line) or finite numbers. `where` receives the
+// member's name when one is at fault.
+std::optional<std::string> attributes_problem(const nlohmann::json& attributes, std::string& where) {
+  if (!attributes.is_object()) return "must be an object of strings and numbers";
+  if (attributes.size() > kMaxAttributes) {
+    return fmt::format("{} members exceed the limit of {}", attributes.size(), kMaxAttributes);
+  }
+  for (const auto& [key, value] : attributes.items()) {
+    where = key;
+    if (key.empty() || key.size() > kMaxAttributeText_bytes) {
+      return fmt::format("a name must hold 1 to {} bytes", kMaxAttributeText_bytes);
+    }
+    if (const auto bad = find_control_character(key)) return "the name holds " + *bad;
+    if (value.is_string()) {
+      const auto& text = value.get_ref<const std::string&>();
+      if (text.size() > kMaxAttributeText_bytes) {
+        return fmt::format("a string of {} bytes exceeds the limit of {} bytes", text.size(), kMaxAttributeText_bytes);
+      }
+      if (const auto bad = find_control_character(text)) return "the string holds " + *bad;
+    } else if (value.is_number()) {
+      if (!std::isfinite(value.get<double>())) return "must be finite";
+    } else {
+      return std::string("must be a string or a number, got ") + value.type_name() +
+             (value.is_structured() ? " (attributes do not nest)" : "");
+    }
+  }
+  where.clear();
+  return std::nullopt;
+}
+
+// What is wrong with a range-rate interval, if anything: min < 0 < max, at most 2000 m/s wide.
+std::optional<std::string> interval_problem(const RangeRateInterval& interval) {
+  if (!std::isfinite(interval.min_mps) || !std::isfinite(interval.max_mps)) return "[min, max] must be finite";
+  if (!(interval.min_mps < 0.0 && interval.max_mps > 0.0)) {
+    return fmt::format("[{}, {}]: needs min < 0 < max (m/s)", interval.min_mps, interval.max_mps);
+  }
+  if (interval.max_mps - interval.min_mps > kMaxRangeRateIntervalWidth_mps) {
+    return fmt::format("[{}, {}] is wider than the limit of {} m/s", interval.min_mps, interval.max_mps,
+                       kMaxRangeRateIntervalWidth_mps);
+  }
+  return std::nullopt;
+}
+
+// A choice among words: the index of `text` in `words`, else the field refused listing them.
+template <std::size_t N>
+std::size_t one_of(const JsonField& field, std::string_view key, const std::array<std::string_view, N>& words) {
+  const std::string text = field.string(key);
+  for (std::size_t i = 0; i < N; ++i) {
+    if (text == words[i]) return i;
+  }
+  std::string expected;
+  for (const auto& w : words) expected += (expected.empty() ? "\"" : "\" or \"") + std::string(w);
+  field.fail(key, "must be " + expected + "\", got \"" + text + "\"");
+}
+
+constexpr std::array<std::string_view, 2> kTimelineWords{"drive", "snapshots"};
+constexpr std::array<std::string_view, 2> kAmplitudeUnitWords{"snr_db", "relative_db"};
+
+// A field of a later version than the file declares is refused by name (a reader of that
+// version would ignore nothing, and neither does this one).
+void refuse_newer_fields(const JsonField& field, int version, int since, std::initializer_list<std::string_view> keys) {
+  if (version >= since) return;
+  for (const std::string_view key : keys) {
+    if (field.has(key)) {
+      field.fail(key, fmt::format("is a version {} field, but the recording says version {}", since, version));
+    }
+  }
+}
+
 void read_header(Recording& rec, const fs::path& path) {  // recording.json
   const std::string file = path.string();
   const nlohmann::json json = parse_json_text(read_text_file(path), file);
   const JsonField root(json, file, "");
-  const int version = root.expect_format_versions("rcsim-recording", 1, 2);
-  root.expect_only({"format", "version", "name", "description", "cycle_time_s", "sensors", "objects", "source"});
+  const int version = root.expect_format_versions("rcsim-recording", 1, 3);
+  refuse_newer_fields(root, version, 3, {"timeline", "ego_motion_known"});
+  root.expect_only({"format", "version", "name", "description", "cycle_time_s", "timeline", "ego_motion_known", "sensors",
+                    "objects", "source"});
   rec.name = root.string("name");
   if (root.has("description")) rec.description = root.string("description");
   rec.cycle_time_s = root.number_within("cycle_time_s", 0.0, limits::kMaxCycleTime_s, "s");
   require_positive(root, "cycle_time_s", rec.cycle_time_s);
+  if (root.has("timeline")) rec.timeline = static_cast<Timeline>(one_of(root, "timeline", kTimelineWords));
+  rec.ego_motion_known = root.boolean_or("ego_motion_known", true);
   if (const auto source = root.optional_member("source")) {
     if (!source->json().is_object()) root.fail("source", "must be an object");
     rec.source = source->json();
   }
   for (const JsonField& s : root.array("sensors")) {
-    if (version >= 2) {
-      s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad", "reports"});
-    } else {
-      s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad"});
-    }
+    refuse_newer_fields(s, version, 2, {"reports"});
+    refuse_newer_fields(s, version, 3, {"amplitude_unit", "range_rate_interval_mps"});
+    s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad", "reports", "amplitude_unit", "range_rate_interval_mps"});
     using namespace limits;
     RecordingSensor sensor{s.string("id"), s.string("type"),
                            s.number_within("x_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"),
@@ -58,17 +139,38 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
         s.fail("reports", "must be \"tracks\" or \"detections\", got \"" + reports + "\"");
       }
     }
+    if (s.has("amplitude_unit")) {
+      sensor.amplitude_unit = static_cast<AmplitudeUnit>(one_of(s, "amplitude_unit", kAmplitudeUnitWords));
+    }
+    if (s.has("range_rate_interval_mps")) {
+      const std::vector<JsonField> bounds = s.array("range_rate_interval_mps");
+      if (bounds.size() != 2 || !bounds[0].json().is_number() || !bounds[1].json().is_number()) {
+        s.fail("range_rate_interval_mps", "must be [min, max], two numbers in m/s");
+      }
+      const RangeRateInterval interval{bounds[0].json().get<double>(), bounds[1].json().get<double>()};
+      if (const auto problem = interval_problem(interval)) s.fail("range_rate_interval_mps", *problem);
+      sensor.range_rate_interval_mps = interval;
+    }
     if (sensor.id.empty()) s.fail("id", "must not be empty");
     if (rec.sensor_index(sensor.id) >= 0) s.fail("id", fmt::format("sensor '{}' is listed twice", sensor.id));
     rec.sensors.push_back(std::move(sensor));
   }
   if (rec.sensors.empty()) root.fail("sensors", "a recording needs at least one sensor");
   for (const JsonField& o : root.array("objects")) {
-    o.expect_only({"id", "class", "length_m", "width_m"});
+    refuse_newer_fields(o, version, 3, {"attributes"});
+    o.expect_only({"id", "class", "length_m", "width_m", "attributes"});
     RecordingObject object{o.string("id"), o.string("class"), o.number_within("length_m", 0.0, limits::kMaxSize_m, "m"),
                            o.number_within("width_m", 0.0, limits::kMaxSize_m, "m")};
     require_positive(o, "length_m", object.length_m);
     require_positive(o, "width_m", object.width_m);
+    if (o.has("attributes")) {
+      const nlohmann::json& attributes = o.json().at("attributes");
+      std::string member;
+      if (const auto problem = attributes_problem(attributes, member)) {
+        o.fail(member.empty() ? std::string("attributes") : "attributes." + member, *problem);
+      }
+      object.attributes = attributes;
+    }
     if (object.id.empty()) o.fail("id", "must not be empty");
     for (const RecordingObject& other : rec.objects) {
       if (other.id == object.id) o.fail("id", fmt::format("object '{}' is listed twice", object.id));
@@ -93,23 +195,49 @@ void write_file(const fs::path& path, const std::string& text) {
   ::close(fd);
 }
 
+// Whether a version 3 field differs from its default (then the recording is written as version 3).
+bool uses_version_3(const Recording& rec) {
+  if (rec.timeline != Timeline::drive || !rec.ego_motion_known) return true;
+  for (const auto& s : rec.sensors) {
+    if (s.amplitude_unit != AmplitudeUnit::snr_db || s.range_rate_interval_mps) return true;
+  }
+  for (const auto& o : rec.objects) {
+    if (!o.attributes.is_object() || !o.attributes.empty()) return true;
+  }
+  return false;
+}
+
 std::string header_text(const Recording& rec) {
   nlohmann::ordered_json json;
-  // Version 2 only where a version 2 field is used, so that version 1 recordings are rewritten as they were.
-  const bool v2 = !rec.all_sensors_report(ReportedLevel::tracks);
+  // The lowest version that holds the fields used, so that version 1 and 2 recordings are
+  // rewritten byte for byte as they were: 3 where a version 3 field differs from its default, 2
+  // where a sensor reports detections, else 1.
+  const int version = uses_version_3(rec) ? 3 : !rec.all_sensors_report(ReportedLevel::tracks) ? 2 : 1;
   json["format"] = "rcsim-recording";
-  json["version"] = v2 ? 2 : 1;
+  json["version"] = version;
   json["name"] = rec.name;
   if (!rec.description.empty()) json["description"] = rec.description;
   json["cycle_time_s"] = rec.cycle_time_s;
+  if (version >= 3) {
+    json["timeline"] = std::string(kTimelineWords[static_cast<std::size_t>(rec.timeline)]);
+    json["ego_motion_known"] = rec.ego_motion_known;
+  }
   json["sensors"] = nlohmann::ordered_json::array();
   for (const auto& s : rec.sensors) {
     json["sensors"].push_back({{"id", s.id}, {"type", s.type}, {"x_m", s.x_m}, {"y_m", s.y_m}, {"yaw_rad", s.yaw_rad}});
-    if (v2) json["sensors"].back()["reports"] = s.reports == ReportedLevel::detections ? "detections" : "tracks";
+    auto& sensor = json["sensors"].back();
+    if (version >= 2) sensor["reports"] = s.reports == ReportedLevel::detections ? "detections" : "tracks";
+    if (version >= 3) {
+      sensor["amplitude_unit"] = std::string(kAmplitudeUnitWords[static_cast<std::size_t>(s.amplitude_unit)]);
+      if (s.range_rate_interval_mps) {
+        sensor["range_rate_interval_mps"] = {s.range_rate_interval_mps->min_mps, s.range_rate_interval_mps->max_mps};
+      }
+    }
   }
   json["objects"] = nlohmann::ordered_json::array();
   for (const auto& o : rec.objects) {
     json["objects"].push_back({{"id", o.id}, {"class", o.object_class}, {"length_m", o.length_m}, {"width_m", o.width_m}});
+    if (version >= 3 && !o.attributes.empty()) json["objects"].back()["attributes"] = o.attributes;
   }
   if (!rec.source.empty()) json["source"] = rec.source;
   return json.dump(2) + "\n";
@@ -195,6 +323,20 @@ void write_recording(const fs::path& dir, const Recording& rec, const std::map<s
   for (const auto& id : ids_of(rec)) {
     if (const auto bad = find_control_character(id)) {
       throw std::invalid_argument(fmt::format("the id '{}' holds {}: a recording's ids are one line", id, *bad));
+    }
+  }
+  // Version 3's fields as the reader takes them: what it could not read back is not written.
+  for (const auto& s : rec.sensors) {
+    if (!s.range_rate_interval_mps) continue;
+    if (const auto problem = interval_problem(*s.range_rate_interval_mps)) {
+      throw std::invalid_argument(fmt::format("sensor '{}': range_rate_interval_mps {}", s.id, *problem));
+    }
+  }
+  for (const auto& o : rec.objects) {
+    std::string member;
+    if (const auto problem = attributes_problem(o.attributes, member)) {
+      throw std::invalid_argument(
+          fmt::format("object '{}': attributes{}{}: {}", o.id, member.empty() ? "" : ".", member, *problem));
     }
   }
   const fs::path temp = parent / fmt::format(".{}.tmp.{}", name.string(), ::getpid());
