@@ -19,6 +19,10 @@ inline const std::filesystem::path kBundledRecordings = std::filesystem::path(RC
 // need it skip, saying so, where it is absent.
 inline const std::filesystem::path kAimotiveRaw =
     std::filesystem::path(RCSIM_SOURCE_DIR) / ".." / "shared" / "realdata" / "aimotive_highway_night" / "raw";
+// The Astyx HiRes2019 frames (../shared/realdata/astyx_hires2019/raw: dataset_astyx_hires2019/ and
+// dataset_astyx_demo/; CC BY-NC-SA 4.0, never in the repository): tests skip, saying so, without it.
+inline const std::filesystem::path kAstyxRaw =
+    std::filesystem::path(RCSIM_SOURCE_DIR) / ".." / "shared" / "realdata" / "astyx_hires2019" / "raw";
 
 inline const ModelLibrary& library() {
   static const ModelLibrary lib = ModelLibrary::builtin();

@@ -464,6 +464,11 @@ nlohmann::json choose_ego(const fs::path& sequence, const DatasetImportOptions& 
 }  // namespace
 
 DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOptions& options) {
+  if (!options.frames.empty()) {
+    throw InputError("--frames", "",
+                     "an aiMotive sequence is one drive and is imported whole: --frames chooses frames of a dataset of "
+                     "single frames (--from astyx)");
+  }
   const fs::path sequence = aimotive::find_sequence(raw_dir);
   const std::vector<RadarMount> mounts = aimotive::read_radar_mounts(sequence);
   const std::vector<Keyframe> frames = aimotive::list_keyframes(sequence);

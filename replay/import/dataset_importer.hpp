@@ -23,7 +23,22 @@ struct DatasetImportOptions {
   // An ego log in ego.csv's columns on the importer's clock (docs/importers.md); empty: the
   // importer uses the dataset's own ego log or, where it has none, estimates the ego motion.
   std::filesystem::path ego_log;
+  // --frames: which frames of a dataset of single frames to import, by their number in the
+  // dataset ("0-199", "0,4", "0-9,20"; parse_frame_list); empty: all. Only importers of such
+  // datasets take it (astyx); the others refuse it.
+  std::string frames = {};
 };
+
+// One item of a --frames list: a frame number (first == last) or a range first-last.
+struct FrameRange {
+  long long first = 0, last = 0;
+};
+
+// A --frames list, as written: comma-separated whole numbers >= 0 and ranges A-B (A <= B), e.g.
+// "0-199", "0,4", "0-9,20"; an InputError naming --frames otherwise (empty items, signs, spaces,
+// a range backwards, a number beyond 10^9). Whether the frames exist is the importer's to check,
+// item by item, so that a range is never expanded beyond the dataset.
+std::vector<FrameRange> parse_frame_list(std::string_view list);
 
 struct DatasetImporter {
   std::string_view name;         // the value of --from

@@ -1,5 +1,5 @@
 // rcsim import RECORDING_DIR -o SCENE.json: a scene from a recording's ego log and annotated boxes.
-// rcsim import --from DATASET RAW_DIR -o RECORDING_DIR: a recording from a real dataset's layout.
+// rcsim import --from DATASET RAW_DIR -o RECORDING_DIR [--frames LIST]: a recording from a real dataset's layout.
 #include <fmt/format.h>
 #include <iostream>
 
@@ -34,6 +34,7 @@ void add_import_command(CLI::App& app) {
     std::string output;
     std::string dataset;
     std::string ego_log;
+    std::string frames;
     ImportArgs import;
   };
   auto args = std::make_shared<Args>();
@@ -51,15 +52,20 @@ void add_import_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output,
                   "scene file to write (rcsim-scene); with --from, the recording directory to write")
       ->required();
-  cmd->add_option("--from", args->dataset, "import a real dataset (docs/importers.md):" + datasets);
+  auto* from = cmd->add_option("--from", args->dataset, "import a real dataset (docs/importers.md):" + datasets);
   cmd->add_option("--ego-log", args->ego_log,
                   "with --from: the ego log to use, in ego.csv's columns (t_s from the first keyframe, x_m, y_m, "
                   "yaw_rad, speed_mps, yaw_rate_radps); without it the ego motion is estimated from the Doppler")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--frames", args->frames,
+                  "with --from astyx: the frames to import by their number in the dataset, e.g. 0-199, 200-399, 0,4 "
+                  "or 0-9,20 (default: all); a fit set and a held-out set are two imports")
+      ->type_name("LIST")
+      ->needs(from);
   add_import_options(*cmd, args->import);
   cmd->callback([args] {
     if (!args->dataset.empty()) {
-      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log});
+      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log, args->frames});
       return;
     }
     const Recording recording = read_recording(args->input_dir);
