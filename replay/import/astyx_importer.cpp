@@ -343,6 +343,12 @@ Dataset find_dataset(const fs::path& raw_dir) {
                        fmt::format("holds {} Astyx dataset{}: give one of them as RAW_DIR, {} (one recording each)",
                                    below.size(), below.size() == 1 ? "" : "s", quoted_paths(below)));
     }
+    fs::path absolute = fs::absolute(raw_dir).lexically_normal();
+    if (absolute.filename().empty()) absolute = absolute.parent_path();  // "DIR/": the trailing separator
+    if (const fs::path parent = absolute.parent_path(); listing_in(parent)) {
+      throw InputError(raw_dir.string(), "",
+                       fmt::format("a folder of the Astyx dataset {}: give the dataset directory itself", parent.string()));
+    }
     throw InputError(raw_dir.string(), "",
                      "no Astyx dataset here (a directory with dataset.json or dataset_info.json beside radar_6455/ or "
                      "radar_hires1/, groundtruth_obj3d/ and calibration/)");

@@ -70,6 +70,10 @@ TEST_F(ImportCli, TheAstyxParentDirectoryIsRefusedNamingBothDatasets) {
   const auto typo = refused("--from astyx " + (raw / "dataset_astyx_hires2109").string());
   EXPECT_NE(typo.output.find("no such directory; the Astyx datasets beside it:"), std::string::npos) << typo.output;
   EXPECT_NE(typo.output.find("dataset_astyx_hires2019"), std::string::npos) << typo.output;
+  // A folder of a dataset: the dataset named.
+  const auto folder = refused("--from astyx " + (raw / "dataset_astyx_demo" / "radar_hires1").string() + "/");
+  EXPECT_NE(folder.output.find("a folder of the Astyx dataset " + (raw / "dataset_astyx_demo").string()), std::string::npos)
+      << folder.output;
   // A frame the dataset does not hold.
   const auto frame = refused("--from astyx " + (raw / "dataset_astyx_demo").string() + " --frames 0-5");
   EXPECT_NE(frame.output.find("rcsim: error: --frames: frame 5 is not in"), std::string::npos) << frame.output;
