@@ -27,9 +27,9 @@ void ObjectFigures::add_cycle(const CycleComparison& cycle, const std::vector<me
       ++c->in_view;
       c->detected_recorded += recorded_[o] > 0;
       c->detected_simulated += simulated_[o] > 0;
+      c->targets_recorded += recorded_[o];
+      c->targets_simulated += simulated_[o];
     }
-    f.targets_recorded += recorded_[o];
-    f.targets_simulated += simulated_[o];
   }
 }
 
@@ -39,13 +39,13 @@ void ObjectFigures::finish(ReplaySummary& summary) const {
     if (f.all.in_view == 0) continue;
     const int sensor = static_cast<int>(i / objects_), object = static_cast<int>(i % objects_);
     summary.objects.push_back({sensor, object, f.all.in_view, f.all.detected_recorded, f.all.detected_simulated,
-                               f.targets_recorded, f.targets_simulated});
+                               f.all.targets_recorded, f.all.targets_simulated});
     for (std::size_t b = 0; b < f.by_range.size(); ++b) {
       const Counts& c = f.by_range[b];
       if (c.in_view == 0) continue;
       summary.object_ranges.push_back({sensor, object, static_cast<double>(b) * range_bin_m_,
                                        static_cast<double>(b + 1) * range_bin_m_, c.in_view, c.detected_recorded,
-                                       c.detected_simulated});
+                                       c.detected_simulated, c.targets_recorded, c.targets_simulated});
     }
   }
 }

@@ -1,8 +1,9 @@
 #pragma once
 // Per annotated object and sensor, for both target lists: the cycles the object was in view, the
 // cycles it was detected (at least one target of that object), its targets, and the same counts
-// in bins of the range of its nearest point: the detection probability against range
-// (docs/metrics.md, "Real drives").
+// in bins of the range of its nearest point: the detection probability and the targets per
+// object-cycle against range (docs/metrics.md, "Real drives"). A (sensor, object)'s bins add up
+// to its totals.
 #include <vector>
 
 #include "metrics/sensor_view.hpp"
@@ -22,10 +23,10 @@ class ObjectFigures {
  private:
   struct Counts {
     int in_view = 0, detected_recorded = 0, detected_simulated = 0;
+    long long targets_recorded = 0, targets_simulated = 0;
   };
   struct PerObject {
     Counts all;
-    long long targets_recorded = 0, targets_simulated = 0;
     std::vector<Counts> by_range;  // bin b: [b, b + 1) * range_bin_m
   };
   std::size_t objects_;

@@ -85,11 +85,13 @@ struct ObjectFigureRow {
   long long targets_recorded = 0, targets_simulated = 0;
 };
 
-// The same in one bin of the range of the box's nearest point: detection probability vs range.
+// The same in one bin of the range of the box's nearest point: detection probability vs range,
+// and targets per object-cycle; a (sensor, object)'s bins add up to its ObjectFigureRow.
 struct ObjectRangeRow {
   int sensor = 0, object = 0;
   double range_from_m = 0.0, range_to_m = 0.0;
   int cycles_in_view = 0, cycles_detected_recorded = 0, cycles_detected_simulated = 0;
+  long long targets_recorded = 0, targets_simulated = 0;
 };
 
 // Targets of each class (metrics/target_class.hpp), [0] recorded, [1] simulated.

@@ -46,7 +46,11 @@ void RunAccumulators::add_cycle(const CycleComparison& cycle, long long merge_re
       if (compare_range_rates_) rate_mps_[origin].add(static_cast<float>(t.range_rate_mps));
       amplitude_db_[origin].add(static_cast<float>(t.amplitude_db));
       switch (t.target_class) {
-        case metrics::TargetClass::object: ++classes_.object[origin]; break;
+        case metrics::TargetClass::object:
+          ++classes_.object[origin];
+          object_offset_x_m_[origin].add(static_cast<float>(t.p_OT_O.x()));
+          object_offset_y_m_[origin].add(static_cast<float>(t.p_OT_O.y()));
+          break;
         case metrics::TargetClass::other: ++classes_.other[origin]; break;
         case metrics::TargetClass::stationary_background:
           ++classes_.background[origin];
@@ -90,8 +94,8 @@ void RunAccumulators::finish(ReplaySummary& summary) {
 
   // Each of kComparedQuantities, in its order: [0] recorded, [1] simulated.
   const std::array<const Samples*, kComparedQuantities.size()> samples = {
-      range_m_,  azimuth_rad_,        rate_mps_,         amplitude_db_, count_, background_range_m_,
-      background_azimuth_rad_, background_count_};
+      range_m_,           azimuth_rad_,           rate_mps_,        amplitude_db_,     count_,
+      background_range_m_, background_azimuth_rad_, background_count_, object_offset_x_m_, object_offset_y_m_};
   for (std::size_t q = 0; q < kComparedQuantities.size(); ++q) {
     summary.distances.push_back({std::string(kComparedQuantities[q].name), std::string(kComparedQuantities[q].unit),
                                  metrics::distribution_distance(samples[q][0], samples[q][1])});

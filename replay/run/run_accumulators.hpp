@@ -2,7 +2,8 @@
 // The run's figures, accumulated cycle by cycle and sensor by sensor (ReplaySummary): target
 // counts, GOSPA and its parts, residuals of the assigned pairs, merge artefacts, and the samples
 // of the per-target quantities for the distribution distances (bounded: metrics/sample_summary.hpp); the targets of each class, GOSPA
-// on the object targets, and the background's samples (range, azimuth, targets per cycle).
+// on the object targets, the background's samples (range, azimuth, targets per cycle), and the
+// object targets' offsets in their object's frame (x, y of p_OT_O).
 #include <array>
 #include <string_view>
 #include <vector>
@@ -13,18 +14,23 @@
 namespace rcsim::replay {
 
 // The quantities whose recorded and simulated distributions every run compares (table
-// distribution_distances; the criteria's wasserstein1.Q and kolmogorov_smirnov.Q), in order.
+// distribution_distances; the criteria's wasserstein1.Q and kolmogorov_smirnov.Q), in order:
+// those of all targets, of the stationary background's (background_*), and the offsets of the
+// targets of class object from their box's centre in the object's frame (object_offset_*: x
+// forward, y left, every object target of every object pooled).
 struct ComparedQuantity {
   std::string_view name, unit;
 };
-inline constexpr std::array<ComparedQuantity, 8> kComparedQuantities = {{{"range", "m"},
-                                                                        {"azimuth", "rad"},
-                                                                        {"range_rate", "m/s"},
-                                                                        {"amplitude", "dB"},
-                                                                        {"targets_per_cycle", "1"},
-                                                                        {"background_range", "m"},
-                                                                        {"background_azimuth", "rad"},
-                                                                        {"background_targets_per_cycle", "1"}}};
+inline constexpr std::array<ComparedQuantity, 10> kComparedQuantities = {{{"range", "m"},
+                                                                         {"azimuth", "rad"},
+                                                                         {"range_rate", "m/s"},
+                                                                         {"amplitude", "dB"},
+                                                                         {"targets_per_cycle", "1"},
+                                                                         {"background_range", "m"},
+                                                                         {"background_azimuth", "rad"},
+                                                                         {"background_targets_per_cycle", "1"},
+                                                                         {"object_offset_x", "m"},
+                                                                         {"object_offset_y", "m"}}};
 
 class RunAccumulators {
  public:
@@ -51,7 +57,7 @@ class RunAccumulators {
   // Samples per origin: [0] recorded, [1] simulated; exact up to SampleSummary::kExactCapacity
   // each, beyond in bins of these widths (the resolution of the distances of longer runs).
   static constexpr double kRangeBin_m = 0.01, kAzimuthBin_rad = 1e-4, kRateBin_mps = 0.01, kAmplitudeBin_db = 0.01,
-                          kCountBin = 1.0;
+                          kCountBin = 1.0, kOffsetBin_m = 0.01;
   using Samples = metrics::SampleSummary;
   Samples range_m_[2] = {Samples(kRangeBin_m), Samples(kRangeBin_m)};
   Samples azimuth_rad_[2] = {Samples(kAzimuthBin_rad), Samples(kAzimuthBin_rad)};
@@ -61,6 +67,8 @@ class RunAccumulators {
   Samples background_range_m_[2] = {Samples(kRangeBin_m), Samples(kRangeBin_m)};
   Samples background_azimuth_rad_[2] = {Samples(kAzimuthBin_rad), Samples(kAzimuthBin_rad)};
   Samples background_count_[2] = {Samples(kCountBin), Samples(kCountBin)};
+  Samples object_offset_x_m_[2] = {Samples(kOffsetBin_m), Samples(kOffsetBin_m)};
+  Samples object_offset_y_m_[2] = {Samples(kOffsetBin_m), Samples(kOffsetBin_m)};
 };
 
 }  // namespace rcsim::replay

@@ -255,12 +255,14 @@ void read_object_figures(SQLite::Database& db, std::int64_t run_id, RunData& run
   }
   SQLite::Statement r(db,
                       "SELECT sensor, object, range_from_m, range_to_m, cycles_in_view, cycles_detected_recorded, "
-                      "cycles_detected_simulated FROM object_ranges WHERE run_id = ? ORDER BY object, sensor, range_from_m");
+                      "cycles_detected_simulated, targets_recorded, targets_simulated FROM object_ranges "
+                      "WHERE run_id = ? ORDER BY object, sensor, range_from_m");
   r.bind(1, run_id);
   while (r.executeStep()) {
     run.object_ranges.push_back({r.getColumn(0).getInt(), r.getColumn(1).getInt(), r.getColumn(2).getDouble(),
                                  r.getColumn(3).getDouble(), r.getColumn(4).getInt(), r.getColumn(5).getInt(),
-                                 r.getColumn(6).getInt()});
+                                 r.getColumn(6).getInt(), optional_int64(r.getColumn(7)),  // NULL: stored before v6
+                                 optional_int64(r.getColumn(8))});
   }
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// What the HTML report reads from a report database (`rcsim-report` v4,
+// What the HTML report reads from a report database (`rcsim-report` v6,
 // schemas/report-database.md): the per-run tables, and aggregates over the run's cycles (read
 // block by block through run_rows.hpp), never the per-target rows of a whole run. Text fields
 // are returned as stored (unescaped).
@@ -99,6 +99,8 @@ struct ObjectRangeBin {
   int sensor = 0, object = 0;
   double range_from_m = 0.0, range_to_m = 0.0;
   int cycles_in_view = 0, detected_recorded = 0, detected_simulated = 0;
+  // Object targets in those cycles (schema v6); not known (NULL) in runs stored before.
+  std::optional<std::int64_t> targets_recorded, targets_simulated;
 };
 
 struct RunData {

@@ -1,9 +1,10 @@
-// The report database schema (`rcsim-report` v4, schemas/report-database.md), applied by
+// The report database schema (`rcsim-report` v6, schemas/report-database.md), applied by
 // report_store.cpp when it creates a database: the v1 tables, the bench tables (v2), the
 // real-drive additions (v3), then the v4 blocks, into which the rows of the v1 tables `cycles`,
-// `targets` and `object_states` are converted (report_migration.cpp) before those are dropped.
-// Opening a v1, v2 or v3 database applies the steps it lacks, so that a migrated database has
-// exactly the tables and columns of a new one.
+// `targets` and `object_states` are converted (report_migration.cpp) before those are dropped,
+// the campaign tables (v5) and the targets per range bin (v6). Opening a v1 to v5 database
+// applies the steps it lacks, so that a migrated database has exactly the tables and columns of a
+// new one.
 #include "replay/store/report_store.hpp"
 
 namespace rcsim::replay {
@@ -289,6 +290,14 @@ CREATE TABLE IF NOT EXISTS criteria (
   threshold REAL NOT NULL,
   if_missing TEXT NOT NULL CHECK (if_missing IN ('fail', 'pass'))
 ) STRICT;
+)SQL";
+
+// Added in version 6: the targets of class object per range bin, as object_figures has them per
+// object (ObjectRangeRow). NULL in the runs stored before: not known, never 0.
+extern const char* const kObjectRangeTargetsSql;
+const char* const kObjectRangeTargetsSql = R"SQL(
+ALTER TABLE object_ranges ADD COLUMN targets_recorded INTEGER;   -- object targets in those cycles; NULL before v6
+ALTER TABLE object_ranges ADD COLUMN targets_simulated INTEGER;
 )SQL";
 
 // After the conversion of their rows (report_migration.cpp).

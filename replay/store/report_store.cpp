@@ -25,6 +25,7 @@ extern const char* const kRealDriveSchemaSql;
 extern const char* const kBlockSchemaSql;
 extern const char* const kDropRowTablesSql;
 extern const char* const kCampaignSchemaSql;
+extern const char* const kObjectRangeTargetsSql;
 void convert_row_tables_to_blocks(SQLite::Database& db);  // report_migration.cpp
 
 namespace {
@@ -133,6 +134,7 @@ void upgrade_from(SQLite::Database& db, int version) {
     db.exec(kDropRowTablesSql);
   }
   if (version < 5) db.exec(kCampaignSchemaSql);
+  if (version < 6) db.exec(kObjectRangeTargetsSql);
 }
 
 // A compared target as the store keeps it.
@@ -236,7 +238,7 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
         create_report_schema(*db);
       } else if (user_version < kReportSchemaVersion) {
         // v1 -> v2: the bench tables; v2 -> v3: the real-drive columns and tables; v3 -> v4: the
-        // blocks; v4 -> v5: the campaign and its criteria.
+        // blocks; v4 -> v5: the campaign and its criteria; v5 -> v6: object_ranges' targets.
         try {
           upgrade_from(*db, user_version);
         } catch (const std::runtime_error& e) {
@@ -418,10 +420,11 @@ void ReportWriter::insert_object_figures(const ReplaySummary& r) {
     object.exec();
     object.reset();
   }
-  SQLite::Statement range(db_, "INSERT INTO object_ranges VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  SQLite::Statement range(db_, "INSERT INTO object_ranges VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   for (const ObjectRangeRow& row : r.object_ranges) {
     SQLite::bind(range, run_id_, row.sensor, row.object, row.range_from_m, row.range_to_m, row.cycles_in_view,
-                 row.cycles_detected_recorded, row.cycles_detected_simulated);
+                 row.cycles_detected_recorded, row.cycles_detected_simulated,
+                 static_cast<std::int64_t>(row.targets_recorded), static_cast<std::int64_t>(row.targets_simulated));
     range.exec();
     range.reset();
   }

@@ -1,5 +1,5 @@
 #pragma once
-// The SQLite report database (`rcsim-report` v5, schemas/report-database.md): many replay runs
+// The SQLite report database (`rcsim-report` v6, schemas/report-database.md): many replay runs
 // in one file. A run is written in one transaction, so a replay that fails or is killed midway
 // leaves the database and its earlier runs as they were. Every value is bound to a prepared
 // statement; no text is ever pasted into SQL.
@@ -19,13 +19,15 @@ namespace rcsim::replay {
 
 inline constexpr std::int32_t kReportApplicationId = 0x52435352;  // "RCSR"
 // 2 added the bench tables, 3 the real-drive figures, 4 the blocks and the store level, 5 the
-// campaign and its criteria; 1 to 4 are migrated on opening.
-inline constexpr int kReportSchemaVersion = 5;
+// campaign and its criteria, 6 the targets per range bin of object_ranges; 1 to 5 are migrated
+// on opening.
+inline constexpr int kReportSchemaVersion = 6;
 
 // Opens (creating if needed) a report database; refuses a file that is not one, or one of
-// another schema version, naming the file. A version 1 to 4 database is migrated to version 5
+// another schema version, naming the file. A version 1 to 5 database is migrated to version 6
 // in one transaction: tables and columns are added (the runs' new columns NULL, their store
-// `full`), and the rows of `cycles`, `targets` and `object_states` are converted into blocks.
+// `full`), and (from 1 to 3) the rows of `cycles`, `targets` and `object_states` are converted
+// into blocks.
 std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
 
 // Closes `db` and removes the report database at `path` with its -wal and -shm, if it holds no
@@ -37,7 +39,7 @@ void discard_if_unused(std::unique_ptr<SQLite::Database>& db, const std::string&
 // write the file, else read-only (a read-only copy of an older schema is refused, saying why).
 std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::string& path);
 
-// What an open database holds: nothing yet, a report of an older schema (1 to 4, migrated on
+// What an open database holds: nothing yet, a report of an older schema (1 to 5, migrated on
 // opening for writing), or one of this version. Refuses, naming the file, anything else (another
 // application's database, a newer schema). Read in the caller's transaction.
 enum class SchemaState { empty, older, current };

@@ -1,8 +1,14 @@
 // Per-object figures (replay/run/object_figures.hpp) counted by hand: cycles in view, cycles
-// detected (at least one object target), targets, and the same in 10 m bins of range.
+// detected (at least one object target), targets, and the same in 10 m bins of range; on a replay,
+// each (sensor, object)'s bins add up to its totals.
 #include "replay/run/object_figures.hpp"
 
 #include <gtest/gtest.h>
+
+#include <map>
+#include <tuple>
+
+#include "replay/replay_fixtures.hpp"
 
 namespace rcsim::replay {
 namespace {
@@ -70,12 +76,53 @@ TEST(ObjectFigures, CountsCyclesDetectionsAndTargetsPerObjectSensorAndRangeBin) 
   EXPECT_DOUBLE_EQ(s.object_ranges[0].range_to_m, 10.0);
   EXPECT_EQ(s.object_ranges[0].cycles_detected_recorded, 1);
   EXPECT_EQ(s.object_ranges[0].cycles_detected_simulated, 1);
+  EXPECT_EQ(s.object_ranges[0].targets_recorded, 2);
+  EXPECT_EQ(s.object_ranges[0].targets_simulated, 1);
   EXPECT_DOUBLE_EQ(s.object_ranges[1].range_from_m, 10.0);
   EXPECT_EQ(s.object_ranges[1].cycles_detected_recorded, 0);
   EXPECT_EQ(s.object_ranges[1].cycles_detected_simulated, 1);
+  EXPECT_EQ(s.object_ranges[1].targets_recorded, 0);
+  EXPECT_EQ(s.object_ranges[1].targets_simulated, 2);
   EXPECT_DOUBLE_EQ(s.object_ranges[2].range_from_m, 20.0);
   EXPECT_EQ(s.object_ranges[2].object, 1);
+  EXPECT_EQ(s.object_ranges[2].targets_recorded, 0);
   EXPECT_EQ(s.object_ranges[3].sensor, 1);
+  EXPECT_EQ(s.object_ranges[3].targets_recorded, 1);
+  EXPECT_EQ(s.object_ranges[3].targets_simulated, 0);
+}
+
+// On a replay of two cars passing two sensors from 25 m, in 5 m bins: every (sensor, object)'s
+// bins add up to its row, cycles and targets alike, and the cars are seen in several bins.
+TEST(ObjectFigures, TheRangeBinsOfAnObjectAddUpToItsTotals) {
+  const Scene scene = testing::two_cars_scene(6.0);
+  const Recording rec = testing::model_recording(scene, 3);
+  ReplayOptions options;
+  options.import.effects = {};
+  options.object_range_bin_m = 5.0;
+  DiscardingSink sink;
+  const ReplaySummary s = replay_recording(rec, options, sink);
+  ASSERT_FALSE(s.objects.empty());
+  std::map<std::pair<int, int>, std::tuple<long long, long long, long long, int>> sums;  // in view, rec, sim, bins
+  for (const ObjectRangeRow& r : s.object_ranges) {
+    auto& [in_view, recorded, simulated, bins] = sums[{r.sensor, r.object}];
+    in_view += r.cycles_in_view;
+    recorded += r.targets_recorded;
+    simulated += r.targets_simulated;
+    ++bins;
+  }
+  long long targets = 0;
+  int binned = 0;
+  for (const ObjectFigureRow& o : s.objects) {
+    const auto& [in_view, recorded, simulated, bins] = sums.at({o.sensor, o.object});
+    EXPECT_EQ(in_view, o.cycles_in_view) << o.sensor << " " << o.object;
+    EXPECT_EQ(recorded, o.targets_recorded) << o.sensor << " " << o.object;
+    EXPECT_EQ(simulated, o.targets_simulated) << o.sensor << " " << o.object;
+    targets += o.targets_recorded + o.targets_simulated;
+    binned += bins > 1;
+  }
+  EXPECT_EQ(sums.size(), s.objects.size());
+  EXPECT_GT(targets, 0);
+  EXPECT_GT(binned, 0) << "the cars cross bins";
 }
 
 TEST(ObjectFigures, AnObjectNeverInViewHasNoRow) {

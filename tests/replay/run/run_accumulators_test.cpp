@@ -1,8 +1,11 @@
 // The run's figures from two hand-made cycles: means over sensor cycles, residuals over the
-// assigned pairs only, merge counts, and one distribution distance.
+// assigned pairs only, merge counts, and one distribution distance; the object targets' offsets
+// as distributions.
 #include "replay/run/run_accumulators.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace rcsim::replay {
 namespace {
@@ -34,10 +37,43 @@ TEST(RunAccumulators, MeansOverCyclesAndResidualsOverAssignedPairs) {
   EXPECT_EQ(s.merge_artefacts_recorded, 2);
   EXPECT_EQ(s.merge_artefacts_simulated, 1);
   EXPECT_EQ(s.merge_artefacts_matched, 1);
-  ASSERT_EQ(s.distances.size(), 8u);  // five of all targets, three of the background
+  ASSERT_EQ(s.distances.size(), 10u);  // five of all targets, three of the background, two object offsets
   EXPECT_EQ(s.distances[4].quantity, "targets_per_cycle");
   // Counts per cycle: recorded {2, 0}, simulated {1, 0}: W1 = 0.5 (half the mass moved by 1).
   EXPECT_NEAR(s.distances[4].distance.wasserstein1, 0.5, 1e-6);
+  // No object target on either side: the offsets' distances are not known (NaN, stored as NULL).
+  EXPECT_EQ(s.distances[8].quantity, "object_offset_x");
+  EXPECT_TRUE(std::isnan(s.distances[8].distance.wasserstein1));
+}
+
+// The offsets of the object targets in their object's frame, x and y apart, every object pooled;
+// the targets of the other classes do not count.
+TEST(RunAccumulators, ObjectOffsetsAreComparedAsDistributions) {
+  using C = metrics::TargetClass;
+  RunAccumulators acc;
+  CycleComparison a;
+  a.recorded = {ComparedTarget{.object = 0, .target_class = C::object, .p_OT_O = Vec2(2.0, 0.5)},
+                ComparedTarget{.object = 1, .target_class = C::object, .p_OT_O = Vec2(-2.0, -0.5)},
+                ComparedTarget{.target_class = C::stationary_background, .p_OT_O = Vec2(50.0, 50.0)}};
+  a.simulated = {ComparedTarget{.object = 0, .target_class = C::object, .p_OT_O = Vec2(1.0, 0.5)},
+                 ComparedTarget{.object = 1, .target_class = C::object, .p_OT_O = Vec2(-2.0, 0.5)}};
+  acc.add_cycle(a, 0, 0);
+  ReplaySummary s;
+  acc.finish(s);
+  ASSERT_EQ(s.distances.size(), 10u);
+  const QuantityDistance& x = s.distances[8];
+  const QuantityDistance& y = s.distances[9];
+  EXPECT_EQ(x.quantity, "object_offset_x");
+  EXPECT_EQ(x.unit, "m");
+  EXPECT_EQ(y.quantity, "object_offset_y");
+  EXPECT_EQ(x.distance.n_recorded, 2);
+  EXPECT_EQ(x.distance.n_simulated, 2);
+  // x: {-2, 2} against {-2, 1}: half the mass moved by 1 m; KS 0.5 on [1, 2).
+  EXPECT_NEAR(x.distance.wasserstein1, 0.5, 1e-6);
+  EXPECT_NEAR(x.distance.kolmogorov_smirnov, 0.5, 1e-6);
+  // y: {-0.5, 0.5} against {0.5, 0.5}: half the mass moved by 1 m.
+  EXPECT_NEAR(y.distance.wasserstein1, 0.5, 1e-6);
+  EXPECT_NEAR(y.distance.kolmogorov_smirnov, 0.5, 1e-6);
 }
 
 }  // namespace

@@ -206,6 +206,10 @@ TEST_F(ReportMerge, TwoShardsMergeIntoWhatASerialReplayStoresFigureForFigure) {
   EXPECT_GT(merged.size(), 10000u);
   EXPECT_EQ(count(out, "SELECT count(*) FROM target_blocks"), count(*shards_ / "serial.sqlite", "SELECT count(*) FROM target_blocks"));
   EXPECT_GT(count(out, "SELECT count(*) FROM target_blocks"), 0);
+  // Schema v6's targets per range bin came over with the rest, none of them unknown.
+  EXPECT_GT(count(out, "SELECT count(*) FROM object_ranges"), 0);
+  EXPECT_EQ(count(out, "SELECT count(*) FROM object_ranges WHERE targets_recorded IS NULL OR targets_simulated IS NULL"), 0);
+  EXPECT_GT(count(out, "SELECT sum(targets_recorded) FROM object_ranges"), 0);
   SQLite::Database db(out.string(), SQLite::OPEN_READONLY);
   EXPECT_EQ(db.execAndGet("PRAGMA journal_mode").getString(), "wal");
   EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
@@ -301,21 +305,29 @@ TEST_F(ReportMerge, AnotherSchemaVersionIsRefusedNamingTheFileAndTheOutputStaysA
   merge_reports({shard("a.sqlite")}, out.string());
   const std::string before = dump(out);
   const std::string old = shard("b.sqlite", "shard-3.sqlite");
-  exec(old, "PRAGMA user_version = 4");
+  const int older = kReportSchemaVersion - 1, newer = kReportSchemaVersion + 1;
+  exec(old, fmt::format("PRAGMA user_version = {}", older));
   std::string message = refusal({shard("b.sqlite"), old}, out);
-  EXPECT_NE(message.find(old + ": report schema version 4, expected 5"), std::string::npos) << message;
+  EXPECT_NE(message.find(fmt::format("{}: report schema version {}, expected {}", old, older, kReportSchemaVersion)),
+            std::string::npos)
+      << message;
   EXPECT_NE(message.find("rcsim report"), std::string::npos) << "says how to migrate it: " << message;
   EXPECT_EQ(dump(out), before);
   EXPECT_TRUE(merge_files(dir_).empty());
-  exec(old, "PRAGMA user_version = 6");
+  exec(old, fmt::format("PRAGMA user_version = {}", newer));
   message = refusal({old}, out);
-  EXPECT_NE(message.find(old + ": report schema version 6, expected 5: written by a newer rcsim"), std::string::npos)
+  EXPECT_NE(message.find(fmt::format("{}: report schema version {}, expected {}: written by a newer rcsim", old, newer,
+                                     kReportSchemaVersion)),
+            std::string::npos)
       << message;
   // An output of another version is refused alike.
-  exec(out, "PRAGMA user_version = 4");
+  exec(out, fmt::format("PRAGMA user_version = {}", older));
   message = refusal({shard("b.sqlite")}, out);
-  EXPECT_NE(message.find(out.string() + ": report schema version 4, expected 5"), std::string::npos) << message;
-  EXPECT_EQ(count(out, "PRAGMA user_version"), 4);
+  EXPECT_NE(message.find(fmt::format("{}: report schema version {}, expected {}", out.string(), older,
+                                     kReportSchemaVersion)),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(count(out, "PRAGMA user_version"), older);
 }
 
 TEST_F(ReportMerge, WhatIsNotAReportIsRefusedNamingTheFile) {

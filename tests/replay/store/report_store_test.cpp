@@ -1,13 +1,15 @@
 // The report database (replay/store/report_store.hpp): a run is one transaction, so a run that
 // fails midway leaves the earlier runs as they were; a database of another program is refused;
 // older versions are migrated, a version 3 run's rows into the v4 blocks bit for bit (the targets'
-// reals at float32).
+// reals at float32), and the targets per range bin (v6) of the runs stored before are not known;
+// a run's bins add up to its per-object targets.
 #include "replay/store/report_store.hpp"
 
 #include <SQLiteCpp/VariadicBind.h>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +17,7 @@
 #include "common/input_error.hpp"
 #include "replay/replay_fixtures.hpp"
 #include "replay/run/replay_run.hpp"
+#include "replay/store/report_reader.hpp"
 #include "replay/store/run_rows.hpp"
 #include "scratch_dir.hpp"
 
@@ -23,6 +26,10 @@ namespace rcsim::replay {
 extern const char* const kReportSchemaSql;     // the tables of version 1
 extern const char* const kBenchSchemaSql;      // added in version 2
 extern const char* const kRealDriveSchemaSql;  // added in version 3
+extern const char* const kBlockSchemaSql;      // added in version 4, with the row tables' conversion
+extern const char* const kDropRowTablesSql;
+extern const char* const kCampaignSchemaSql;   // added in version 5
+void convert_row_tables_to_blocks(SQLite::Database& db);
 
 namespace {
 
@@ -35,11 +42,13 @@ void write_old_schema(SQLite::Database& db, int version) {
   db.exec(fmt::format("PRAGMA user_version = {}", version));
 }
 
-// A report database as version 1, 2 or 3 of rcsim wrote it, with one run of one cycle and target
-// stored (a version 3 run with its real-drive columns).
+// A report database as version 1 to 5 of rcsim wrote it, with one run of one cycle and target
+// stored (from version 3 with its real-drive columns and one object's figures, overall and in one
+// range bin, without the targets per bin of version 6; from version 4 in blocks, converted as
+// version 4 converted them).
 void write_old_database(const std::string& path, int version) {
   SQLite::Database db(path, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
-  write_old_schema(db, version);
+  write_old_schema(db, std::min(version, 3));
   db.exec("INSERT INTO runs VALUES (1, 'old', '/x', '0000000000000000', '{}', 0.04, 1, 0, 'tracks', '{}', '0.0.1', "
           "'2026-01-01T00:00:00Z')");
   db.exec("INSERT INTO cycles (run_id, cycle, sensor, t_s, sensor_x_m, sensor_y_m, sensor_yaw_rad, n_recorded, "
@@ -52,7 +61,16 @@ void write_old_database(const std::string& path, int version) {
     db.exec("UPDATE cycles SET n_object_recorded = 0, n_object_simulated = 0, n_background_recorded = 1, "
             "n_background_simulated = 0, gospa_object_m = 0, ospa_object_m = 0");
     db.exec("UPDATE targets SET target_class = 'background', rcs_dbsm = 7.5");
+    db.exec("INSERT INTO object_figures VALUES (1, 0, 0, 1, 0, 0, 0, 0)");
+    db.exec("INSERT INTO object_ranges VALUES (1, 0, 0, 20.0, 30.0, 1, 0, 0)");
   }
+  if (version >= 4) {
+    db.exec(kBlockSchemaSql);
+    convert_row_tables_to_blocks(db);
+    db.exec(kDropRowTablesSql);
+  }
+  if (version >= 5) db.exec(kCampaignSchemaSql);
+  db.exec(fmt::format("PRAGMA user_version = {}", version));
 }
 
 // The logical rows of a run (run_rows.hpp), every real with 17 digits.
@@ -201,12 +219,13 @@ TEST_F(ReportStore, FailedRunLeavesEarlierRunsIntact) {
   EXPECT_EQ(db->execAndGet("PRAGMA integrity_check").getString(), "ok");
 }
 
-// Versions 1, 2 and 3 are migrated in place to version 4: the same tables and columns, in the
+// Versions 1 to 5 are migrated in place to the current one: the same tables and columns, in the
 // same order, as a database made new; the runs kept, their new columns NULL and their store full,
-// their rows in blocks; a new run then stores.
+// their rows in blocks, their targets per range bin not known (NULL, never 0); a new run then
+// stores, with its targets per range bin.
 TEST_F(ReportStore, OlderVersionsMigrateToTheLayoutOfANewDatabase) {
   const auto fresh = open_report_database((dir_ / "new.sqlite").string(), true);
-  for (const int version : {1, 2, 3}) {
+  for (const int version : {1, 2, 3, 4, 5}) {
     const std::string path = (dir_ / ("v" + std::to_string(version) + ".sqlite")).string();
     write_old_database(path, version);
     const auto db = open_report_database(path, false);
@@ -232,6 +251,16 @@ TEST_F(ReportStore, OlderVersionsMigrateToTheLayoutOfANewDatabase) {
       EXPECT_EQ(targets[0].rcs_dbsm, 7.5);
       ASSERT_TRUE(cycles[0].classes.has_value());
       EXPECT_EQ(cycles[0].classes->n_background_recorded, 1);
+      // The bin stored before v6 keeps its cycles; its targets are not known.
+      EXPECT_EQ(db->execAndGet("SELECT count(*) FROM object_ranges WHERE run_id = 1 AND targets_recorded IS NULL "
+                               "AND targets_simulated IS NULL AND cycles_in_view = 1")
+                    .getInt(),
+                1);
+      const report::RunData old_run = report::load_run(*db, 1);
+      ASSERT_EQ(old_run.object_ranges.size(), 1u);
+      EXPECT_EQ(old_run.object_ranges[0].cycles_in_view, 1);
+      EXPECT_FALSE(old_run.object_ranges[0].targets_recorded.has_value());
+      EXPECT_FALSE(old_run.object_ranges[0].targets_simulated.has_value());
     }
 
     const Recording rec = write_and_read(testing::model_recording(testing::two_cars_scene(1.0), 1),
@@ -246,8 +275,50 @@ TEST_F(ReportStore, OlderVersionsMigrateToTheLayoutOfANewDatabase) {
     EXPECT_GT(stored, 0);
     EXPECT_EQ(unclassed, 0);
     EXPECT_GT(db->execAndGet("SELECT count(*) FROM object_figures WHERE run_id = 2").getInt(), 0);
+    EXPECT_EQ(db->execAndGet("SELECT count(*) FROM object_ranges WHERE run_id = 2 AND targets_recorded IS NULL").getInt(),
+              0);
     EXPECT_EQ(db->execAndGet("PRAGMA integrity_check").getString(), "ok");
   }
+}
+
+// A stored run's range bins add up, per sensor and object, to its object_figures row: cycles in
+// view, cycles detected and targets, recorded and simulated; and read back as stored.
+TEST_F(ReportStore, TheTargetsPerRangeBinAddUpToThoseOfTheObject) {
+  const auto db = open_report_database((dir_ / "r.sqlite").string(), true);
+  ReplayOptions options;
+  options.import.effects = {};
+  options.object_range_bin_m = 5.0;
+  const Recording rec = write_and_read(testing::model_recording(testing::two_cars_scene(6.0), 3), "rec");
+  ReportWriter writer(*db);
+  replay_recording(rec, options, writer);
+  EXPECT_GT(db->execAndGet("SELECT count(*) FROM object_figures WHERE targets_recorded > 0").getInt(), 0);
+  EXPECT_GT(db->execAndGet("SELECT count(*) FROM object_ranges").getInt(),
+            db->execAndGet("SELECT count(*) FROM object_figures").getInt())
+      << "the cars cross bins";
+  EXPECT_EQ(db->execAndGet("SELECT count(*) FROM object_figures f JOIN (SELECT run_id, sensor, object, "
+                           "sum(cycles_in_view) AS v, sum(cycles_detected_recorded) AS dr, "
+                           "sum(cycles_detected_simulated) AS ds, sum(targets_recorded) AS tr, "
+                           "sum(targets_simulated) AS ts FROM object_ranges GROUP BY run_id, sensor, object) r "
+                           "USING (run_id, sensor, object) WHERE f.cycles_in_view = r.v AND "
+                           "f.cycles_detected_recorded = r.dr AND f.cycles_detected_simulated = r.ds AND "
+                           "f.targets_recorded = r.tr AND f.targets_simulated = r.ts")
+                .getInt(),
+            db->execAndGet("SELECT count(*) FROM object_figures").getInt());
+  const report::RunData run = report::load_run(*db, 1);
+  std::int64_t recorded = 0, simulated = 0;
+  for (const report::ObjectRangeBin& b : run.object_ranges) {
+    ASSERT_TRUE(b.targets_recorded && b.targets_simulated);
+    recorded += *b.targets_recorded;
+    simulated += *b.targets_simulated;
+  }
+  std::int64_t object_recorded = 0, object_simulated = 0;
+  for (const report::ObjectFigures& f : run.object_figures) {
+    object_recorded += f.targets_recorded;
+    object_simulated += f.targets_simulated;
+  }
+  EXPECT_EQ(recorded, object_recorded);
+  EXPECT_EQ(simulated, object_simulated);
+  EXPECT_GT(recorded, 0);
 }
 
 // A version 3 database of real runs (written here as version 3 wrote them, from the rows of a
@@ -271,9 +342,11 @@ TEST_F(ReportStore, AVersion3DatabaseReadsBackAsANewOne) {
     old.exec("INSERT INTO runs SELECT run_id, recording_name, recording_dir, recording_checksum, recording_source, "
              "cycle_time_s, cycles, seed, level, parameters, rcsim_version, created_utc FROM fresh.runs");
     for (const char* table : {"run_sensors", "run_objects", "merge_pairs", "latencies", "distribution_distances",
-                              "summaries", "object_figures", "object_ranges"}) {
+                              "summaries", "object_figures"}) {
       old.exec(fmt::format("INSERT INTO {0} SELECT * FROM fresh.{0}", table));
     }
+    old.exec("INSERT INTO object_ranges SELECT run_id, sensor, object, range_from_m, range_to_m, cycles_in_view, "
+             "cycles_detected_recorded, cycles_detected_simulated FROM fresh.object_ranges");
     old.exec("DETACH DATABASE fresh");
     write_as_version_3(*fresh, old);
   }
