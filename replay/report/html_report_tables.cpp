@@ -1,5 +1,6 @@
 #include "replay/report/html_report_tables.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <functional>
@@ -109,11 +110,37 @@ std::string sensor_table(const RunData& run) {
   return out + "</table>";
 }
 
+std::set<int> objects_with_most_targets(const RunData& run) {
+  std::map<int, std::int64_t> recorded;  // object -> recorded targets
+  for (const ObjectInfo& o : run.objects) recorded[o.object] += 0;
+  for (const ObjectFigures& f : run.object_figures) recorded[f.object] += f.targets_recorded;
+  std::vector<std::pair<int, std::int64_t>> order(recorded.begin(), recorded.end());
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (order.size() > kMaxObjectRows) order.resize(kMaxObjectRows);
+  std::set<int> shown;
+  for (const auto& entry : order) shown.insert(entry.first);
+  return shown;
+}
+
 std::string object_table(const RunData& run) {
   if (run.objects.empty()) return "<p>The recording has no annotated objects.</p>";
-  std::string out = R"(<table class="objects">)";
+  std::string out;
+  const std::set<int> shown = objects_with_most_targets(run);
+  if (shown.size() < run.objects.size()) {
+    std::map<std::string, int> classes;
+    for (const ObjectInfo& o : run.objects) ++classes[o.object_class];
+    std::string counts;
+    for (const auto& [name, n] : classes) counts += fmt::format("{}{} {}", counts.empty() ? "" : ", ", n, name);
+    out += R"(<p class="hint objects-capped">)" +
+           escape(fmt::format("The {} of {} annotated objects with the most recorded targets, in the order of the "
+                              "recording; by class: {}.",
+                              shown.size(), run.objects.size(), counts)) +
+           "</p>";
+  }
+  out += R"(<table class="objects">)";
   out += header_row({"#", "object", "class (model)", "length / m", "width / m", "reflectors"});
   for (const ObjectInfo& o : run.objects) {
+    if (shown.count(o.object) == 0) continue;
     out += "<tr>" + cell_num(std::to_string(o.object)) + cell(o.id) + cell(o.object_class) +
            cell_num(num(o.length_m, 2)) + cell_num(num(o.width_m, 2)) + cell_num(std::to_string(o.reflectors)) + "</tr>";
   }
@@ -124,7 +151,7 @@ std::string distance_table(const RunData& run, bool background) {
   std::string out = R"(<table class="distances">)";
   out += header_row({"quantity", "unit", "W1 (area metric)", "KS statistic", "n recorded", "n simulated"});
   for (const DistanceRow& d : run.distances) {
-    if (d.quantity.starts_with("background_") != background) continue;
+    if (d.quantity.starts_with("background_") != background || d.quantity.starts_with("object_offset_")) continue;
     out += "<tr>" + cell(d.quantity) + cell(d.unit) + cell_num(opt(d.wasserstein1, 4, "-")) +
            cell_num(opt(d.kolmogorov_smirnov, 4, "-")) + cell_num(std::to_string(d.n_recorded)) +
            cell_num(std::to_string(d.n_simulated)) + "</tr>";

@@ -31,7 +31,7 @@ TEST(SvgPlot, PlotBreaksLinesAtGapsAndLabelsItsAxes) {
 
 TEST(SvgPlot, HistogramClampsOutliersIntoTheEndBins) {
   svg::HistogramSpec h;
-  h.title = "r";
+  h.title = std::string("r");  // not = "r": GCC 12's false -Wrestrict (bug 105329) in some unity batches
   h.x_label = "range / m";
   h.lo = -1.0;
   h.bin_width = 0.5;
