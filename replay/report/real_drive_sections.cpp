@@ -140,7 +140,7 @@ std::string object_offset_line(const RunData& run) {
       return R"(<p class="object-offsets">The offsets' distribution distances were not computed for this run (stored )"
              R"(by an earlier rcsim). Replay it again to see them.</p>)";
     }
-    parts += fmt::format("{}<b>{}</b>: W1 {} {}, KS {}", parts.empty() ? "" : "; ", axis, opt(d->wasserstein1, 3, "-"),
+    parts += fmt::format("{}{}: W1 {} {}, KS {}", parts.empty() ? "" : "; ", axis, opt(d->wasserstein1, 3, "-"),
                          svg::escape(d->unit), opt(d->kolmogorov_smirnov, 3, "-"));
     n[0] = d->n_recorded, n[1] = d->n_simulated;
   }

@@ -54,7 +54,7 @@ TEST(RealDriveSections, ObjectsByClassAndRangeAreComputedOverTheObjectsOfEachCla
                              R"(<td class="num">4.95</td><td class="num">9.90</td><td class="num">2.00</td>)";
   EXPECT_NE(html.find(trucks), std::string::npos) << html;
   // The offsets in a line under the table.
-  EXPECT_NE(html.find("<b>x</b>: W1 0.250 m, KS 0.125; <b>y</b>: W1 0.500 m, KS 0.375"), std::string::npos) << html;
+  EXPECT_NE(html.find("sensors: x: W1 0.250 m, KS 0.125; y: W1 0.500 m, KS 0.375"), std::string::npos) << html;
   EXPECT_NE(html.find("(100 recorded, 90 simulated targets"), std::string::npos);
   EXPECT_NE(html.find("1770 of the run's 1800 recorded and 3540 of its 3600 simulated object targets"), std::string::npos);
   EXPECT_EQ(html.find("not known"), std::string::npos);
