@@ -157,7 +157,8 @@ class BenchToolsCli : public rcsim::testing::ScratchDirTest {
 };
 
 const std::vector<std::string> kArgumentTools = {"rcsim_make_long_recording", "rcsim_make_campaign_db", "rcsim_bench_campaign"};
-const std::vector<std::string> kGoogleBenchmarks = {"rcsim_bench_sensor_cycle", "rcsim_bench_synth", "rcsim_bench_traffic"};
+const std::vector<std::string> kGoogleBenchmarks = {"rcsim_bench_sensor_cycle", "rcsim_bench_synth", "rcsim_bench_traffic",
+                                                    "rcsim_bench_gospa"};
 
 TEST_F(BenchToolsCli, EveryProgramPrintsItsUsageForHelp) {
   std::vector<std::string> all = kArgumentTools;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fuzz/aimotive_targets.hpp"
+#include "fuzz/astyx_targets.hpp"
 #include "fuzz/recording_targets.hpp"
 #include "fuzz/store_targets.hpp"
 #include "fuzz/udp_targets.hpp"
@@ -30,6 +31,7 @@ const std::map<std::string, void (*)(Input)>& entry_points() {
   static const std::map<std::string, void (*)(Input)> entries{
       {"scene", fuzz_scene},         {"object_model", fuzz_object_model}, {"sensor_config", fuzz_sensor_config},
       {"recording", fuzz_recording}, {"calibration", fuzz_calibration},   {"aimotive", fuzz_aimotive},
+      {"astyx", fuzz_astyx},
       {"udp_datagram", fuzz_udp_datagrams}, {"udp_control", fuzz_udp_control},
       {"report_database", fuzz_report_database}, {"campaign_manifest", fuzz_campaign_manifest}};
   return entries;

@@ -16,8 +16,8 @@ TEST(SensorConfigImaging, TheAstyxProfileIsAnArrayThatResolvesAzimuth) {
   EXPECT_TRUE(c.resolution.resolves_azimuth());
   EXPECT_NEAR(c.resolution.azimuth_cell_rad, std::numbers::pi / 180.0, 1e-15);
   EXPECT_TRUE(c.resolution.aliases_range_rate());
-  EXPECT_DOUBLE_EQ(c.resolution.unambiguous_min_mps, -5.1562);
-  EXPECT_DOUBLE_EQ(c.resolution.unambiguous_max_mps, 5.2374);
+  EXPECT_DOUBLE_EQ(c.resolution.unambiguous_min_mps, -5.2374);
+  EXPECT_DOUBLE_EQ(c.resolution.unambiguous_max_mps, 5.1562);
   EXPECT_TRUE(c.detection.strongest_beam_per_cell);
   EXPECT_EQ(c.amplitude.unit, AmplitudeUnit::relative_db);
   EXPECT_EQ(c.extended_objects.max_pieces_per_face, 128);
