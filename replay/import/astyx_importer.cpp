@@ -18,6 +18,7 @@
 #include "common/safe_text.hpp"
 #include "common/text_file.hpp"
 #include "model/model_library.hpp"
+#include "replay/import/doppler_ego_motion.hpp"
 
 namespace rcsim::replay {
 
@@ -489,12 +490,24 @@ namespace {
 
 constexpr const char* kLicence = "CC BY-NC-SA 4.0, Copyright (c) 2019 Astyx GmbH";
 
-nlohmann::json ego_motion_report(bool known) {
+// What the Doppler speed fits of the frames without CAN data came to.
+struct DopplerSpeeds {
+  std::size_t fitted = 0, unfitted = 0, inliers = 0, candidates = 0;
+  double max_speed_mps = 0.0;
+};
+
+nlohmann::json ego_motion_report(bool known, const DopplerSpeeds& doppler) {
   if (!known) {
-    return {{"method", "none"},
-            {"why", "the HiRes2019 frames have neither CAN data nor timestamps: the ego's speed and yaw rate are "
-                    "unknown; ego.csv holds 0 as a placeholder and ego_motion_known is false, so replay neither "
-                    "compares radial speeds nor classes targets by them"}};
+    return {{"method", "speed from the stationary world's aliased Doppler, frame by frame (fit_speed_aliased in "
+                       "replay/import/doppler_ego_motion.hpp); yaw rate 0"},
+            {"why", "the HiRes2019 frames have neither CAN data nor timestamps. The radar's own Doppler gives the "
+                    "speed, which the simulation needs: a parked car seen from a moving ego spreads over many "
+                    "range-Doppler cells. ego_motion_known stays false: the speed comes from the recorded targets' "
+                    "radial speeds, so replay neither compares radial speeds nor classes targets by them"},
+            {"frames_fitted", doppler.fitted},
+            {"frames_without_fit", doppler.unfitted},
+            {"inlier_share", doppler.candidates > 0 ? static_cast<double>(doppler.inliers) / static_cast<double>(doppler.candidates) : 0.0},
+            {"max_speed_mps", doppler.max_speed_mps}};
   }
   return {{"method", "each frame's CAN data: vehicle_speed (km/h) / 3.6, YAW_RATE (deg/s) x pi / 180"},
           {"yaw_rate_sign",
@@ -543,6 +556,7 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
   nlohmann::json frame_indices = nlohmann::json::array();
   std::map<std::string, int> left_out;  // class -> boxes
   std::map<std::string, int> kept;      // model -> boxes
+  astyx::DopplerSpeeds doppler;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const astyx::Frame& frame = frames[k];
     const double t_s = static_cast<double>(k);
@@ -557,6 +571,7 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
     astyx::EgoAtFrame ego;
     if (ego_known) ego = astyx::read_canbus(frame.canbus);
     rec.ego.push_back({t_s, 0.0, 0.0, 0.0, ego.speed_mps, ego.yaw_rate_radps});
+    const std::size_t first_target = rec.targets.size();
 
     for (const astyx::RadarPoint& p : astyx::read_radar_file(frame.radar)) {
       RecordedTarget t = astyx::planar_target(p, mount->T_VS, mount->X_VS);
@@ -568,6 +583,25 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
       t.cycle = static_cast<int>(k);
       t.sensor = 0;
       rec.targets.push_back(t);
+    }
+    if (!ego_known) {
+      std::vector<DopplerTarget> doppler_targets;
+      doppler_targets.reserve(rec.targets.size() - first_target);
+      for (std::size_t i = first_target; i < rec.targets.size(); ++i) {
+        const RecordedTarget& t = rec.targets[i];
+        doppler_targets.push_back({t.azimuth_rad, t.elevation_rad, t.range_rate_mps});
+      }
+      const AliasedSpeedFit fit = fit_speed_aliased(doppler_targets, mount->X_VS.yaw_rad, astyx::kRangeRateInterval_mps.min_mps,
+                                                    astyx::kRangeRateInterval_mps.max_mps);
+      doppler.inliers += fit.inliers;
+      doppler.candidates += fit.candidates;
+      if (fit.valid) {
+        rec.ego.back().speed_mps = fit.speed_mps;
+        doppler.max_speed_mps = std::max(doppler.max_speed_mps, fit.speed_mps);
+        ++doppler.fitted;
+      } else {
+        ++doppler.unfitted;
+      }
     }
 
     const astyx::Labels labels = astyx::read_labels(frame);
@@ -633,7 +667,12 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
       {"boxes", "groundtruth_obj3d: center3d and the yaw of orientation_quat (w, x, y, z) in the radar's reference "
                 "frame, dimension3d length and width; the labels hold no velocities, so speed_mps is 0; each object "
                 "is one box of one frame (id fNNNNNN_KK: frame, index in its file)"},
-      {"ego_motion", astyx::ego_motion_report(ego_known)}};
+      {"ego_motion", astyx::ego_motion_report(ego_known, doppler)}};
+  if (doppler.unfitted > 0) {
+    out.warnings.push_back(fmt::format("{} of {} frames: too few stationary points agree on a speed; the ego is taken "
+                                       "as standing there (source.ego_motion)",
+                                       doppler.unfitted, frames.size()));
+  }
   return out;
 }
 

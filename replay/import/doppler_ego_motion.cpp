@@ -6,6 +6,7 @@
 #include <optional>
 #include <random>
 
+#include "common/range_rate_wrap.hpp"
 #include "replay/import/annotation_smoothing.hpp"
 
 namespace rcsim::replay {
@@ -259,6 +260,59 @@ DopplerEgoTrack ego_track_from_doppler(const std::vector<double>& t_s,
         {"mean", difference.mean},
         {"std", difference.std}}}};
   return track;
+}
+
+AliasedSpeedFit fit_speed_aliased(const std::vector<DopplerTarget>& targets, double yaw_VS_rad, double min_mps,
+                                  double max_mps, const AliasedSpeedParameters& parameters) {
+  constexpr double kBin_mps = 0.05;
+  const double width_mps = max_mps - min_mps;
+  const auto bins = static_cast<std::size_t>(std::ceil(parameters.max_speed_mps / kBin_mps)) + 1;
+  std::vector<std::size_t> votes(bins, 0);
+  std::vector<double> cos_line(targets.size(), 0.0);  // cos of the angle between line of sight and driving direction
+  AliasedSpeedFit fit;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const DopplerTarget& t = targets[i];
+    cos_line[i] = std::cos(t.elevation_rad) * std::cos(t.azimuth_rad + yaw_VS_rad);
+    if (!(cos_line[i] >= parameters.min_cos)) continue;
+    ++fit.candidates;
+    // v = -(range_rate + k width) / cos for every k with v in [0, max_speed].
+    const double c = cos_line[i];
+    const auto k_first = static_cast<long>(std::ceil((-parameters.max_speed_mps * c - t.range_rate_mps) / width_mps));
+    const auto k_last = static_cast<long>(std::floor(-t.range_rate_mps / width_mps));
+    for (long k = k_first; k <= k_last; ++k) {
+      const double v_mps = -(t.range_rate_mps + static_cast<double>(k) * width_mps) / c;
+      const auto bin = static_cast<std::size_t>(std::lround(v_mps / kBin_mps));
+      if (bin < bins) ++votes[bin];
+    }
+  }
+  std::size_t best_bin = 0, best_votes = 0;
+  for (std::size_t b = 0; b < bins; ++b) {
+    const std::size_t around = votes[b] + (b > 0 ? votes[b - 1] : 0) + (b + 1 < bins ? votes[b + 1] : 0);
+    if (around > best_votes) best_votes = around, best_bin = b;
+  }
+  if (best_votes == 0) return fit;
+  // Least squares over the inliers of the bin's speed, each unwrapped next to its prediction.
+  const double v0_mps = static_cast<double>(best_bin) * kBin_mps;
+  double sum_cr = 0.0, sum_cc = 0.0;
+  std::vector<std::pair<double, double>> inliers;  // (cos, unwrapped range rate)
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (!(cos_line[i] >= parameters.min_cos)) continue;
+    const double predicted_mps = -v0_mps * cos_line[i];
+    const double difference_mps = wrap_range_rate_mps(targets[i].range_rate_mps - predicted_mps, -0.5 * width_mps, 0.5 * width_mps);
+    if (std::abs(difference_mps) > parameters.inlier_threshold_mps) continue;
+    inliers.emplace_back(cos_line[i], predicted_mps + difference_mps);
+    sum_cr += cos_line[i] * (predicted_mps + difference_mps);
+    sum_cc += cos_line[i] * cos_line[i];
+  }
+  fit.inliers = inliers.size();
+  if (inliers.empty()) return fit;
+  fit.speed_mps = -sum_cr / sum_cc;
+  double sum_sq = 0.0;
+  for (const auto& [c, range_rate_mps] : inliers) sum_sq += (range_rate_mps + fit.speed_mps * c) * (range_rate_mps + fit.speed_mps * c);
+  fit.residual_rms_mps = std::sqrt(sum_sq / static_cast<double>(inliers.size()));
+  fit.valid = fit.inliers >= parameters.min_inliers &&
+              static_cast<double>(fit.inliers) >= parameters.min_inlier_share * static_cast<double>(fit.candidates);
+  return fit;
 }
 
 }  // namespace rcsim::replay

@@ -81,4 +81,29 @@ DopplerEgoTrack ego_track_from_doppler(const std::vector<double>& t_s,
                                        const std::vector<double>* yaw_rate_radps = nullptr,
                                        double half_window_s = 0.5, const DopplerFitParameters& parameters = {});
 
+// The speed of a vehicle driving straight, from one radar whose Doppler aliases (an imaging radar's
+// small unambiguous interval [min_mps, max_mps)): a stationary target at azimuth az and elevation
+// el (sensor frame; the sensor yawed by yaw_VS on the vehicle) has the radial speed
+// -v cos(el) cos(az + yaw_VS), read wrapped into the interval. Each target with cos(el) cos(az +
+// yaw_VS) >= min_cos votes for every v in [0, max_speed_mps] that explains it; the most voted
+// 0.05-m/s bin (with its neighbours) is refined by least squares over its inliers (|wrapped
+// difference| <= inlier_threshold_mps), each unwrapped next to the bin's prediction. Several
+// widths of the interval can explain one target, but only the true v aligns targets at many
+// angles. Without yaw rate: a turning vehicle's lateral speed is not modelled.
+struct AliasedSpeedFit {
+  double speed_mps = 0.0;
+  std::size_t inliers = 0, candidates = 0;  // candidates: the targets that voted
+  double residual_rms_mps = 0.0;            // over the inliers
+  bool valid = false;                       // at least min_inliers and min_inlier_share of the candidates
+};
+struct AliasedSpeedParameters {
+  double max_speed_mps = 40.0;
+  double min_cos = 0.3;  // targets further off the driving direction say little about v and alias more
+  double inlier_threshold_mps = 0.1;
+  std::size_t min_inliers = 20;
+  double min_inlier_share = 0.1;
+};
+AliasedSpeedFit fit_speed_aliased(const std::vector<DopplerTarget>& targets, double yaw_VS_rad, double min_mps,
+                                  double max_mps, const AliasedSpeedParameters& parameters = {});
+
 }  // namespace rcsim::replay

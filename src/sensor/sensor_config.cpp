@@ -194,7 +194,15 @@ SensorConfig parse_sensor_config(const JsonField& root) {
     if (c.occlusion.loss_db > kMaxLevelMagnitudeDb) occlusion->fail("loss_db", fmt::format("must be at most {}", kMaxLevelMagnitudeDb));
   }
   if (const auto extended = root.optional_member("extended_objects")) {
-    extended->expect_only({"diffuse_relative_ercs_per_sqrt_m", "max_pieces_per_face"});
+    extended->expect_only({"diffuse_relative_ercs_per_sqrt_m", "max_pieces_per_face", "diffuse_surface"});
+    if (extended->has("diffuse_surface")) {
+      const std::string surface = extended->string("diffuse_surface");
+      if (surface == "box") {
+        c.extended_objects.surface = ExtendedObjects::Surface::box;
+      } else if (surface != "model_faces") {
+        extended->fail("diffuse_surface", fmt::format("must be \"model_faces\" or \"box\", got \"{}\"", surface));
+      }
+    }
     if (extended->has("max_pieces_per_face")) {
       c.extended_objects.max_pieces_per_face = positive_int(*extended, "max_pieces_per_face", kMaxPiecesPerFace);
     }

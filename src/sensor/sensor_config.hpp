@@ -127,6 +127,11 @@ struct ExtendedObjects {
   // At most this many pieces per face and cycle (a face spanning more cells is cut into this many
   // longer pieces); an imaging radar of fine cells needs many (a car spans 60 cells of 7.5 cm).
   int max_pieces_per_face = 16;
+  // Which faces return diffuse pieces: the object model's plane reflectors (the default), or the
+  // four sides of the object's box (an imaging radar sees the whole body, wheels and bumpers
+  // included, diffusely; docs/imaging-radar.md). The specular points stay the model's.
+  enum class Surface { model_faces, box };
+  Surface surface = Surface::model_faces;
 };
 
 // What another object's box does to a line of sight it blocks (effects.occlusion). The paper's

@@ -37,7 +37,13 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
                                   std::span<const SceneObject> objects, bool range_culling, bool view_culling) {
   CullingBounds b;
   b.radius_m.reserve(objects.size());
-  for (const auto& o : objects) b.radius_m.push_back(reflection_radius_m(o.model));
+  const bool box = config.extended_objects.surface == ExtendedObjects::Surface::box &&
+                   config.extended_objects.diffuse_relative_ercs_per_sqrt_m > 0.0;
+  for (const auto& o : objects) {
+    double radius_m = reflection_radius_m(o.model);
+    if (box && has_box_sides(o.model)) radius_m = std::max(radius_m, 0.5 * std::hypot(o.model.length_m, o.model.width_m));
+    b.radius_m.push_back(radius_m);
+  }
   b.by_view = view_culling && config.fov.azimuth_half_rad < 0.5 * kPi;
   b.cos_half = std::cos(config.fov.azimuth_half_rad);
   b.sin_half = std::sin(config.fov.azimuth_half_rad);
@@ -69,6 +75,14 @@ CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& eff
     for (const auto& p : model.planes) ercs_sum += p.ercs;
     echo_count += static_cast<double>(model.reflector_count());
     if (!(diffuse > 0.0)) continue;
+    if (box && has_box_sides(model)) {  // four sides of ERCS 1 m^2 (ideal_targets.cpp)
+      for (const double side_m : {model.width_m, model.width_m, model.length_m, model.length_m}) {
+        ercs_sum += diffuse * std::sqrt(max_pieces * side_m);
+        strongest_diffuse[i] = std::max(strongest_diffuse[i], diffuse * std::sqrt(side_m));
+      }
+      echo_count += 4.0 * max_pieces;
+      continue;
+    }
     for (const auto& p : model.planes) {
       ercs_sum += diffuse_ercs_bound(p, max_pieces);
       strongest_diffuse[i] = std::max(strongest_diffuse[i], diffuse_ercs_bound(p, 1.0));

@@ -3,13 +3,11 @@
 // unambiguous interval [min, max) of width lambda / (2 T_chirp); a faster one reads as
 // v - k (max - min), wrapped into the interval (docs/imaging-radar.md). The Astyx HiRes: 128
 // steps of 0.0812 m/s, about +-5.2 m/s.
+#include "common/range_rate_wrap.hpp"
 #include "sensor/sensor_config.hpp"
 #include "sim/stage_types.hpp"
 
 namespace rcsim {
-
-// v wrapped into [min_mps, max_mps) (max > min).
-double wrap_range_rate_mps(double range_rate_mps, double min_mps, double max_mps);
 
 // Every detection's range rate wrapped into the cell's unambiguous interval; nothing when the
 // sensor does not alias.

@@ -32,6 +32,7 @@ struct IdealTargetFilter {
   // The sensor's diffuse face pieces (ExtendedObjects; 0: none) and their range extent (its cell).
   double diffuse_relative_ercs_per_sqrt_m = 0.0;
   DiffusePieceSize diffuse_piece;
+  bool diffuse_on_box = false;  // the pieces on the object's box sides, not on its plane reflectors
 };
 
 // Per reflection center of every object: range check, view-field check, visibility check;

@@ -11,8 +11,9 @@
 namespace rcsim {
 
 // Plane: a plane reflector's specular reflection point (paper II-A, Fig. 7); PlaneDiffuse: one
-// range cell's piece of its face (the diffuse return a fine-resolution radar resolves).
-enum class ReflectorKind : std::uint8_t { Point, Plane, PlaneDiffuse };
+// range cell's piece of its face (the diffuse return a fine-resolution radar resolves); BoxDiffuse:
+// the same on a side of the object's box (extended_objects.diffuse_surface "box").
+enum class ReflectorKind : std::uint8_t { Point, Plane, PlaneDiffuse, BoxDiffuse };
 
 // One entry of the ideal target list: a visible reflection center (paper IV-3).
 struct IdealTarget {
@@ -25,7 +26,7 @@ struct IdealTarget {
   double range_rate_mps = 0.0;
   double ercs = 0.0;
   int object_index = -1;
-  int reflector_index = -1;  // into the model's points (Point) or planes (Plane, PlaneDiffuse)
+  int reflector_index = -1;  // into the model's points (Point), planes (Plane, PlaneDiffuse) or box_sides (BoxDiffuse)
   ReflectorKind kind = ReflectorKind::Point;
   int bounce_order = 1;  // 1 direct; k > 1 a back-and-forth duplicate at k times the range
 

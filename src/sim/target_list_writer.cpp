@@ -6,6 +6,7 @@
 
 #include "io/csv_reader.hpp"
 #include "sim/amplitude.hpp"
+#include "sim/visibility.hpp"
 
 namespace rcsim {
 
@@ -47,8 +48,10 @@ void TargetListWriter::write_sensor_cycle(const Scene& scene, int cycle, double 
         const auto& t = state.ideal[i];
         const auto& object = scene.objects[static_cast<std::size_t>(t.object_index)];
         const auto k = static_cast<std::size_t>(t.reflector_index);
-        std::string reflector = t.kind == ReflectorKind::Point ? object.model.points[k].name : object.model.planes[k].name;
-        if (t.kind == ReflectorKind::PlaneDiffuse) reflector += "#diffuse";
+        std::string reflector = t.kind == ReflectorKind::Point       ? object.model.points[k].name
+                                : t.kind == ReflectorKind::BoxDiffuse ? std::string(kBoxSideNames[k])
+                                                                      : object.model.planes[k].name;
+        if (t.kind == ReflectorKind::PlaneDiffuse || t.kind == ReflectorKind::BoxDiffuse) reflector += "#diffuse";
         if (t.bounce_order > 1) reflector += fmt::format("#bounce{}", t.bounce_order);
         // echoes[i] belongs to ideal[i] at this level (cells are not formed).
         write_row(cycle, t_s, sensor_id,

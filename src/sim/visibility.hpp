@@ -3,9 +3,11 @@
 // object a sensor sees, and where. The ideal target list (ideal_targets.cpp) visits every object
 // through for_each_visible_reflector.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <utility>
 
 #include "model/object_model.hpp"
 #include "sim/stage_types.hpp"
@@ -28,20 +30,16 @@ struct DiffusePieceSize {
   int max_pieces = kMaxDiffusePieces;
 };
 
-// The diffuse pieces of a plane reflector's face seen from p_OS_O (docs/extended-objects.md): the
-// chord between the arc's ends, cut into n equal pieces, n = the face's range extent seen from the
-// sensor over the piece's range (and, where given, its angular extent over the piece's azimuth,
-// whichever is more), rounded up, 1 to max_pieces, so that each piece spans about one cell. Calls
-// visit(p_OT_O, piece_length_m) at each piece's centre. Nothing when the sensor is not in front of
-// the face (on the side of the arc's centre, or on the chord's line).
+// The diffuse pieces of a face from a_O to b_O whose outside is towards outward_O, seen from
+// p_OS_O (docs/extended-objects.md): the face cut into n equal pieces, n = its range extent seen
+// from the sensor over the piece's range (and, where given, its angular extent over the piece's
+// azimuth, whichever is more), rounded up, 1 to max_pieces, so that each piece spans about one
+// cell. Calls visit(p_OT_O, piece_length_m) at each piece's centre. Nothing when the sensor is not
+// in front of the face (on its inner side, or on its line).
 template <typename Visit>
-void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, const DiffusePieceSize& size, Visit&& visit) {
-  const Vec2 a_O = plane.center_O + plane.radius_m * plane.u_start_O;
-  const Vec2 b_O = plane.center_O + plane.radius_m * plane.u_end_O;
+void for_each_face_piece(const Vec2& a_O, const Vec2& b_O, const Vec2& outward_O, const Vec2& p_OS_O,
+                         const DiffusePieceSize& size, Visit&& visit) {
   const Vec2 mid_O = 0.5 * (a_O + b_O);
-  // The face's outward direction: from the circle centre to the arc's middle (a half circle's
-  // chord passes through the centre, so the chord's middle would not do).
-  const Vec2 outward_O = plane.arc_point_O(plane.start_rad + 0.5 * plane.span_rad) - plane.center_O;
   if (!((p_OS_O - mid_O).dot(outward_O) > 0.0)) return;
   const Vec2 p_SA_O = a_O - p_OS_O, p_SB_O = b_O - p_OS_O;
   const double range_extent_m = std::abs(p_SA_O.norm() - p_SB_O.norm());
@@ -53,6 +51,35 @@ void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, con
   const int n = std::clamp(static_cast<int>(std::ceil(cells)), 1, size.max_pieces);
   const double length_m = (b_O - a_O).norm() / n;
   for (int k = 0; k < n; ++k) visit(Vec2(a_O + ((k + 0.5) / n) * (b_O - a_O)), length_m);
+}
+
+// The diffuse pieces of a plane reflector's face: the chord between the arc's ends, its outside
+// from the circle centre to the arc's middle (a half circle's chord passes through the centre, so
+// the chord's middle would not do).
+template <typename Visit>
+void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, const DiffusePieceSize& size, Visit&& visit) {
+  const Vec2 a_O = plane.center_O + plane.radius_m * plane.u_start_O;
+  const Vec2 b_O = plane.center_O + plane.radius_m * plane.u_end_O;
+  const Vec2 outward_O = plane.arc_point_O(plane.start_rad + 0.5 * plane.span_rad) - plane.center_O;
+  for_each_face_piece(a_O, b_O, outward_O, p_OS_O, size, std::forward<Visit>(visit));
+}
+
+// The four sides of an object's box (length along x, width along y, centred on the object's
+// origin), in the order of kBoxSideNames: the surface whose diffuse pieces an imaging radar sees
+// with extended_objects.diffuse_surface "box" (docs/extended-objects.md).
+inline constexpr const char* kBoxSideNames[4] = {"box_front", "box_rear", "box_left", "box_right"};
+struct BoxSide {
+  Vec2 a_O, b_O, outward_O;
+};
+// A model has box sides when it has a box and is not a polyline (a guard rail's "box" is its
+// template's, not the rail's).
+inline bool has_box_sides(const ObjectModel& model) {
+  return model.length_m > 0.0 && model.width_m > 0.0 && model.polyline_points == 0 && !model.polyline;
+}
+inline std::array<BoxSide, 4> box_sides(double length_m, double width_m) {
+  const double x = 0.5 * length_m, y = 0.5 * width_m;
+  return {BoxSide{Vec2(x, -y), Vec2(x, y), Vec2::UnitX()}, BoxSide{Vec2(-x, y), Vec2(-x, -y), -Vec2::UnitX()},
+          BoxSide{Vec2(-x, y), Vec2(x, y), Vec2::UnitY()}, BoxSide{Vec2(x, -y), Vec2(-x, -y), -Vec2::UnitY()}};
 }
 
 // One visible reflection point of an object, in the object frame.

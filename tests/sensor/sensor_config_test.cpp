@@ -21,6 +21,7 @@ TEST(SensorConfigImaging, TheAstyxProfileIsAnArrayThatResolvesAzimuth) {
   EXPECT_TRUE(c.detection.strongest_beam_per_cell);
   EXPECT_EQ(c.amplitude.unit, AmplitudeUnit::relative_db);
   EXPECT_EQ(c.extended_objects.max_pieces_per_face, 128);
+  EXPECT_EQ(c.extended_objects.surface, ExtendedObjects::Surface::box);
   EXPECT_GT(c.background.targets_per_cycle, 1000.0);  // more than the Knuth Poisson draw held
   // The paper's sensor is none of that.
   const SensorConfig srr24 = builtin_sensor_config("srr24");
@@ -28,6 +29,7 @@ TEST(SensorConfigImaging, TheAstyxProfileIsAnArrayThatResolvesAzimuth) {
   EXPECT_FALSE(srr24.resolution.aliases_range_rate());
   EXPECT_EQ(srr24.amplitude.unit, AmplitudeUnit::snr_db);
   EXPECT_EQ(srr24.extended_objects.max_pieces_per_face, 16);
+  EXPECT_EQ(srr24.extended_objects.surface, ExtendedObjects::Surface::model_faces);
 }
 
 TEST(SensorConfigImaging, ContradictionsAreRefusedNamingTheField) {
@@ -58,6 +60,9 @@ TEST(SensorConfigImaging, ContradictionsAreRefusedNamingTheField) {
   doc = astyx;
   doc["extended_objects"]["max_pieces_per_face"] = 1000;
   EXPECT_NE(testing::sensor_config_error(doc).find("extended_objects.max_pieces_per_face"), std::string::npos);
+  doc = astyx;
+  doc["extended_objects"]["diffuse_surface"] = "boxes";
+  EXPECT_NE(testing::sensor_config_error(doc).find("extended_objects.diffuse_surface"), std::string::npos);
 
   auto srr24 = testing::builtin_sensor_json("srr24");
   srr24["array"] = {{"azimuth_sigma_deg", 0.1}};  // an array section without beams

@@ -220,5 +220,41 @@ TEST(DiffusePieces, NothingFromBehindTheFace) {
   EXPECT_FALSE(diffuse_pieces(face, {10.0, 11.0}, 0.5).empty());
 }
 
+TEST(DiffusePieces, TheBoxSidesSeenFromFrontLeftAreTheFrontAndTheLeft) {
+  // A 4.6 x 1.8 m box seen from (10, 5): the front (x = 2.3) and the left (y = 0.9) face the
+  // sensor, the rear and the right do not.
+  const auto sides = box_sides(4.6, 1.8);
+  std::vector<std::size_t> pieces(4, 0);
+  double left_total_m = 0.0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    for_each_face_piece(sides[k].a_O, sides[k].b_O, sides[k].outward_O, {10.0, 5.0}, DiffusePieceSize{0.075, 0.0, 128},
+                        [&](const Vec2& p_OT_O, double length_m) {
+                          ++pieces[k];
+                          if (k == 2) {
+                            EXPECT_NEAR(p_OT_O.y(), 0.9, 1e-12);
+                            left_total_m += length_m;
+                          }
+                        });
+  }
+  EXPECT_EQ(std::string(kBoxSideNames[0]), "box_front");
+  EXPECT_EQ(pieces[1], 0u);
+  EXPECT_EQ(pieces[3], 0u);
+  // The left side (-2.3, 0.9) .. (2.3, 0.9): ends at sqrt(12.3^2 + 4.1^2) = 12.96534 m and
+  // sqrt(7.7^2 + 4.1^2) = 8.72353 m, extent 4.24181 m: ceil(56.5575) = 57 pieces of 4.6/57 m.
+  EXPECT_EQ(pieces[2], 57u);
+  EXPECT_NEAR(left_total_m, 4.6, 1e-9);
+  // The front (2.3, -0.9) .. (2.3, 0.9): ends at sqrt(7.7^2 + 5.9^2) = 9.70052 and
+  // sqrt(7.7^2 + 4.1^2) = 8.72353 m, extent 0.97699 m: ceil(13.0265) = 14 pieces.
+  EXPECT_EQ(pieces[0], 14u);
+  // A guard rail (a polyline template) has no box sides; a car model has.
+  ObjectModel rail;
+  rail.length_m = 4.0;
+  rail.width_m = 0.3;
+  rail.polyline_points = 2;
+  EXPECT_FALSE(has_box_sides(rail));
+  rail.polyline_points = 0;
+  EXPECT_TRUE(has_box_sides(rail));
+}
+
 }  // namespace
 }  // namespace rcsim

@@ -4,6 +4,9 @@
 // yaw rate; one sensor alone gives the speed; the track integrates the pose.
 #include "replay/import/doppler_ego_motion.hpp"
 
+#include "common/angles.hpp"
+#include "common/range_rate_wrap.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -116,6 +119,36 @@ TEST(DopplerEgoMotion, TrackIntegratesThePoseAndTakesAGivenYawRate) {
   const DopplerEgoTrack turning = ego_track_from_doppler(t_s, targets, X_VS, {"front", "back"}, &yaw_rate);
   EXPECT_NEAR(turning.samples[29].yaw_rad, 0.05 * 2.9, 1e-9);
   EXPECT_NEAR(turning.report["doppler_yaw_rate_minus_used_radps"]["mean"].get<double>(), -0.05, 1e-9);
+}
+
+// An imaging radar's aliased Doppler (the Astyx interval [-5.2374, 5.1562), 10.3936 m/s wide):
+// 12 m/s forward, stationary points at azimuths 0, 10, ..., 50 deg (elevation 0): range rate
+// -12 cos(az) = -12, -11.8177, -11.2763, -10.3923, -9.1925, -7.7135, read wrapped (+10.3936 or
+// +20.7872): -1.6064, -1.4241, -0.8827, -10.3923 + 10.3936 = 0.0013, 1.2011, 2.6801.
+TEST(DopplerEgoMotion, AnAliasedSpeedIsTheOneThatAlignsEveryAngle) {
+  constexpr double kMin = -5.2374, kMax = 5.1562;
+  std::vector<DopplerTarget> targets;
+  for (int k = 0; k < 60; ++k) {
+    const double az = deg_to_rad(10.0 * (k % 6)) * (k % 2 == 0 ? 1.0 : -1.0);
+    targets.push_back({az, 0.0, wrap_range_rate_mps(-12.0 * std::cos(az), kMin, kMax)});
+  }
+  EXPECT_NEAR(targets[0].range_rate_mps, -1.6064, 1e-4);
+  EXPECT_NEAR(targets[3].range_rate_mps, 0.0013, 1e-4);
+  // 20 movers that agree on nothing: the fit keeps to the stationary world.
+  for (int k = 0; k < 20; ++k) targets.push_back({deg_to_rad(3.0 * k - 30.0), 0.0, -5.0 + 0.5 * k});
+  const AliasedSpeedFit fit = fit_speed_aliased(targets, 0.0, kMin, kMax);
+  ASSERT_TRUE(fit.valid);
+  EXPECT_NEAR(fit.speed_mps, 12.0, 0.01);  // a mover within 0.1 m/s of the line pulls a little
+  EXPECT_EQ(fit.candidates, 80u);
+  EXPECT_GE(fit.inliers, 60u);
+  EXPECT_LE(fit.inliers, 62u);  // a mover may fall within 0.1 m/s by chance
+  // Standing: every point at 0, speed 0 exactly.
+  std::vector<DopplerTarget> standing(30, DopplerTarget{0.2, 0.05, 0.0});
+  const AliasedSpeedFit still = fit_speed_aliased(standing, 0.0, kMin, kMax);
+  ASSERT_TRUE(still.valid);
+  EXPECT_EQ(still.speed_mps, 0.0);
+  // Too few points agree: not valid.
+  EXPECT_FALSE(fit_speed_aliased(std::vector<DopplerTarget>(5, DopplerTarget{0.2, 0.0, 0.0}), 0.0, kMin, kMax).valid);
 }
 
 }  // namespace
