@@ -194,7 +194,7 @@ SensorConfig parse_sensor_config(const JsonField& root) {
     if (c.occlusion.loss_db > kMaxLevelMagnitudeDb) occlusion->fail("loss_db", fmt::format("must be at most {}", kMaxLevelMagnitudeDb));
   }
   if (const auto extended = root.optional_member("extended_objects")) {
-    extended->expect_only({"diffuse_relative_ercs_per_sqrt_m", "max_pieces_per_face", "diffuse_surface"});
+    extended->expect_only({"diffuse_relative_ercs_per_sqrt_m", "max_pieces_per_face", "diffuse_surface", "box_side_inset_m"});
     if (extended->has("diffuse_surface")) {
       const std::string surface = extended->string("diffuse_surface");
       if (surface == "box") {
@@ -202,6 +202,13 @@ SensorConfig parse_sensor_config(const JsonField& root) {
       } else if (surface != "model_faces") {
         extended->fail("diffuse_surface", fmt::format("must be \"model_faces\" or \"box\", got \"{}\"", surface));
       }
+    }
+    if (extended->has("box_side_inset_m")) {
+      if (c.extended_objects.surface != ExtendedObjects::Surface::box) {
+        extended->fail("box_side_inset_m", "needs \"diffuse_surface\": \"box\"");
+      }
+      c.extended_objects.box_side_inset_m = non_negative(*extended, "box_side_inset_m");
+      if (c.extended_objects.box_side_inset_m > 1.0) extended->fail("box_side_inset_m", "must be at most 1");
     }
     if (extended->has("max_pieces_per_face")) {
       c.extended_objects.max_pieces_per_face = positive_int(*extended, "max_pieces_per_face", kMaxPiecesPerFace);

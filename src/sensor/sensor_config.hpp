@@ -132,6 +132,8 @@ struct ExtendedObjects {
   // included, diffusely; docs/imaging-radar.md). The specular points stay the model's.
   enum class Surface { model_faces, box };
   Surface surface = Surface::model_faces;
+  // With "box": the left and right sides this far inside the box (0 to 1 m).
+  double box_side_inset_m = 0.0;
 };
 
 // What another object's box does to a line of sight it blocks (effects.occlusion). The paper's

@@ -108,7 +108,7 @@ void add_visible_targets(const SensorFrame& frame, const ObjectModel& model, con
   // docs/extended-objects.md: a piece of length l has ERCS relative x plane ERCS x sqrt(l / 1 m);
   // a side of the box counts as a face of ERCS 1 m^2.
   if (filter.diffuse_on_box && has_box_sides(model)) {
-    const auto sides = box_sides(model.length_m, model.width_m);
+    const auto sides = box_sides(model.length_m, model.width_m, filter.box_side_inset_m);
     for (std::size_t k = 0; k < sides.size(); ++k) {
       for_each_face_piece(sides[k].a_O, sides[k].b_O, sides[k].outward_O, p_OS_O, filter.diffuse_piece,
                           [&](const Vec2& p_OT_O, double length_m) {

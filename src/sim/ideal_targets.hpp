@@ -33,6 +33,7 @@ struct IdealTargetFilter {
   double diffuse_relative_ercs_per_sqrt_m = 0.0;
   DiffusePieceSize diffuse_piece;
   bool diffuse_on_box = false;  // the pieces on the object's box sides, not on its plane reflectors
+  double box_side_inset_m = 0.0;  // the box's left and right sides this far inside (box_sides)
 };
 
 // Per reflection center of every object: range check, view-field check, visibility check;

@@ -73,6 +73,7 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   filter.diffuse_piece = {config.resolution.range_cell_m, config.resolution.azimuth_cell_rad,
                          config.extended_objects.max_pieces_per_face};
   filter.diffuse_on_box = config.extended_objects.surface == ExtendedObjects::Surface::box;
+  filter.box_side_inset_m = config.extended_objects.box_side_inset_m;
   compute_ideal_targets(config.fov, state.kinematics, objects, snapshot.objects, snapshot.visited_indices, state.ideal,
                         filter);
   // ideal targets => those not hidden (or weakened) behind another object (only those near the view)

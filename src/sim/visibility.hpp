@@ -66,7 +66,9 @@ void for_each_diffuse_piece(const PlaneReflector& plane, const Vec2& p_OS_O, con
 
 // The four sides of an object's box (length along x, width along y, centred on the object's
 // origin), in the order of kBoxSideNames: the surface whose diffuse pieces an imaging radar sees
-// with extended_objects.diffuse_surface "box" (docs/extended-objects.md).
+// with extended_objects.diffuse_surface "box" (docs/extended-objects.md). The left and right sides
+// lie side_inset_m inside the box (at least on the centre line): a car's body above the wheels is
+// narrower than its box, and its roof, hood and boot project inside it.
 inline constexpr const char* kBoxSideNames[4] = {"box_front", "box_rear", "box_left", "box_right"};
 struct BoxSide {
   Vec2 a_O, b_O, outward_O;
@@ -76,10 +78,11 @@ struct BoxSide {
 inline bool has_box_sides(const ObjectModel& model) {
   return model.length_m > 0.0 && model.width_m > 0.0 && model.polyline_points == 0 && !model.polyline;
 }
-inline std::array<BoxSide, 4> box_sides(double length_m, double width_m) {
-  const double x = 0.5 * length_m, y = 0.5 * width_m;
+inline std::array<BoxSide, 4> box_sides(double length_m, double width_m, double side_inset_m = 0.0) {
+  const double x = 0.5 * length_m, y = 0.5 * width_m, y_side = std::max(y - side_inset_m, 0.0);
   return {BoxSide{Vec2(x, -y), Vec2(x, y), Vec2::UnitX()}, BoxSide{Vec2(-x, y), Vec2(-x, -y), -Vec2::UnitX()},
-          BoxSide{Vec2(-x, y), Vec2(x, y), Vec2::UnitY()}, BoxSide{Vec2(x, -y), Vec2(-x, -y), -Vec2::UnitY()}};
+          BoxSide{Vec2(-x, y_side), Vec2(x, y_side), Vec2::UnitY()},
+          BoxSide{Vec2(x, -y_side), Vec2(-x, -y_side), -Vec2::UnitY()}};
 }
 
 // One visible reflection point of an object, in the object frame.

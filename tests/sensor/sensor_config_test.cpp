@@ -22,6 +22,7 @@ TEST(SensorConfigImaging, TheAstyxProfileIsAnArrayThatResolvesAzimuth) {
   EXPECT_EQ(c.amplitude.unit, AmplitudeUnit::relative_db);
   EXPECT_EQ(c.extended_objects.max_pieces_per_face, 128);
   EXPECT_EQ(c.extended_objects.surface, ExtendedObjects::Surface::box);
+  EXPECT_DOUBLE_EQ(c.extended_objects.box_side_inset_m, 0.3);
   EXPECT_GT(c.background.targets_per_cycle, 1000.0);  // more than the Knuth Poisson draw held
   // The paper's sensor is none of that.
   const SensorConfig srr24 = builtin_sensor_config("srr24");
@@ -63,6 +64,12 @@ TEST(SensorConfigImaging, ContradictionsAreRefusedNamingTheField) {
   doc = astyx;
   doc["extended_objects"]["diffuse_surface"] = "boxes";
   EXPECT_NE(testing::sensor_config_error(doc).find("extended_objects.diffuse_surface"), std::string::npos);
+  doc = astyx;
+  doc["extended_objects"]["box_side_inset_m"] = 1.5;
+  EXPECT_NE(testing::sensor_config_error(doc).find("extended_objects.box_side_inset_m"), std::string::npos);
+  doc["extended_objects"]["box_side_inset_m"] = 0.2;
+  doc["extended_objects"].erase("diffuse_surface");  // an inset of the model's own faces means nothing
+  EXPECT_NE(testing::sensor_config_error(doc).find("extended_objects.box_side_inset_m"), std::string::npos);
 
   auto srr24 = testing::builtin_sensor_json("srr24");
   srr24["array"] = {{"azimuth_sigma_deg", 0.1}};  // an array section without beams

@@ -246,6 +246,11 @@ TEST(DiffusePieces, TheBoxSidesSeenFromFrontLeftAreTheFrontAndTheLeft) {
   // The front (2.3, -0.9) .. (2.3, 0.9): ends at sqrt(7.7^2 + 5.9^2) = 9.70052 and
   // sqrt(7.7^2 + 4.1^2) = 8.72353 m, extent 0.97699 m: ceil(13.0265) = 14 pieces.
   EXPECT_EQ(pieces[0], 14u);
+  // 0.3 m inset: the left side on y = 0.6, the front unchanged; 2 m inset: on the centre line.
+  EXPECT_DOUBLE_EQ(box_sides(4.6, 1.8, 0.3)[2].a_O.y(), 0.6);
+  EXPECT_DOUBLE_EQ(box_sides(4.6, 1.8, 0.3)[3].b_O.y(), -0.6);
+  EXPECT_DOUBLE_EQ(box_sides(4.6, 1.8, 0.3)[0].b_O.y(), 0.9);
+  EXPECT_DOUBLE_EQ(box_sides(4.6, 1.8, 2.0)[2].a_O.y(), 0.0);
   // A guard rail (a polyline template) has no box sides; a car model has.
   ObjectModel rail;
   rail.length_m = 4.0;
