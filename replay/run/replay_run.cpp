@@ -167,10 +167,12 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
   cycle.sensor = static_cast<int>(s);
   cycle.X_WS = compose(X_WV, run.scene.sensors[s].X_VS);
   const auto& boxes = buffers.boxes;
-  // Detectability by the scene's geometry: the start of latency episodes.
+  // Detectability by the scene's geometry: the start of latency episodes. Snapshots (frames
+  // without a clock) have no episodes: nothing is confirmed over time between them.
+  const bool timed = run.rec.timeline == Timeline::drive;
   buffers.detectable.assign(run.scene.objects.size(), 0);
   run.geometry.mark_detectable(s, buffers.detectable);
-  latency.update_detectable(s, buffers.detectable, t_rec_s);
+  if (timed) latency.update_detectable(s, buffers.detectable, t_rec_s);
   project_boxes(run, s, t_scene_s, ego, object_states, cycle, buffers);
 
   cycle.recorded.clear();
@@ -191,7 +193,7 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
   classify_targets(cycle.simulated, boxes, cells, buffers.pair_of_cell, v_WS_S, ego_known, run.options, merge);
   match_targets(cycle, run.options.gospa);
   const MergeCounts merges = match_merge_artefacts(cycle, run.options.merge_match_distance_m);
-  latency.note_targets(s, cycle, t_rec_s);
+  if (timed) latency.note_targets(s, cycle, t_rec_s);
   acc.add_cycle(cycle, merges.recorded, merges.simulated);
   objects.add_cycle(cycle, buffers.in_field);
   sink.add_cycle(cycle);

@@ -22,8 +22,9 @@ void import_dataset(const std::string& dataset, const std::string& raw_dir, cons
   for (const auto& warning : imported.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
   write_recording(output, imported.recording, imported.extra_files);
   const Recording& rec = imported.recording;
-  std::cout << fmt::format("{}: {} cycles, {} sensors, {} objects, {} targets; written to {}\n", rec.name,
-                           rec.cycle_count(), rec.sensors.size(), rec.objects.size(), rec.targets.size(), output);
+  std::cout << fmt::format("{}: {} cycles, {} sensor{}, {} objects, {} targets; written to {}\n", rec.name,
+                           rec.cycle_count(), rec.sensors.size(), rec.sensors.size() == 1 ? "" : "s",
+                           rec.objects.size(), rec.targets.size(), output);
 }
 
 }  // namespace

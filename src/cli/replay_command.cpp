@@ -54,7 +54,7 @@ std::string percent_of(long long part, long long whole) {
 
 // The figures that tell the annotated objects from the unmodelled world, and the latency and
 // merge-artefact figures judged against the scene geometry (docs/metrics.md).
-void print_class_figures(const replay::ReplaySummary& s, std::size_t sensors) {
+void print_class_figures(const replay::ReplaySummary& s, std::size_t sensors, bool snapshots) {
   long long in_view = 0, detected_recorded = 0, detected_simulated = 0;
   for (const auto& o : s.objects) {
     in_view += o.cycles_in_view;
@@ -73,11 +73,15 @@ void print_class_figures(const replay::ReplaySummary& s, std::size_t sensors) {
     distances += fmt::format(", {} W1 {:.3g} {} KS {:.3f}", std::string_view(q).substr(11), d->distance.wasserstein1,
                              d->unit, d->distance.kolmogorov_smirnov);
   }
-  std::cout << fmt::format("  latency: simulated - recorded {} over {} episodes both confirmed; never confirmed {} / {} of {} "
-                           "episodes; merge artefacts matched by position {} of {}\n",
-                           s.latency_pairs > 0 ? fmt::format("{:+.3f} s", s.latency_difference_mean_s) : std::string("-"),
-                           s.latency_pairs, s.latency_unconfirmed_recorded, s.latency_unconfirmed_simulated,
-                           s.latency_episodes, s.merge_artefacts_matched, s.merge_artefacts_recorded);
+  const std::string latency =
+      snapshots
+          ? std::string("none (snapshots: no time between the frames to confirm in)")
+          : fmt::format("simulated - recorded {} over {} episodes both confirmed; never confirmed {} / {} of {} episodes",
+                        s.latency_pairs > 0 ? fmt::format("{:+.3f} s", s.latency_difference_mean_s) : std::string("-"),
+                        s.latency_pairs, s.latency_unconfirmed_recorded, s.latency_unconfirmed_simulated,
+                        s.latency_episodes);
+  std::cout << fmt::format("  latency: {}; merge artefacts matched by position {} of {}\n", latency,
+                           s.merge_artefacts_matched, s.merge_artefacts_recorded);
   std::cout << fmt::format("  stationary background: {} / {} targets ({:.2f} / {:.2f} per sensor cycle){}; other: {} / {}\n",
                            s.classes.background[0], s.classes.background[1],
                            static_cast<double>(s.classes.background[0]) / sensor_cycles,
@@ -196,7 +200,7 @@ void print_figures(const Recording& recording, const replay::ReplaySummary& summ
       summary.merge_artefacts_recorded, summary.merge_artefacts_simulated,
       summary.latency_recorded_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_recorded_s),
       summary.latency_simulated_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_simulated_s));
-  print_class_figures(summary, recording.sensors.size());
+  print_class_figures(summary, recording.sensors.size(), recording.timeline == Timeline::snapshots);
 }
 
 // The verdict of one run among `verdicts`, if it was judged.
@@ -291,7 +295,8 @@ void store_and_print(SQLite::Database& db, ReplayArgs& args, const Recording& re
     const auto* verdict = verdict_of(verdicts, writer.run_id());
     std::cout << fmt::format("run {}: {}: {}; stored in {}\n", writer.run_id(), recording.name, verdict_word(verdict),
                              args.db_path);
-    std::cout << fmt::format("  {} cycles, {} sensors, {}; {}\n", summary.cycles, recording.sensors.size(), label.level,
+    std::cout << fmt::format("  {} cycles, {} sensor{}, {}; {}\n", summary.cycles, recording.sensors.size(),
+                           recording.sensors.size() == 1 ? "" : "s", label.level,
                              label.text());
     if (verdict != nullptr) print_run_verdict(std::cout, *verdicts, *verdict);
     print_figures(recording, summary, replay::run_kind(label.level, label.fidelity));

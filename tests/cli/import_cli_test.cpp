@@ -82,7 +82,7 @@ TEST_F(ImportCli, TheAstyxParentDirectoryIsRefusedNamingBothDatasets) {
   const auto ok = run_rcsim("import --from astyx " + (raw / "dataset_astyx_demo").string() + " --frames 0,4 -o " +
                             (dir_ / "standing").string());
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
-  EXPECT_NE(ok.output.find("dataset_astyx_demo frames 0,4: 2 cycles, 1 sensors"), std::string::npos) << ok.output;
+  EXPECT_NE(ok.output.find("dataset_astyx_demo frames 0,4: 2 cycles, 1 sensor,"), std::string::npos) << ok.output;
   EXPECT_TRUE(fs::is_regular_file(dir_ / "standing" / "recording.json"));
 }
 

@@ -148,7 +148,7 @@ TEST(StreamingMemory, ALongDriveReplaysWithinAFixedMemoryLimit) {
   output.resize(fread(output.data(), 1, output.size(), pipe));
   const int status = pclose(pipe);
   EXPECT_EQ(WEXITSTATUS(status), 0) << output;
-  EXPECT_NE(output.find("45000 cycles, 1 sensors"), std::string::npos) << output;
+  EXPECT_NE(output.find("45000 cycles, 1 sensor,"), std::string::npos) << output;
   EXPECT_NE(output.find("all targets: 4500 recorded"), std::string::npos) << output;
 }
 #endif
