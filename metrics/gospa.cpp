@@ -178,6 +178,19 @@ void assign_by_components(const std::vector<Vec2>& x, const std::vector<Vec2>& y
   }
 }
 
+// From the assignment's pairs (result.assigned, result.localisation_mp) and ospa_sum = Σ min(d, c)^p
+// over the assignment: the missed and false parts, GOSPA (c^p / 2 per unassigned target, alpha 2)
+// and OSPA: (1/n (Σ min(d,c)^p + c^p (n − m)))^(1/p), m = min(|X|,|Y|), n = max(|X|,|Y|).
+void finish_gospa(int n_x, int n_y, double ospa_sum, double c_p, double p, GospaResult& result) {
+  result.missed = n_x - result.assigned;
+  result.false_targets = n_y - result.assigned;
+  result.missed_mp = 0.5 * c_p * result.missed;
+  result.false_mp = 0.5 * c_p * result.false_targets;
+  result.gospa_m = std::pow(result.localisation_mp + result.missed_mp + result.false_mp, 1.0 / p);
+  const int n = std::max(n_x, n_y), m = std::min(n_x, n_y);
+  if (n > 0) result.ospa_m = std::pow((ospa_sum + c_p * static_cast<double>(n - m)) / static_cast<double>(n), 1.0 / p);
+}
+
 }  // namespace
 
 GospaResult gospa(const std::vector<Vec2>& recorded_S, const std::vector<Vec2>& simulated_S,
@@ -218,15 +231,7 @@ GospaResult gospa(const std::vector<Vec2>& recorded_S, const std::vector<Vec2>& 
       --far_rows;
     }
   }
-  result.missed = n_x - result.assigned;
-  result.false_targets = n_y - result.assigned;
-  result.missed_mp = 0.5 * c_p * result.missed;
-  result.false_mp = 0.5 * c_p * result.false_targets;
-  result.gospa_m = std::pow(result.localisation_mp + result.missed_mp + result.false_mp, 1.0 / p);
-
-  // OSPA: (1/n (Σ min(d,c)^p + c^p (n − m)))^(1/p), m = min(|X|,|Y|), n = max(|X|,|Y|).
-  const int n = std::max(n_x, n_y), m = std::min(n_x, n_y);
-  if (n > 0) result.ospa_m = std::pow((ospa_sum + c_p * static_cast<double>(n - m)) / static_cast<double>(n), 1.0 / p);
+  finish_gospa(n_x, n_y, ospa_sum, c_p, p, result);
   return result;
 }
 
@@ -262,15 +267,7 @@ GospaResult gospa_full_assignment(const std::vector<Vec2>& recorded_S, const std
       ++result.assigned;
     }
   }
-  result.missed = static_cast<int>(n_x) - result.assigned;
-  result.false_targets = static_cast<int>(n_y) - result.assigned;
-  result.missed_mp = 0.5 * c_p * result.missed;
-  result.false_mp = 0.5 * c_p * result.false_targets;
-  result.gospa_m = std::pow(result.localisation_mp + result.missed_mp + result.false_mp, 1.0 / p);
-
-  // OSPA: (1/n (Σ min(d,c)^p + c^p (n − m)))^(1/p), m = min(|X|,|Y|), n = max(|X|,|Y|).
-  const auto n = std::max(n_x, n_y), m = std::min(n_x, n_y);
-  if (n > 0) result.ospa_m = std::pow((ospa_sum + c_p * static_cast<double>(n - m)) / static_cast<double>(n), 1.0 / p);
+  finish_gospa(static_cast<int>(n_x), static_cast<int>(n_y), ospa_sum, c_p, p, result);
   return result;
 }
 

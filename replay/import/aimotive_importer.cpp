@@ -20,6 +20,7 @@
 #include "replay/import/annotation_smoothing.hpp"
 #include "replay/import/doppler_ego_motion.hpp"
 #include "replay/import/ego_log.hpp"
+#include "replay/import/rigid_transform.hpp"
 
 namespace rcsim::replay {
 
@@ -71,27 +72,6 @@ std::int64_t parse_timestamp_ns(const JsonField& root) {
   return ns;
 }
 
-Eigen::Matrix4d read_matrix4(const JsonField& sensor, std::string_view key) {
-  const std::vector<JsonField> rows = sensor.array(key);
-  if (rows.size() != 4) sensor.fail(key, "must be a 4 x 4 matrix");
-  Eigen::Matrix4d m;
-  for (int r = 0; r < 4; ++r) {
-    const nlohmann::json& row = rows[static_cast<std::size_t>(r)].json();
-    if (!row.is_array() || row.size() != 4) sensor.fail(key, fmt::format("row {} must hold 4 numbers", r));
-    for (int c = 0; c < 4; ++c) {
-      const auto& v = row[static_cast<std::size_t>(c)];
-      if (!v.is_number() || !std::isfinite(v.get<double>())) sensor.fail(key, fmt::format("element ({}, {}) is not a finite number", r, c));
-      m(r, c) = v.get<double>();
-    }
-  }
-  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-  if ((R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3 || R.determinant() < 0.0 ||
-      m.row(3) != Eigen::RowVector4d(0.0, 0.0, 0.0, 1.0)) {
-    sensor.fail(key, "is no rigid transform (rotation not orthonormal, or last row not 0 0 0 1)");
-  }
-  return m;
-}
-
 }  // namespace
 
 fs::path find_sequence(const fs::path& raw_dir) {
@@ -134,7 +114,7 @@ std::vector<RadarMount> read_radar_mounts(const fs::path& sequence) {
     const JsonField sensor = root.member(label);
     RadarMount mount;
     mount.label = label;
-    mount.T_body_sensor = read_matrix4(sensor, "RT_body_from_sensor");
+    mount.T_body_sensor = read_rigid_transform(sensor, "RT_body_from_sensor");
     const Eigen::Matrix4d& T = mount.T_body_sensor;
     mount.X_VS = {T(0, 3), T(1, 3), std::atan2(T(1, 0), T(0, 0))};
     if (std::abs(T(0, 3)) > limits::kMaxMountOffset_m || std::abs(T(1, 3)) > limits::kMaxMountOffset_m) {

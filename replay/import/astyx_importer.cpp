@@ -19,6 +19,7 @@
 #include "common/text_file.hpp"
 #include "model/model_library.hpp"
 #include "replay/import/doppler_ego_motion.hpp"
+#include "replay/import/rigid_transform.hpp"
 
 namespace rcsim::replay {
 
@@ -142,29 +143,6 @@ std::vector<double> numbers_array(const JsonField& field, std::string_view key, 
   return values;
 }
 
-Eigen::Matrix4d rigid_matrix(const JsonField& field, std::string_view key) {
-  const std::vector<JsonField> rows = field.array(key);
-  if (rows.size() != 4) field.fail(key, "must be a 4 x 4 matrix");
-  Eigen::Matrix4d m;
-  for (int r = 0; r < 4; ++r) {
-    const nlohmann::json& row = rows[static_cast<std::size_t>(r)].json();
-    if (!row.is_array() || row.size() != 4) field.fail(key, fmt::format("row {} must hold 4 numbers", r));
-    for (int c = 0; c < 4; ++c) {
-      const auto& v = row[static_cast<std::size_t>(c)];
-      if (!v.is_number() || !std::isfinite(v.get<double>())) {
-        field.fail(key, fmt::format("element ({}, {}) is not a finite number", r, c));
-      }
-      m(r, c) = v.get<double>();
-    }
-  }
-  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-  if ((R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3 || R.determinant() < 0.0 ||
-      m.row(3) != Eigen::RowVector4d(0.0, 0.0, 0.0, 1.0)) {
-    field.fail(key, "is no rigid transform (rotation not orthonormal, or last row not 0 0 0 1)");
-  }
-  return m;
-}
-
 // The radar's mounting in the reference frame (the vehicle frame of the recording).
 struct Mount {
   Eigen::Matrix4d T_VS = Eigen::Matrix4d::Identity();
@@ -182,7 +160,7 @@ Mount read_mount(const fs::path& file, const std::string& radar) {
       continue;
     }
     Mount mount;
-    mount.T_VS = rigid_matrix(sensor.member("calib_data"), "T_to_ref_COS");
+    mount.T_VS = read_rigid_transform(sensor.member("calib_data"), "T_to_ref_COS");
     const Eigen::Matrix4d& T = mount.T_VS;
     if (std::abs(T(0, 3)) > limits::kMaxMountOffset_m || std::abs(T(1, 3)) > limits::kMaxMountOffset_m) {
       sensor.fail("calib_data.T_to_ref_COS", fmt::format("translation ({}, {}) m beyond ±{} m: is it in millimetres?",

@@ -1,0 +1,15 @@
+#pragma once
+// A dataset's 4 x 4 homogeneous transform (a sensor's mounting in the aiMotive and Astyx
+// calibration files), read and checked: the one reader of both importers.
+#include <Eigen/Dense>
+#include <string_view>
+
+#include "common/json_reader.hpp"
+
+namespace rcsim::replay {
+
+// field[key]: 4 rows of 4 finite numbers forming a rigid transform (orthonormal rotation with
+// determinant +1 within 1e-3, last row 0 0 0 1); an InputError naming the field otherwise.
+Eigen::Matrix4d read_rigid_transform(const JsonField& field, std::string_view key);
+
+}  // namespace rcsim::replay
