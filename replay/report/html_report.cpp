@@ -11,6 +11,7 @@
 #include "replay/report/campaign_section.hpp"
 #include "replay/report/verdict_section.hpp"
 #include "replay/report/speed_error_section.hpp"
+#include "replay/store/campaign_store.hpp"
 #include "replay/store/report_reader.hpp"
 #include "replay/report/html_cells.hpp"
 #include "replay/report/html_report_figures.hpp"
@@ -184,8 +185,11 @@ PageSelection select_page(SQLite::Database& db, const std::string& db_label, con
     case CampaignOverview::only: s.overview = true; break;
     case CampaignOverview::never: s.overview = false; break;
     case CampaignOverview::automatic:
+      // A named campaign always; criteria alone (a replay --criteria) only over several runs: one
+      // run's own section opens with its verdict, which an overview would repeat.
       s.overview = options.run_ids.empty() && s.all_runs > 0 &&
-                   (s.all_runs > kCampaignOverviewRuns || report::is_campaign_database(db));
+                   (s.all_runs > kCampaignOverviewRuns || !read_campaign_name(db).value_or("").empty() ||
+                    (s.all_runs > 1 && report::is_campaign_database(db)));
       break;
   }
   return s;

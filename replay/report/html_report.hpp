@@ -20,7 +20,7 @@ namespace rcsim::replay {
 
 // When the page starts with the campaign overview (docs/report.md, "Campaign report").
 enum class CampaignOverview {
-  automatic,  // without --run: when the database has criteria or a campaign, or more than 20 runs
+  automatic,  // without --run: a named campaign, criteria over more than one run, or more than 20 runs
   always,
   never,
   only,  // the overview alone, no run sections

@@ -53,7 +53,7 @@ void add_report_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--campaign", args->campaign,
                   "the campaign overview (verdicts, worst runs by each figure, distributions): auto (without --run, "
-                  "when the database has criteria, a campaign or more than 20 runs), always, never, or only (no run "
+                  "when the database has a campaign, criteria and several runs, or more than 20 runs), always, never, or only (no run "
                   "sections)")
       ->check(CLI::IsMember(kCampaignOverviewNames, CLI::ignore_case))
       ->capture_default_str();

@@ -210,6 +210,29 @@ TEST_F(CampaignReport, EscapesTheRecordingAndCampaignNames) {
   EXPECT_NE(html.find("title=\"&lt;script&gt;alert(1)&lt;/script&gt; &amp; &quot;x&quot; &#39;y&#39;\""), std::string::npos);
 }
 
+TEST_F(CampaignReport, OneRunJudgedByItsCriteriaHasNoOverview) {
+  // rcsim replay --criteria FILE into a fresh report: the run's section opens with the verdict.
+  db_path_ = (dir_ / "one.sqlite").string();
+  db_ = open_report_database(db_path_, true);
+  {
+    Recording rec = testing::model_recording(testing::two_cars_scene(2.0), 5);
+    rec.dir = dir_ / "one";
+    rec.name = "one";
+    ReplayOptions options;
+    options.import.effects = {};
+    ReportWriter writer(*db_, StoreLevel::summary);
+    replay_recording(rec, options, writer);
+  }
+  campaign::store_criteria(*db_, {{"gospa_mean_m", Scope::recording, Statistic::value, Bound::max, 1.0, false}});
+  std::string html = write();
+  EXPECT_EQ(html.find("id=\"campaign\""), std::string::npos);
+  EXPECT_NE(html.find("id=\"run-1\""), std::string::npos);
+  // Named a campaign, the same database opens with the overview.
+  db_->exec("INSERT INTO campaign VALUES ('q3', '{}')");
+  html = write();
+  EXPECT_NE(html.find("id=\"campaign\""), std::string::npos);
+}
+
 TEST_F(CampaignReport, ADatabaseWithoutCriteriaAndWithFewRunsRendersAsBefore) {
   replay_bundled();
   const std::string automatic = write();
