@@ -22,7 +22,8 @@ std::string run_information_table(const RunData& run) {
   out += kv("recording_dir", "recording directory", i.recording_dir, "", true);
   out += kv("checksum", "recording checksum (FNV-1a 64)", i.recording_checksum, "", true);
   out += kv("seed", "seed", std::to_string(i.seed), "");
-  out += kv("cycles", "cycles", std::to_string(i.cycles), fmt::format("x {} sensors", run.sensors.size()));
+  out += kv("cycles", "cycles", std::to_string(i.cycles),
+            fmt::format("x {} sensor{}", run.sensors.size(), run.sensors.size() == 1 ? "" : "s"));
   out += kv("cycle_time", "cycle time", num(i.cycle_time_s, 4), "s");
   out += kv("duration", "duration", num(i.cycle_time_s * i.cycles, 1), "s");
   out += kv("level", "compared level", i.level, "", true);
