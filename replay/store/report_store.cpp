@@ -6,6 +6,8 @@
 #include <SQLiteCpp/VariadicBind.h>
 #include <filesystem>
 #include <fmt/chrono.h>
+#include <thread>
+#include <sqlite3.h>
 #include <fmt/format.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
@@ -203,6 +205,21 @@ void check_database_file(const std::string& path) {
   }
 }
 
+// PRAGMA journal_mode = WAL, retried every 10 ms while another connection holds the file, for up
+// to kBusyTimeout_ms (tests/cli/damaged_report_test.cpp: eight replays into one new database).
+void set_wal_waiting(SQLite::Database& db) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kBusyTimeout_ms);
+  for (;;) {
+    try {
+      if (db.execAndGet("PRAGMA journal_mode").getString() != "wal") db.exec("PRAGMA journal_mode = WAL");
+      return;
+    } catch (const SQLite::Exception& e) {
+      if ((e.getErrorCode() & 0xff) != SQLITE_BUSY || std::chrono::steady_clock::now() > deadline) throw;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
 // The same in a read transaction of its own: one snapshot of the three values.
 SchemaState read_schema_state_once(SQLite::Database& db, const std::string& path) {
   SQLite::Transaction snapshot(db, SQLite::TransactionBehavior::DEFERRED);
@@ -251,7 +268,9 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
       transaction.commit();
     }
     // Persistent, outside any transaction: readers never block the writer.
-    if (db->execAndGet("PRAGMA journal_mode").getString() != "wal") db->exec("PRAGMA journal_mode = WAL");
+    // Switching a new file to WAL needs it alone, and SQLite can answer SQLITE_BUSY at once, without
+    // its busy handler, while another opener of the same new file holds it: wait as the handler would.
+    set_wal_waiting(*db);
     db->exec("PRAGMA foreign_keys = ON");
     // In WAL mode NORMAL keeps the database consistent on a crash or power loss; only the last
     // committed run may be lost on power loss, never an earlier one.
