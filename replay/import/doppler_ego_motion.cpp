@@ -288,7 +288,10 @@ AliasedSpeedFit fit_speed_aliased(const std::vector<DopplerTarget>& targets, dou
   std::size_t best_bin = 0, best_votes = 0;
   for (std::size_t b = 0; b < bins; ++b) {
     const std::size_t around = votes[b] + (b > 0 ? votes[b - 1] : 0) + (b + 1 < bins ? votes[b + 1] : 0);
-    if (around > best_votes) best_votes = around, best_bin = b;
+    if (around > best_votes) {
+      best_votes = around;
+      best_bin = b;
+    }
   }
   if (best_votes == 0) return fit;
   // Least squares over the inliers of the bin's speed, each unwrapped next to its prediction.
