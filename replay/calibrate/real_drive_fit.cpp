@@ -250,7 +250,10 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   doc.erase("background");
   SensorConfig config = parse_sensor_config(JsonField(doc, type, ""));
   if (config.amplitude.kind != AmplitudeLawKind::radar_equation) {
-    throw std::invalid_argument(fmt::format("{}: a real-drive fit needs a sensor with the radar equation (amplitude.law)", type));
+    throw std::invalid_argument(fmt::format("{}: a real-drive fit needs a sensor with the radar equation (amplitude.law); derive one from the recordings "
+                    "(rcsim profile derive) or start from a built-in one (rcsim models --sensors --export aimotive_lrr -o "
+                    "radar.json) and name the file as the sensors' type",
+        type));
   }
   // The background first: the profile's values are then fitted with it in place.
   config.background = fit_stationary_background(recordings, options, config);

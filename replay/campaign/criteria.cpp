@@ -1,3 +1,4 @@
+#include "common/quantile.hpp"
 #include "replay/campaign/criteria.hpp"
 
 #include <algorithm>
@@ -24,12 +25,7 @@ std::optional<Statistic> statistic_from_name(std::string_view name) {
 std::optional<double> statistic_of(Statistic statistic, std::vector<double> values) {
   if (values.empty()) return std::nullopt;
   std::sort(values.begin(), values.end());
-  const auto quantile = [&](double q) {
-    const double h = q * static_cast<double>(values.size() - 1);
-    const auto lo = static_cast<std::size_t>(std::floor(h));
-    const std::size_t hi = std::min(lo + 1, values.size() - 1);
-    return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
-  };
+  const auto quantile = [&](double q) { return quantile_of_sorted(values, q); };
   switch (statistic) {
     case Statistic::value:
     case Statistic::mean: {

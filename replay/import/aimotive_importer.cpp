@@ -1,3 +1,4 @@
+#include "common/quantile.hpp"
 #include "replay/import/aimotive_importer.hpp"
 
 #include <Eigen/Dense>
@@ -216,12 +217,6 @@ const std::map<std::string, std::string>& model_of_type() {
 std::string object_id(std::string actor) {
   for (char& ch : actor) ch = ch == ' ' ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   return actor;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 // One annotated box of one keyframe, as the dataset gives it: in the body (vehicle) frame.

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/quantile.hpp"
 #include "replay/campaign/criteria.hpp"
 #include "replay/campaign/run_figures.hpp"
 
@@ -36,9 +37,5 @@ struct CampaignData {
 bool is_campaign_database(SQLite::Database& db);
 
 CampaignData read_campaign_data(SQLite::Database& db);
-
-// The q-quantile (0 <= q <= 1) of ascending values, interpolated linearly between order statistics
-// (Hyndman and Fan type 7, as the campaign criteria's p95 and median).
-double quantile_of_sorted(const std::vector<double>& sorted, double q);
 
 }  // namespace rcsim::replay::report

@@ -8,7 +8,9 @@
 
 #include "cli/commands.hpp"
 #include "common/angles.hpp"
+#include "common/atomic_file.hpp"
 #include "common/embedded_data.hpp"
+#include "common/input_error.hpp"
 #include "model/model_library.hpp"
 #include "sensor/sensor_config.hpp"
 
@@ -114,15 +116,42 @@ void print_sensors(bool json) {
   if (json) std::cout << all.dump(2) << '\n';
 }
 
+// `--export NAME`: the built-in profile's file as it is compiled in, to edit and name as a
+// sensor's `type` (a path) or in `rcsim profile derive --base`.
+void export_sensor(const std::string& name, const std::string& output) {
+  if (!is_builtin_sensor_config(name)) throw InputError("rcsim models", "--export", unknown_sensor_message(name));
+  const std::string_view text = builtin_sensor_text(name);
+  if (output.empty() || output == "-") {
+    std::cout << text;
+    return;
+  }
+  check_output_file(output);
+  AtomicFileWriter file(output);
+  file.stream() << text;
+  file.commit();
+  std::cerr << fmt::format("{}: the built-in profile {}, written; edit it and name the file as a sensor's type\n", output,
+                           name);
+}
+
 }  // namespace
 
 void add_models_command(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   auto sensors = std::make_shared<bool>(false);
+  auto export_name = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("models", "List the built-in object models (--sensors: the sensor profiles)");
   cmd->add_flag("--json", *json, "Machine-readable output with every reflector (or every profile's main values)");
   cmd->add_flag("--sensors", *sensors, "List the built-in sensor profiles instead");
-  cmd->callback([json, sensors] {
+  cmd->add_option("--export", *export_name, "With --sensors: write this built-in profile as an editable rcsim-sensor file");
+  cmd->add_option("-o,--output", *output, "With --export: the file to write (atomically); default: standard output");
+  cmd->callback([json, sensors, export_name, output] {
+    if (!export_name->empty() && !*sensors) throw InputError("rcsim models", "--export", "names a sensor profile; add --sensors");
+    if (!output->empty() && export_name->empty()) throw InputError("rcsim models", "-o", "writes an exported profile; add --sensors --export NAME");
+    if (!export_name->empty()) {
+      export_sensor(*export_name, *output);
+      return;
+    }
     if (*sensors) {
       print_sensors(*json);
       return;

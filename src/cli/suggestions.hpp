@@ -8,14 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "common/closest_name.hpp"
+
 namespace rcsim::cli {
-
-// Edit distance with adjacent transpositions (optimal string alignment): "replya" is 1 from "replay".
-std::size_t typing_distance(const std::string& a, const std::string& b);
-
-// The known name `typed` most probably meant: the nearest within a distance that grows with the
-// name's length, or the only one `typed` begins; nullopt when none is close.
-std::optional<std::string> closest_name(const std::string& typed, const std::vector<std::string>& known);
 
 // After a failed parse: the first argument that no command took, with a suggestion, e.g.
 // "rcsim replay: unknown option '--sed'; did you mean '--seed'? (rcsim replay --help)";

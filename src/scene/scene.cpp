@@ -1,3 +1,4 @@
+#include "common/quantile.hpp"
 #include "scene/scene.hpp"
 
 #include "common/limits.hpp"
@@ -12,12 +13,6 @@
 
 namespace rcsim {
 namespace {
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 SensorConfig sensor_config_for(const JsonField& sensor, const std::string& base_dir) {
   try {
@@ -121,8 +116,7 @@ SensorConfig sensor_config_for_type(const std::string& type, const std::string& 
     if (!std::filesystem::exists(path)) throw std::invalid_argument("sensor configuration file not found: " + path);
     return load_sensor_config_file(path);
   }
-  throw std::invalid_argument("unknown sensor type \"" + type +
-                              "\" (built-in: srr24; or a path to an rcsim-sensor file)");
+  throw std::invalid_argument(unknown_sensor_message(type));
 }
 
 ObjectModel object_model_for_name(const std::string& name, const ModelLibrary& library, const std::string& base_dir) {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/angles.hpp"
+#include "common/closest_name.hpp"
 #include "common/embedded_data.hpp"
 #include "common/limits.hpp"
 
@@ -302,15 +303,30 @@ bool is_builtin_sensor_config(const std::string& name) {
   return false;
 }
 
-SensorConfig builtin_sensor_config(const std::string& name) {
+std::vector<std::string> builtin_sensor_names() {
+  std::vector<std::string> names;
+  for (const auto& file : embedded_sensor_configs()) names.emplace_back(file.name);
+  return names;
+}
+
+std::string_view builtin_sensor_text(const std::string& name) {
   for (const auto& file : embedded_sensor_configs()) {
-    if (file.name == name) {
-      const std::string label = "builtin:" + name + ".json";
-      const auto json = parse_json_text(file.text, label);
-      return parse_sensor_config(JsonField(json, label, ""));
-    }
+    if (file.name == name) return file.text;
   }
-  throw std::out_of_range("unknown sensor type \"" + name + "\"");
+  throw std::out_of_range(unknown_sensor_message(name));
+}
+
+std::string unknown_sensor_message(const std::string& name) {
+  const std::vector<std::string> known = builtin_sensor_names();
+  const auto meant = closest_name(name, known);
+  return fmt::format("unknown sensor type \"{}\"{} (built-in: {}; or a path to an rcsim-sensor file)", name,
+                     meant ? fmt::format("; did you mean \"{}\"?", *meant) : "", join_names(known));
+}
+
+SensorConfig builtin_sensor_config(const std::string& name) {
+  const std::string label = "builtin:" + name + ".json";
+  const auto json = parse_json_text(builtin_sensor_text(name), label);
+  return parse_sensor_config(JsonField(json, label, ""));
 }
 
 }  // namespace rcsim

@@ -174,5 +174,11 @@ SensorConfig load_sensor_config_file(const std::string& path);
 // A built-in configuration by name (`srr24`); throws std::out_of_range for an unknown name.
 SensorConfig builtin_sensor_config(const std::string& name);
 bool is_builtin_sensor_config(const std::string& name);
+std::vector<std::string> builtin_sensor_names();
+// A built-in profile's file as it is compiled in (the text `rcsim models --sensors --export` writes).
+std::string_view builtin_sensor_text(const std::string& name);
+// "unknown sensor type "aimotive-lrr"; did you mean "aimotive_lrr"? (built-in: aimotive_lrr,
+// astyx_hires, srr24; or a path to an rcsim-sensor file)".
+std::string unknown_sensor_message(const std::string& name);
 
 }  // namespace rcsim

@@ -346,8 +346,8 @@ TEST(CampaignWorstRuns, ByEachDirection) {
   EXPECT_EQ(ids(1, 2), (std::vector<std::int64_t>{3, 1}));
   EXPECT_EQ(ids(2, 2), (std::vector<std::int64_t>{3, 2}));
   EXPECT_EQ(ids(3, 3), (std::vector<std::int64_t>{3, 2, 1}));  // |v - 1|: 4, 1, 0.5
-  EXPECT_EQ(report::quantile_of_sorted({1.0, 2.0, 3.0, 4.0}, 0.5), 2.5);
-  EXPECT_DOUBLE_EQ(report::quantile_of_sorted({1.0, 2.0, 3.0, 4.0}, 0.95), 3.85);
+  EXPECT_EQ(quantile_of_sorted({1.0, 2.0, 3.0, 4.0}, 0.5), 2.5);
+  EXPECT_DOUBLE_EQ(quantile_of_sorted({1.0, 2.0, 3.0, 4.0}, 0.95), 3.85);
 }
 
 TEST(CampaignReportCli, CampaignOnlyAndABadValue) {
