@@ -113,6 +113,12 @@ nlohmann::ordered_json figures_to_json(const RealDriveFigures& f) {
 }
 
 ReplaySummary replay_with_sensor(const Recording& recording, const ReplayOptions& options, const SensorConfig& config) {
+  DiscardingSink sink;
+  return replay_with_sensor(recording, options, config, sink);
+}
+
+ReplaySummary replay_with_sensor(const Recording& recording, const ReplayOptions& options, const SensorConfig& config,
+                                 ReplaySink& sink) {
   ReplayOptions o = options;
   o.object_range_bin_m = 20.0;
   const ModelLibrary library = ModelLibrary::builtin();
@@ -122,7 +128,6 @@ ReplaySummary replay_with_sensor(const Recording& recording, const ReplayOptions
   imported.calibration = calibration;
   const Scene scene = build_scene(imported, library, recording.dir.string());
   ModelSource source(scene, model_options(o.seed, o.fidelity));
-  DiscardingSink sink;
   return compare_with_recording(recording, imported, scene, source, o, sink);
 }
 
@@ -208,7 +213,7 @@ StationaryBackground fit_stationary_background(const std::vector<const Recording
   BackgroundSink sink;
   std::string names;
   for (const Recording* r : recordings) {
-    replay_recording(*r, options, sink);
+    replay_with_sensor(*r, options, config, sink);
     names += (names.empty() ? "" : ", ") + r->name;
   }
   StationaryBackground b;

@@ -25,6 +25,8 @@ Recording restrict_to_cycles(const Recording& recording, int first, int end);
 // A replay of `recording` with `config` in place of the sensor type of the same name, the
 // detection probability in 20-m bins (for real_drive_figures).
 ReplaySummary replay_with_sensor(const Recording& recording, const ReplayOptions& options, const SensorConfig& config);
+ReplaySummary replay_with_sensor(const Recording& recording, const ReplayOptions& options, const SensorConfig& config,
+                                 ReplaySink& sink);
 
 // Issue 18's goal figures of one replay (docs/sensor-profiles.md).
 struct RealDriveFigures {
@@ -50,7 +52,8 @@ nlohmann::ordered_json figures_to_json(const RealDriveFigures& figures);
 
 // The stationary background of the recordings' sensors (recorded targets of class stationary
 // background, docs/metrics.md): targets per sensor cycle, density over 10-m range bins and 12
-// azimuth bins over the view field, amplitude deciles per range bin.
+// azimuth bins over the view field, amplitude deciles per range bin. The recordings are replayed with
+// `config` as their sensors' profile (config.name must be the profile their `type` names).
 StationaryBackground fit_stationary_background(const std::vector<const Recording*>& recordings,
                                                const ReplayOptions& options, const SensorConfig& config);
 

@@ -32,5 +32,6 @@ void add_calibrate_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
 void add_campaign_command(CLI::App& app);
 void add_export_command(CLI::App& app);
+void add_profile_command(CLI::App& app);
 
 }  // namespace rcsim::cli

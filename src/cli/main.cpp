@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   rcsim::cli::add_traffic_command(app);
   rcsim::cli::add_bench_command(app);
   rcsim::cli::add_calibrate_command(app);
+  rcsim::cli::add_profile_command(app);
   rcsim::cli::add_merge_command(app);
   rcsim::cli::add_campaign_command(app);
   rcsim::cli::add_models_command(app);

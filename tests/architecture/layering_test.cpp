@@ -24,7 +24,8 @@ const std::map<std::string, std::string> kLayerOfDir{
     {"src/sim", "sim"},         {"src/synth", "synth"},
     {"src/traffic", "traffic"}, {"replay/import", "replay_import"},
     {"replay/run", "replay_run"}, {"replay/evaluate", "replay_evaluate"},
-    {"replay/calibrate", "replay_calibrate"}, {"replay/store", "replay_store"},
+    {"replay/calibrate", "replay_calibrate"}, {"replay/profile", "replay_profile"},
+    {"replay/store", "replay_store"},
     {"replay/campaign", "replay_campaign"}, {"replay/report", "replay_report"},
     {"src/stream", "stream"},
     {"src/cli", "cli"}};
@@ -34,6 +35,7 @@ const std::map<std::string, std::string> kLayerOfInclude{
     {"sensor", "world"},    {"metrics", "metrics"}, {"sim", "sim"},     {"synth", "synth"},
     {"traffic", "traffic"}, {"replay/import", "replay_import"},       {"replay/run", "replay_run"},
     {"replay/evaluate", "replay_evaluate"},     {"replay/calibrate", "replay_calibrate"},
+    {"replay/profile", "replay_profile"},
     {"replay/store", "replay_store"},           {"replay/campaign", "replay_campaign"},
     {"replay/report", "replay_report"},
     {"stream", "stream"},   {"cli", "cli"}};
@@ -51,6 +53,8 @@ const std::map<std::string, std::set<std::string>> kMayUse{
     {"replay_run", {"common", "io", "world", "metrics", "sim", "synth", "replay_import"}},
     {"replay_evaluate", {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run"}},
     {"replay_calibrate", {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run"}},
+    {"replay_profile",
+     {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_calibrate"}},
     {"replay_store",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate"}},
     {"replay_campaign",
@@ -62,7 +66,7 @@ const std::map<std::string, std::set<std::string>> kMayUse{
     {"stream", {"common", "io", "world", "sim", "replay_import"}},
     {"cli",
      {"common", "io", "world", "metrics", "sim", "synth", "traffic", "replay_import", "replay_run", "replay_evaluate",
-      "replay_calibrate", "replay_store", "replay_campaign", "replay_report", "stream"}}};
+      "replay_calibrate", "replay_profile", "replay_store", "replay_campaign", "replay_report", "stream"}}};
 
 std::string layer_of_include(const std::string& path) {
   // The longest prefix wins: "replay/run/x.hpp" before "replay".

@@ -1,0 +1,137 @@
+// The reporting threshold and the amplitude law as the detections show them
+// (docs/sensor-profiles.md, aimotive_lrr: "least squares of SNR - RCS against log10 R and az²",
+// "the residual SNR against azimuth").
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "common/angles.hpp"
+#include "common/decibel.hpp"
+#include "common/quantile.hpp"
+#include "replay/profile/derivation_stages.hpp"
+#include "sim/antenna.hpp"
+
+namespace rcsim::replay::profile {
+namespace {
+
+// The monopulse pair must stay invertible (eq. (7)) this far beyond the view field.
+constexpr double kInvertibleMarginDeg = 2.0;
+
+struct LawFit {
+  double constant_db = 0.0, range_exponent = 0.0, residual_rms_db = 0.0;
+};
+
+// y = C - 10 n log10 R by least squares.
+LawFit fit_range_law(const std::vector<double>& log10_range, const std::vector<double>& y) {
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(y.size()), 2);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(y.size()));
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    a(row, 0) = 1.0, a(row, 1) = -10.0 * log10_range[i], b(row) = y[i];
+  }
+  const Eigen::Vector2d x = a.colPivHouseholderQr().solve(b);
+  const Eigen::VectorXd residual = a * x - b;
+  return {x(0), x(1), std::sqrt(residual.squaredNorm() / static_cast<double>(y.size()))};
+}
+
+// SNR - RCS at a detection: C - 10 n log10 R + the two-way pattern of eq. (6), |H_sum|^p in dB.
+std::vector<double> pattern_db(const std::vector<double>& azimuth_rad, const AntennaGeometry& geometry) {
+  const MonopulseAntenna antenna(geometry);
+  std::vector<double> out;
+  for (const double a : azimuth_rad) out.push_back(amplitude_to_db(std::pow(antenna.sum_magnitude(a), geometry.amplitude_pattern_exponent)));
+  return out;
+}
+
+std::vector<DerivedValue> derive_threshold(const std::vector<double>& sorted_db, AmplitudeUnit unit) {
+  const double q_db = quantile_of_sorted(sorted_db, 0.001);
+  const double threshold_db = std::floor(q_db * 2.0) / 2.0;
+  const auto n = static_cast<long long>(sorted_db.size());
+  const auto within_1db = std::upper_bound(sorted_db.begin(), sorted_db.end(), threshold_db + 1.0) - sorted_db.begin();
+  return {{"amplitude.detection_threshold_db", threshold_db, ValueSource::derived,
+           fmt::format("the {} histogram starts abruptly: lowest {:.2f} dB, 0.1 % quantile {:.2f}, 1 % {:.2f}; {:.1f} % "
+                       "within 1 dB above",
+                       unit == AmplitudeUnit::snr_db ? "SNR" : "amplitude", sorted_db.front(), q_db,
+                       quantile_of_sorted(sorted_db, 0.01), 100.0 * static_cast<double>(within_1db) / static_cast<double>(n)),
+           n}};
+}
+
+}  // namespace
+
+std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nlohmann::json& base, double azimuth_half_deg) {
+  std::vector<double> amplitudes_db, log10_range, azimuth_rad, snr_minus_rcs_db;
+  for (const PooledCycle& c : pool.cycles) {
+    for (const PooledDetection& d : c.detections) {
+      amplitudes_db.push_back(d.amplitude_db);
+      if (std::isnan(d.rcs_dbsm)) continue;
+      log10_range.push_back(std::log10(std::max(d.range_m, 0.1)));
+      azimuth_rad.push_back(d.azimuth_rad);
+      snr_minus_rcs_db.push_back(d.amplitude_db - d.rcs_dbsm);
+    }
+  }
+  std::sort(amplitudes_db.begin(), amplitudes_db.end());
+  std::vector<DerivedValue> values = derive_threshold(amplitudes_db, pool.amplitude_unit);
+
+  const auto n = static_cast<long long>(snr_minus_rcs_db.size());
+  const std::vector<std::string> law_fields{"amplitude.snr_at_1m_for_1m2_db", "amplitude.range_exponent", "antenna.dipole_length_wavelengths",
+                                            "antenna.element_spacing_wavelengths"};
+  if (pool.amplitude_unit != AmplitudeUnit::snr_db || 10 * n < 9 * static_cast<long long>(amplitudes_db.size())) {
+    // A level on the radar's own scale, or an SNR without the radar's RCS beside it: the level
+    // mixes the law with the targets' unknown cross-sections, so only a replay can fit it.
+    const std::string why = pool.amplitude_unit != AmplitudeUnit::snr_db
+                                ? "the amplitude is on the radar's own scale (relative_db), not an SNR: the law is fitted by "
+                                  "rcsim calibrate --real-drive (the count per object against range)"
+                                : "the recordings hold no rcs_dbsm beside the SNR: the law cannot be told from the targets' "
+                                  "cross-sections (rcsim calibrate --real-drive fits it)";
+    for (const std::string& field : law_fields) values.push_back({field, nullptr, ValueSource::base, why, 0});
+    return values;
+  }
+  // The radar equation with eq. (6)'s pattern: the spacing that keeps eq. (7) invertible over the
+  // view field, the dipole length that fits the residual against azimuth best.
+  AntennaGeometry geometry;
+  geometry.amplitude_pattern_exponent = base.value("/antenna/amplitude_pattern_exponent"_json_pointer, 2.0);
+  geometry.element_spacing_wavelengths =
+      std::floor(20.0 / (2.0 * std::sin(deg_to_rad(azimuth_half_deg + kInvertibleMarginDeg)))) / 20.0;
+  LawFit best;
+  best.residual_rms_db = INFINITY;
+  double best_length = 0.0;
+  for (double length = 0.3; length <= 1.5 + 1e-9; length += 0.05) {
+    geometry.dipole_length_wavelengths = length;
+    const std::vector<double> pattern = pattern_db(azimuth_rad, geometry);
+    std::vector<double> y(snr_minus_rcs_db.size());
+    for (std::size_t i = 0; i < y.size(); ++i) y[i] = snr_minus_rcs_db[i] - pattern[i];
+    const LawFit fit = fit_range_law(log10_range, y);
+    if (fit.residual_rms_db < best.residual_rms_db) best = fit, best_length = length;
+  }
+  // The paper's 1/R^4 with the same pattern, for comparison.
+  geometry.dipole_length_wavelengths = best_length;
+  const std::vector<double> pattern = pattern_db(azimuth_rad, geometry);
+  double fourth_power_ss = 0.0, fourth_power_mean = 0.0;
+  for (std::size_t i = 0; i < pattern.size(); ++i) fourth_power_mean += snr_minus_rcs_db[i] - pattern[i] + 40.0 * log10_range[i];
+  fourth_power_mean /= static_cast<double>(pattern.size());
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    const double r = snr_minus_rcs_db[i] - pattern[i] + 40.0 * log10_range[i] - fourth_power_mean;
+    fourth_power_ss += r * r;
+  }
+  const std::string law = fmt::format("least squares of SNR - RCS = C - 10 n log10 R + eq. (6)'s pattern: C {:.2f} dB, n {:.3f}, "
+                                      "residual {:.2f} dB (n = 4: {:.2f} dB)",
+                                      best.constant_db, best.range_exponent, best.residual_rms_db,
+                                      std::sqrt(fourth_power_ss / static_cast<double>(pattern.size())));
+  values.push_back({"amplitude.snr_at_1m_for_1m2_db", round_to(best.constant_db, 0.1), ValueSource::derived, law, n});
+  values.push_back({"amplitude.range_exponent", round_to(best.range_exponent, 0.01), ValueSource::derived, law, n});
+  const MonopulseAntenna antenna(geometry);
+  const auto pattern_at = [&](double a_rad) { return amplitude_to_db(std::pow(antenna.sum_magnitude(a_rad), geometry.amplitude_pattern_exponent)); };
+  values.push_back({"antenna.dipole_length_wavelengths", round_to(best_length, 0.05), ValueSource::derived,
+                    fmt::format("the dipole length (0.3-1.5 wavelengths) whose two-way pattern fits the residual against "
+                                "azimuth best: {:.1f} dB at 0.1 rad, {:.1f} dB at 0.25 rad",
+                                pattern_at(0.1), pattern_at(0.25)),
+                    n});
+  values.push_back({"antenna.element_spacing_wavelengths", geometry.element_spacing_wavelengths, ValueSource::derived,
+                    fmt::format("the widest spacing (0.05 steps) that keeps eq. (7) invertible to {:.1f} deg, {:.0f} deg beyond "
+                                "the view field",
+                                rad_to_deg(std::asin(1.0 / (2.0 * geometry.element_spacing_wavelengths))), kInvertibleMarginDeg),
+                    0});
+  return values;
+}
+
+}  // namespace rcsim::replay::profile

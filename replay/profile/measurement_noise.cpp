@@ -1,0 +1,236 @@
+// Measurement noise and the cycle time as the detections show them (docs/sensor-profiles.md,
+// aimotive_lrr: "residual RMS of the stationary fit's inliers by SNR", "stationary points matched
+// frame to frame", "stationary targets matched frame to frame after ego motion").
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "common/quantile.hpp"
+#include "replay/profile/derivation_stages.hpp"
+
+namespace rcsim::replay::profile {
+namespace {
+
+constexpr double kLowMarginDb = 4.0;    // "at threshold": within this of the threshold
+constexpr double kHighMarginDb = 11.0;  // "the least noise": this far above it
+constexpr std::size_t kMinSamples = 30;
+constexpr double kCoarsestWrittenStep = 0.005;  // m or m/s
+constexpr double kMadToSigma = 1.4826;  // sigma of a normal distribution per median absolute deviation
+
+// The step of a quantised quantity: every value (99 %) on one lattice of the least distinct gap.
+std::optional<double> lattice_step(const DetectionPool& pool, double (*value)(const PooledDetection&)) {
+  std::vector<double> v;
+  for (const PooledCycle& c : pool.cycles) {
+    for (const PooledDetection& d : c.detections) v.push_back(value(d));
+  }
+  const std::size_t detections = v.size();
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end(), [](double a, double b) { return std::abs(a - b) < 2e-4; }), v.end());
+  if (v.size() < 3) return std::nullopt;
+  double step = INFINITY;
+  for (std::size_t i = 1; i < v.size(); ++i) step = std::min(step, v[i] - v[i - 1]);
+  std::size_t on = 0;
+  for (const double x : v) {
+    const double k = (x - v.front()) / step;
+    on += std::abs(k - std::round(k)) * step < 2e-4 + 0.02 * step ? 1 : 0;
+  }
+  // A quantity written with 4 decimals is on a lattice of 1e-4 too: a radar's step is coarser, and
+  // far fewer values than detections share it.
+  if (100 * on < 99 * v.size() || step < kCoarsestWrittenStep || v.size() > detections / 5) return std::nullopt;
+  return step;
+}
+
+double rms(const std::vector<double>& x) {
+  double s = 0.0;
+  for (const double v : x) s += v * v;
+  return std::sqrt(s / static_cast<double>(x.size()));
+}
+
+// One pair of consecutive cycles of one sensor, matched: the time between them the static world's
+// shift shows, and the range differences of the matched stationary detections.
+struct FramePair {
+  double dt_s = 0.0;
+  std::vector<std::pair<double, double>> range_residuals;  // (residual m, SNR margin dB)
+};
+
+Vec2 position(const PooledDetection& d) { return {d.range_m * std::cos(d.azimuth_rad), d.range_m * std::sin(d.azimuth_rad)}; }
+
+// The static world seen at cycle a moves by -v dt in the sensor frame (and turns with the ego);
+// dt is the one that matches the most stationary detections of b within the gate.
+std::optional<FramePair> match_frames(const PooledCycle& a, const PooledCycle& b, double nominal_dt_s, double threshold_db) {
+  constexpr double kGateM = 0.5;
+  std::vector<Vec2> pa, pb;
+  std::vector<const PooledDetection*> db;
+  for (const PooledDetection& d : a.detections) {
+    if (d.stationary()) pa.push_back(position(d));
+  }
+  for (const PooledDetection& d : b.detections) {
+    if (d.stationary()) pb.push_back(position(d)), db.push_back(&d);
+  }
+  if (pa.size() < 5 || pb.size() < 5) return std::nullopt;
+  const Vec2 v = 0.5 * (a.v_S_S + b.v_S_S);
+  const double turn_rad = b.X_WV.yaw_rad - a.X_WV.yaw_rad;
+  const auto predicted = [&](const Vec2& p, double dt_s) { return rotate(-turn_rad, p - v * dt_s); };
+  const auto nearest = [&](const Vec2& q, std::size_t& index) {
+    double best = INFINITY;
+    for (std::size_t i = 0; i < pb.size(); ++i) {
+      const double d = (pb[i] - q).norm();
+      if (d < best) best = d, index = i;
+    }
+    return best;
+  };
+  double best_dt_s = 0.0;
+  std::size_t best_matches = 0;
+  for (double dt_s = 0.2 * nominal_dt_s; dt_s <= 3.0 * nominal_dt_s; dt_s += 0.001) {
+    std::size_t matches = 0, index = 0;
+    for (const Vec2& p : pa) matches += nearest(predicted(p, dt_s), index) < kGateM ? 1 : 0;
+    if (matches > best_matches) best_matches = matches, best_dt_s = dt_s;
+  }
+  if (best_matches < 5) return std::nullopt;
+  // The count is flat over a gate's worth of dt: refine by the matched pairs' own shifts along v,
+  // dt_i = (p_a - R^-1 p_b) . v / |v|^2, their median.
+  std::vector<double> dt_i;
+  for (const Vec2& p : pa) {
+    std::size_t index = 0;
+    if (nearest(predicted(p, best_dt_s), index) >= kGateM) continue;
+    dt_i.push_back((p - rotate(turn_rad, pb[index])).dot(v) / v.squaredNorm());
+  }
+  best_dt_s = median(dt_i);
+  FramePair pair{best_dt_s, {}};
+  for (const Vec2& p : pa) {
+    std::size_t index = 0;
+    const Vec2 q = predicted(p, best_dt_s);
+    if (nearest(q, index) >= kGateM) continue;
+    pair.range_residuals.emplace_back(db[index]->range_m - q.norm(), db[index]->amplitude_db - threshold_db);
+  }
+  return pair;
+}
+
+// The largest cycle time of which every measured step is a whole multiple (within 10 % of it).
+std::optional<double> fundamental_period(const std::vector<double>& dt_s) {
+  const double shortest = quantile(dt_s, 0.05);
+  for (double t = 1.05 * shortest; t >= 0.2 * shortest; t -= 1e-4) {
+    std::vector<double> errors;
+    for (const double d : dt_s) errors.push_back(std::abs(d / t - std::max(1.0, std::round(d / t))));
+    if (quantile(errors, 0.9) < 0.1) return t;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& cells, double threshold_db) {
+  std::vector<DerivedValue> values;
+  // The radial speed.
+  if (const auto step = lattice_step(pool, range_rate_of)) {
+    const double sigma = round_to(*step / std::sqrt(12.0), 0.001);
+    const std::string why = fmt::format("the radial speed is quantised in steps of {:.4f} m/s: step / sqrt(12)", *step);
+    values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", sigma, ValueSource::derived, why, pool.detections});
+    values.push_back({"measurement_noise.range_rate_sigma_min_mps", sigma, ValueSource::derived, why, pool.detections});
+  } else {
+    // The least noise is the quietest sensor's far above the threshold: a sensor's residual there
+    // also holds its mounting's and the fit's errors.
+    std::vector<double> low;
+    std::map<std::pair<int, int>, std::vector<double>> high_by_sensor;
+    for (const PooledCycle& c : pool.cycles) {
+      for (const PooledDetection& d : c.detections) {
+        if (!d.stationary()) continue;
+        const double margin_db = d.amplitude_db - threshold_db;
+        if (margin_db < kLowMarginDb) low.push_back(d.stationary_residual_mps);
+        if (margin_db >= kHighMarginDb) high_by_sensor[{c.recording, c.sensor}].push_back(d.stationary_residual_mps);
+      }
+    }
+    std::vector<double> high;
+    for (const auto& [sensor, residuals] : high_by_sensor) {
+      if (residuals.size() >= kMinSamples && (high.empty() || rms(residuals) < rms(high))) high = residuals;
+    }
+    if (low.size() >= kMinSamples && high.size() >= kMinSamples) {
+      const double at_threshold = rms(low), least = std::min(rms(high), at_threshold);
+      values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", round_to(at_threshold, 0.001), ValueSource::derived,
+                        fmt::format("RMS residual about the stationary fit of its {} inliers within {:.0f} dB of the threshold",
+                                    low.size(), kLowMarginDb),
+                        static_cast<long long>(low.size())});
+      values.push_back({"measurement_noise.range_rate_sigma_min_mps", round_to(least, 0.001), ValueSource::derived,
+                        fmt::format("the same of the quietest sensor's {} inliers {:.0f} dB or more above it", high.size(), kHighMarginDb),
+                        static_cast<long long>(high.size())});
+    } else {
+      const std::string why = fmt::format("too few stationary detections near the threshold ({}) or far above it ({})", low.size(), high.size());
+      values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", nullptr, ValueSource::base, why, 0});
+      values.push_back({"measurement_noise.range_rate_sigma_min_mps", nullptr, ValueSource::base, why, 0});
+    }
+  }
+
+  // The range and the cycle time: stationary detections matched frame to frame (a drive).
+  std::vector<double> steps_s;
+  std::vector<std::pair<double, double>> residuals;
+  if (!pool.snapshots) {
+    for (std::size_t i = 0; i + 1 < pool.cycles.size(); ++i) {
+      // The same sensor's next cycle: the pool holds a recording's cycles sensor after sensor.
+      for (std::size_t j = i + 1; j < pool.cycles.size(); ++j) {
+        const PooledCycle &a = pool.cycles[i], &b = pool.cycles[j];
+        if (b.recording != a.recording || b.cycle > a.cycle + 1) break;
+        if (b.sensor != a.sensor || b.cycle != a.cycle + 1 || !a.valid_fit || !b.valid_fit) continue;
+        if (const auto pair = match_frames(a, b, b.t_s - a.t_s, threshold_db)) {
+          steps_s.push_back(pair->dt_s);
+          residuals.insert(residuals.end(), pair->range_residuals.begin(), pair->range_residuals.end());
+        }
+      }
+    }
+  }
+  const std::optional<double> period_s = steps_s.size() >= 10 ? fundamental_period(steps_s) : std::nullopt;
+  if (period_s) {
+    values.push_back({"cycle_time_s", round_to(*period_s, 0.0001), ValueSource::derived,
+                      fmt::format("the static world's shift between consecutive cycles over the speed: {} steps, median {:.1f} ms, "
+                                  "each a whole multiple of {:.1f} ms (the recordings' clock: {:.1f} ms)",
+                                  steps_s.size(), 1e3 * median(steps_s), 1e3 * *period_s, 1e3 * pool.recorded_cycle_time_s),
+                      static_cast<long long>(steps_s.size())});
+  } else {
+    values.push_back({"cycle_time_s", pool.snapshots ? nlohmann::json() : nlohmann::json(round_to(pool.recorded_cycle_time_s, 0.0001)),
+                      pool.snapshots ? ValueSource::base : ValueSource::recording,
+                      pool.snapshots ? "not observable: single frames, none follows another"
+                                     : fmt::format("the recordings' clock ({} frame pairs matched, too few to show the radar's own)", steps_s.size()),
+                      0});
+  }
+  std::vector<double> low, high;
+  for (const auto& [residual_m, margin_db] : residuals) {
+    if (margin_db < kLowMarginDb + 2.0) low.push_back(residual_m);
+    if (margin_db >= kHighMarginDb) high.push_back(residual_m);
+  }
+  const auto sigma_per_detection = [](std::vector<double> r) {
+    const double m = median(r);
+    for (double& x : r) x = std::abs(x - m);
+    return kMadToSigma * median(r) / std::sqrt(2.0);
+  };
+  if (low.size() >= kMinSamples && high.size() >= kMinSamples) {
+    const double at_threshold = sigma_per_detection(low), least = std::min(sigma_per_detection(high), at_threshold);
+    values.push_back({"measurement_noise.range_sigma_at_threshold_m", round_to(at_threshold, 0.005), ValueSource::derived,
+                      fmt::format("stationary detections matched frame to frame: MAD sigma / sqrt(2) of the range differences "
+                                  "of {} pairs within {:.0f} dB of the threshold (an upper bound: the scatterer wanders)",
+                                  low.size(), kLowMarginDb + 2.0),
+                      static_cast<long long>(low.size())});
+    values.push_back({"measurement_noise.range_sigma_min_m", round_to(least, 0.005), ValueSource::derived,
+                      fmt::format("the same of {} pairs {:.0f} dB or more above it", high.size(), kHighMarginDb), static_cast<long long>(high.size())});
+  } else if (const auto step = lattice_step(pool, range_of)) {
+    const std::string why = fmt::format("the range is quantised in steps of {:.4f} m: step / sqrt(12)", *step);
+    values.push_back({"measurement_noise.range_sigma_at_threshold_m", round_to(*step / std::sqrt(12.0), 0.001), ValueSource::derived, why, pool.detections});
+    values.push_back({"measurement_noise.range_sigma_min_m", round_to(*step / std::sqrt(12.0), 0.001), ValueSource::derived, why, pool.detections});
+  } else if (cells.found && pool.snapshots) {
+    // Single frames: nothing to match. A range read off a cell's centre is uniform over the cell.
+    const double sigma = round_to(cells.range_m / std::sqrt(12.0), 0.001);
+    const std::string why = fmt::format("assumed: the range cell ({:.3f} m) / sqrt(12), the quantisation of a cell's centre (single "
+                                        "frames: nothing to match frame to frame)",
+                                        cells.range_m);
+    values.push_back({"measurement_noise.range_sigma_at_threshold_m", sigma, ValueSource::derived, why, 0});
+    values.push_back({"measurement_noise.range_sigma_min_m", sigma, ValueSource::derived, why, 0});
+  } else {
+    const std::string why = fmt::format("too few stationary detections matched frame to frame ({} near the threshold, {} far above)", low.size(), high.size());
+    values.push_back({"measurement_noise.range_sigma_at_threshold_m", nullptr, ValueSource::base, why, 0});
+    values.push_back({"measurement_noise.range_sigma_min_m", nullptr, ValueSource::base, why, 0});
+  }
+  return values;
+}
+
+}  // namespace rcsim::replay::profile

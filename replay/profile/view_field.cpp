@@ -1,0 +1,62 @@
+// The view field as the detections show it (docs/sensor-profiles.md: "the largest |azimuth|",
+// "the largest range"), by high quantiles so that one stray detection does not widen it.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "common/angles.hpp"
+#include "common/quantile.hpp"
+#include "replay/profile/derivation_stages.hpp"
+
+namespace rcsim::replay::profile {
+
+double round_to(double x, double step) { return std::round(x / step) * step; }
+
+namespace {
+
+// The nearest detection must lie within this share of the farthest for the minimum range to be
+// the radar's rather than the scene's (a highway's nearest is 12.6 m of 180 m: 7 %).
+constexpr double kNearShare = 0.05;
+
+}  // namespace
+
+std::vector<DerivedValue> derive_view_field(const DetectionPool& pool) {
+  std::vector<double> azimuth_deg, ranges_m;
+  for (const PooledCycle& c : pool.cycles) {
+    for (const PooledDetection& d : c.detections) {
+      azimuth_deg.push_back(rad_to_deg(d.azimuth_rad));
+      ranges_m.push_back(d.range_m);
+    }
+  }
+  std::sort(azimuth_deg.begin(), azimuth_deg.end());
+  std::sort(ranges_m.begin(), ranges_m.end());
+  const auto n = static_cast<long long>(ranges_m.size());
+  std::vector<DerivedValue> values;
+  // The view is symmetric: the half-width within which both sides report, the nearer of the
+  // 0.1 % and 99.9 % quantiles (a wide imaging radar's outermost detections are sidelobes and
+  // ghosts: the Astyx HiRes's reach 87 deg).
+  const double right_deg = -quantile_of_sorted(azimuth_deg, 0.001), left_deg = quantile_of_sorted(azimuth_deg, 0.999);
+  const double half_deg = std::min(right_deg, left_deg);
+  values.push_back({"field_of_view.azimuth_half_deg", round_to(half_deg, 0.5), ValueSource::derived,
+                    fmt::format("the nearer of the 0.1 % and 99.9 % quantiles of azimuth, {:.2f} and {:.2f} deg (outermost {:.2f} "
+                                "and {:.2f})",
+                                -right_deg, left_deg, azimuth_deg.front(), azimuth_deg.back()),
+                    n});
+  const double max_range_m = quantile_of_sorted(ranges_m, 0.999);
+  values.push_back({"field_of_view.max_range_m", round_to(max_range_m, 1.0), ValueSource::derived,
+                    fmt::format("99.9 % quantile of range {:.1f} m (largest {:.1f})", max_range_m, ranges_m.back()), n});
+  const double nearest_m = ranges_m.front();
+  if (nearest_m <= kNearShare * max_range_m) {
+    values.push_back({"field_of_view.min_range_m", std::floor(nearest_m * 10.0) / 10.0, ValueSource::derived,
+                      fmt::format("the nearest detection {:.2f} m (0.1 % quantile {:.2f})", nearest_m, quantile_of_sorted(ranges_m, 0.001)), n});
+  } else {
+    values.push_back({"field_of_view.min_range_m", nullptr, ValueSource::base,
+                      fmt::format("not observable: the nearest detection is {:.1f} m, {:.0f} % of the farthest (the scene "
+                                  "keeps away, not the radar)",
+                                  nearest_m, 100.0 * nearest_m / max_range_m),
+                      0});
+  }
+  return values;
+}
+
+}  // namespace rcsim::replay::profile

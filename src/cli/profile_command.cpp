@@ -1,0 +1,78 @@
+// rcsim profile derive: a sensor profile read off real recordings (docs/profile-derive.md).
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.hpp"
+#include "cli/seed_option.hpp"
+#include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
+#include "io/recording.hpp"
+#include "replay/profile/profile_derivation.hpp"
+
+namespace rcsim::cli {
+namespace {
+
+struct DeriveArgs {
+  std::vector<std::string> recordings;
+  std::string output, base, name;
+  bool json = false;
+};
+
+std::string value_text(const nlohmann::json& value) {
+  if (value.is_number_float()) return fmt::format("{:g}", value.get<double>());
+  return value.is_string() ? value.get<std::string>() : value.dump();
+}
+
+void print_derivation(const replay::profile::ProfileDerivation& d, const std::string& output) {
+  std::cout << fmt::format("rcsim profile derive: {} detections in {} sensor cycles; base {}\n\n", d.detections, d.sensor_cycles, d.base);
+  for (const auto& v : d.values) {
+    std::cout << fmt::format("{:<52} {:>16}  {:<9} {}{}\n", v.field, value_text(v.value), replay::profile::value_source_name(v.source),
+                             v.evidence, v.support > 0 ? fmt::format(" [{}]", v.support) : "");
+  }
+  std::cout << fmt::format("\n{}: written; replay with it by naming the file as the sensors' type, or fit what the data cannot "
+                           "show with rcsim calibrate --real-drive\n",
+                           output);
+}
+
+void run_derive(const DeriveArgs& args) {
+  check_output_file(args.output);
+  std::vector<Recording> recordings;
+  for (const std::string& dir : args.recordings) recordings.push_back(read_recording(dir));
+  std::vector<const Recording*> pointers;
+  for (const Recording& r : recordings) pointers.push_back(&r);
+  replay::profile::DeriveOptions options;
+  options.base = args.base;
+  options.name = args.name.empty() ? std::filesystem::path(args.output).stem().string() : args.name;
+  const replay::profile::ProfileDerivation d = replay::profile::derive_profile(pointers, options);
+  AtomicFileWriter file(args.output);
+  file.stream() << d.profile.dump(2) << '\n';
+  file.commit();
+  if (!args.json) return print_derivation(d, args.output);
+  nlohmann::ordered_json values = nlohmann::ordered_json::array();
+  for (const auto& v : d.values) {
+    values.push_back({{"field", v.field}, {"value", v.value}, {"source", replay::profile::value_source_name(v.source)},
+                      {"evidence", v.evidence}, {"support", v.support}});
+  }
+  std::cout << nlohmann::ordered_json{{"profile", args.output}, {"base", d.base}, {"detections", d.detections}, {"values", values}}.dump(2) << '\n';
+}
+
+}  // namespace
+
+void add_profile_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("profile", "Sensor profiles from real recordings (derive)");
+  cmd->require_subcommand(1);
+  auto args = std::make_shared<DeriveArgs>();
+  auto* derive = cmd->add_subcommand("derive", "Derive a sensor profile (rcsim-sensor) from recordings of raw detections");
+  derive->add_option("recordings", args->recordings, "Recording directories of one kind of radar")->required();
+  derive->add_option("-o,--output", args->output, "The profile to write (atomically)")->required();
+  derive->add_option("--base", args->base,
+                     "Profile for what the data cannot show: a built-in name or an rcsim-sensor file (default: the recordings' sensor type)");
+  derive->add_option("--name", args->name, "The profile's name (default: the output file's stem)");
+  derive->add_flag("--json", args->json, "Print each value with its evidence as JSON");
+  derive->callback([args] { run_derive(*args); });
+}
+
+}  // namespace rcsim::cli
