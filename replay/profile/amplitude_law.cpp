@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <map>
 
 #include "common/angles.hpp"
 #include "common/decibel.hpp"
@@ -41,6 +42,27 @@ std::vector<double> pattern_db(const std::vector<double>& azimuth_rad, const Ant
   std::vector<double> out;
   for (const double a : azimuth_rad) out.push_back(amplitude_to_db(std::pow(antenna.sum_magnitude(a), geometry.amplitude_pattern_exponent)));
   return out;
+}
+
+// How far the fit's residual strays with azimuth: the RMS over 0.025-rad bins of |azimuth| (with at
+// least 10 detections) of the bins' mean residual, each bin one vote, so that the few detections
+// off boresight, where the pattern shows, weigh as much as the many ahead.
+double azimuth_bias_db(const std::vector<double>& azimuth_rad, const std::vector<double>& log10_range, const std::vector<double>& y,
+                       const LawFit& fit) {
+  constexpr double kBinRad = 0.025;
+  std::map<int, std::pair<double, int>> bins;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    auto& [sum, count] = bins[static_cast<int>(std::abs(azimuth_rad[i]) / kBinRad)];
+    sum += y[i] - (fit.constant_db - 10.0 * fit.range_exponent * log10_range[i]), ++count;
+  }
+  double sum_sq = 0.0;
+  int used = 0;
+  for (const auto& [bin, sc] : bins) {
+    if (sc.second < 10) continue;
+    const double mean = sc.first / sc.second;
+    sum_sq += mean * mean, ++used;
+  }
+  return used == 0 ? INFINITY : std::sqrt(sum_sq / used);
 }
 
 std::vector<DerivedValue> derive_threshold(const std::vector<double>& sorted_db, AmplitudeUnit unit) {
@@ -86,23 +108,26 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
     for (const std::string& field : law_fields) values.push_back({field, nullptr, ValueSource::base, why, 0});
     return values;
   }
-  // The radar equation with eq. (6)'s pattern: the spacing that keeps eq. (7) invertible over the
-  // view field, the dipole length that fits the residual against azimuth best.
+  // The radar equation with eq. (6)'s pattern: the dipole length and the spacing (as wide as keeps
+  // eq. (7) invertible over the view field) whose pattern leaves the least residual per azimuth bin.
   AntennaGeometry geometry;
   geometry.amplitude_pattern_exponent = base.value("/antenna/amplitude_pattern_exponent"_json_pointer, 2.0);
-  geometry.element_spacing_wavelengths =
-      std::floor(20.0 / (2.0 * std::sin(deg_to_rad(azimuth_half_deg + kInvertibleMarginDeg)))) / 20.0;
+  const double max_spacing = std::floor(20.0 / (2.0 * std::sin(deg_to_rad(azimuth_half_deg + kInvertibleMarginDeg)))) / 20.0;
   LawFit best;
-  best.residual_rms_db = INFINITY;
-  double best_length = 0.0;
-  for (double length = 0.3; length <= 1.5 + 1e-9; length += 0.05) {
-    geometry.dipole_length_wavelengths = length;
-    const std::vector<double> pattern = pattern_db(azimuth_rad, geometry);
-    std::vector<double> y(snr_minus_rcs_db.size());
-    for (std::size_t i = 0; i < y.size(); ++i) y[i] = snr_minus_rcs_db[i] - pattern[i];
-    const LawFit fit = fit_range_law(log10_range, y);
-    if (fit.residual_rms_db < best.residual_rms_db) best = fit, best_length = length;
+  double best_score = INFINITY, best_length = 0.0, best_spacing = 0.0;
+  for (double spacing = 0.5; spacing <= max_spacing + 1e-9; spacing += 0.05) {
+    for (double length = 0.3; length <= 1.5 + 1e-9; length += 0.05) {
+      AntennaGeometry candidate = geometry;
+      candidate.dipole_length_wavelengths = length, candidate.element_spacing_wavelengths = spacing;
+      const std::vector<double> pattern = pattern_db(azimuth_rad, candidate);
+      std::vector<double> y(snr_minus_rcs_db.size());
+      for (std::size_t i = 0; i < y.size(); ++i) y[i] = snr_minus_rcs_db[i] - pattern[i];
+      const LawFit fit = fit_range_law(log10_range, y);
+      const double score = azimuth_bias_db(azimuth_rad, log10_range, y, fit);
+      if (score < best_score) best = fit, best_length = length, best_spacing = spacing, best_score = score;
+    }
   }
+  geometry.element_spacing_wavelengths = best_spacing;
   // The paper's 1/R^4 with the same pattern, for comparison.
   geometry.dipole_length_wavelengths = best_length;
   const std::vector<double> pattern = pattern_db(azimuth_rad, geometry);
@@ -122,15 +147,15 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
   const MonopulseAntenna antenna(geometry);
   const auto pattern_at = [&](double a_rad) { return amplitude_to_db(std::pow(antenna.sum_magnitude(a_rad), geometry.amplitude_pattern_exponent)); };
   values.push_back({"antenna.dipole_length_wavelengths", round_to(best_length, 0.05), ValueSource::derived,
-                    fmt::format("the dipole length (0.3-1.5 wavelengths) whose two-way pattern fits the residual against "
-                                "azimuth best: {:.1f} dB at 0.1 rad, {:.1f} dB at 0.25 rad",
-                                pattern_at(0.1), pattern_at(0.25)),
+                    fmt::format("the dipole length (0.3-1.5 wavelengths) whose two-way pattern, with the spacing, leaves the "
+                                "least residual per 0.025-rad bin of azimuth ({:.2f} dB RMS over the bins): {:.1f} dB at 0.1 rad, {:.1f} dB at 0.25 rad",
+                                best_score, pattern_at(0.1), pattern_at(0.25)),
                     n});
   values.push_back({"antenna.element_spacing_wavelengths", geometry.element_spacing_wavelengths, ValueSource::derived,
-                    fmt::format("the widest spacing (0.05 steps) that keeps eq. (7) invertible to {:.1f} deg, {:.0f} deg beyond "
-                                "the view field",
-                                rad_to_deg(std::asin(1.0 / (2.0 * geometry.element_spacing_wavelengths))), kInvertibleMarginDeg),
-                    0});
+                    fmt::format("fitted with the dipole length, at most {:.2f} (0.05 steps) so that eq. (7) stays invertible "
+                                "{:.0f} deg beyond the view field",
+                                max_spacing, kInvertibleMarginDeg),
+                    n});
   return values;
 }
 

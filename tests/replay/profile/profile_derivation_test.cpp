@@ -43,8 +43,8 @@ TEST(ProfileDerive, TheAimotiveDriveGivesAimotiveLrrsHandValues) {
   const ProfileDerivation d = derive_profile({&recording}, {.base = "aimotive_lrr", .name = "derived_lrr"});
   const auto values = by_field(d);
   // The tolerances: view +-1 deg, maximum range +-5 m, threshold +-0.5 dB, range exponent
-  // +-0.2, cells +-20 %, noise +-30 %. Measured: 16.0 deg, 178 m, 14.0 dB, 2.66, noise 0.044 /
-  // 0.014 m/s and 0.09 / 0.05 m, cycle 56.0 ms.
+  // +-0.2, cells +-20 %, noise +-30 %. Measured: 16.0 deg, 178 m, 14.0 dB, 2.56 (C 70.7 dB), cells
+  // 1.15 m and 0.191 m/s, noise 0.044 / 0.014 m/s and 0.09 / 0.05 m, cycle 56.0 ms.
   expect_derived_near(values, "field_of_view.azimuth_half_deg", 17.0, 1.0);
   expect_derived_near(values, "field_of_view.max_range_m", 180.0, 5.0);
   expect_derived_near(values, "amplitude.detection_threshold_db", 14.0, 0.5);
@@ -57,9 +57,9 @@ TEST(ProfileDerive, TheAimotiveDriveGivesAimotiveLrrsHandValues) {
   expect_derived_near(values, "cycle_time_s", 0.0554, 0.002);
   // The highway keeps away from the radar: the minimum range is the base's.
   EXPECT_EQ(values.at("field_of_view.min_range_m").source, ValueSource::base);
-  // Known miss (docs/profile-derive.md): the cells, 1.85 m and 0.041 m/s against 1.4 m and
-  // 0.2 m/s, as near-duplicate pairs fill the gap; they are derived all the same.
-  EXPECT_EQ(values.at("resolution.range_cell_m").source, ValueSource::derived);
+  expect_derived_near(values, "resolution.range_cell_m", 1.4, 0.2 * 1.4);
+  expect_derived_near(values, "resolution.range_rate_cell_mps", 0.2, 0.2 * 0.2);
+  expect_derived_near(values, "amplitude.snr_at_1m_for_1m2_db", 70.5, 1.0);
   // What is written is a profile replay reads as it is, with its background.
   const SensorConfig config = parse_sensor_config(JsonField(d.profile, "derived", ""));
   EXPECT_EQ(config.name, "derived_lrr");
