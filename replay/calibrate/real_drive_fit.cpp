@@ -248,7 +248,41 @@ StationaryBackground fit_stationary_background(const std::vector<const Recording
   return b;
 }
 
-RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, const ReplayOptions& options) {
+namespace {
+
+// The values searched, from the profile's own: a level offset, the diffuse return, the occlusion
+// loss and, where the amplitude is on the radar's own scale, the range exponent.
+std::vector<SearchParameter> search_parameters(const SensorConfig& c) {
+  const double diffuse = c.extended_objects.diffuse_relative_ercs_per_sqrt_m;
+  const double loss_db = std::isinf(c.occlusion.loss_db) ? 10.0 : std::clamp(c.occlusion.loss_db, 0.0, 40.0);
+  std::vector<SearchParameter> p{
+      {"amplitude.reference_rcs_dbsm", c.amplitude.reference_rcs_dbsm, c.amplitude.reference_rcs_dbsm - 24.0,
+       c.amplitude.reference_rcs_dbsm + 24.0, 4.0, 0.25},
+      {"extended_objects.diffuse_relative_ercs_per_sqrt_m", diffuse, 0.0, std::max(4.0 * diffuse, 0.5), std::max(0.5 * diffuse, 0.05), 0.01},
+      {"occlusion.loss_db", loss_db, 0.0, 40.0, 6.0, 1.0}};
+  if (c.amplitude.unit == AmplitudeUnit::relative_db) {
+    p.push_back({"amplitude.range_exponent", std::clamp(c.amplitude.range_exponent, 0.0, 4.0), 0.0, 4.0, 0.5, 0.05});
+  }
+  return p;
+}
+
+Json::json_pointer pointer_of(const std::string& field) {
+  std::string path = "/" + field;
+  for (char& ch : path) ch = ch == '.' ? '/' : ch;
+  return Json::json_pointer(path);
+}
+
+void set_value(SensorConfig& c, const std::string& field, double value) {
+  if (field == "amplitude.reference_rcs_dbsm") c.amplitude.reference_rcs_dbsm = value;
+  if (field == "extended_objects.diffuse_relative_ercs_per_sqrt_m") c.extended_objects.diffuse_relative_ercs_per_sqrt_m = value;
+  if (field == "occlusion.loss_db") c.occlusion.loss_db = value;
+  if (field == "amplitude.range_exponent") c.amplitude.range_exponent = value;
+}
+
+}  // namespace
+
+RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, const ReplayOptions& options,
+                            const RealDriveSearch& search) {
   const std::string type = shared_sensor_type(recordings);
   const Recording& first = *recordings.front();
   Json doc = sensor_document(type, first.dir.string());
@@ -262,52 +296,60 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   }
   // The background first: the profile's values are then fitted with it in place.
   config.background = fit_stationary_background(recordings, options, config);
-  RealDriveFit best;
-  best.objective = std::numeric_limits<double>::infinity();
-  for (const double rcs_dbsm : {-4.0, -2.0, 0.0, 2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0}) {
-    for (const double diffuse : {0.0, 0.05, 0.1, 0.2, 0.3}) {
-      for (const double loss_db : {6.0, 10.0, 20.0}) {
-        SensorConfig c = config;
-        c.amplitude.reference_rcs_dbsm = rcs_dbsm;
-        c.extended_objects.diffuse_relative_ercs_per_sqrt_m = diffuse;
-        c.occlusion.loss_db = loss_db;
-        const double value = objective(recordings, options, c);
-        ++best.evaluations;
-        if (value < best.objective) {
-          best.objective = value;
-          best.reference_rcs_dbsm = rcs_dbsm, best.diffuse_relative_ercs_per_sqrt_m = diffuse, best.occlusion_loss_db = loss_db;
-        }
-      }
+  doc["background"] = stationary_background_to_json(config.background);
+  const std::vector<SearchParameter> parameters = search_parameters(config);
+  // Whatever the search finds must be a profile that reads back: the background and every bound
+  // within the profile's limits (schemas/limits.md), checked before an hour is spent.
+  for (const SearchParameter& p : parameters) {
+    for (const double bound : {p.lower, p.upper}) {
+      Json probe = doc;
+      probe[pointer_of(p.name)] = bound;
+      parse_sensor_config(JsonField(probe, type + " (fitted)", ""));
     }
   }
-  doc["amplitude"]["reference_rcs_dbsm"] = best.reference_rcs_dbsm;
-  doc["extended_objects"] = {{"diffuse_relative_ercs_per_sqrt_m", best.diffuse_relative_ercs_per_sqrt_m}};
-  doc["occlusion"] = {{"loss_db", best.occlusion_loss_db}};
-  doc["background"] = stationary_background_to_json(config.background);
+  const auto objective_of = [&](const std::vector<double>& x) {
+    SensorConfig c = config;
+    for (std::size_t i = 0; i < x.size(); ++i) set_value(c, parameters[i].name, x[i]);
+    return objective(recordings, options, c);
+  };
+  const SearchResult r = compass_search(parameters, objective_of, search.max_evaluations, search.stop, search.progress);
+  RealDriveFit best;
+  best.objective = r.objective, best.evaluations = r.evaluations, best.converged = r.converged, best.partial = r.stopped;
+  for (std::size_t i = 0; i < parameters.size(); ++i) {
+    const SearchParameter& p = parameters[i];
+    best.values.push_back({p.name, p.start, r.best[i], p.lower, p.upper, r.on_bound[i]});
+    doc[pointer_of(p.name)] = r.best[i];
+    if (p.name == "amplitude.reference_rcs_dbsm") best.reference_rcs_dbsm = r.best[i];
+    if (p.name == "extended_objects.diffuse_relative_ercs_per_sqrt_m") best.diffuse_relative_ercs_per_sqrt_m = r.best[i];
+    if (p.name == "occlusion.loss_db") best.occlusion_loss_db = r.best[i];
+  }
   best.sensor_document = doc;
   return best;
 }
 
-std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options) {
-  if (recording.sensors.size() != 2) {
-    throw std::invalid_argument(fmt::format("{}: the hold-outs need a recording with two sensors", recording.dir.string()));
+std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options, const RealDriveSearch& search) {
+  if (recording.cycle_count() < 4) {
+    throw std::invalid_argument(fmt::format("{}: {} cycle(s): a hold-out needs at least 4 to fit on half and measure on the other",
+                                            recording.dir.string(), recording.cycle_count()));
   }
-  const Recording sensor_a = restrict_to_sensor(recording, 0), sensor_b = restrict_to_sensor(recording, 1);
   const int half = recording.cycle_count() / 2;
   const Recording first = restrict_to_cycles(recording, 0, half), second = restrict_to_cycles(recording, half, recording.cycle_count());
   std::vector<HoldOut> out;
   const auto run = [&](std::string name, const Recording& train, const Recording& test) {
     HoldOut h;
     h.name = std::move(name);
-    h.fit = fit_real_drive({&train}, options);
+    h.fit = fit_real_drive({&train}, options, search);
     const SensorConfig fitted = parse_sensor_config(JsonField(h.fit.sensor_document, h.name, ""));
     h.in_sample = real_drive_figures(train, replay_with_sensor(train, options, fitted));
     h.held_out = real_drive_figures(test, replay_with_sensor(test, options, fitted));
     out.push_back(std::move(h));
   };
-  run(fmt::format("{} -> {}", recording.sensors[0].id, recording.sensors[1].id), sensor_a, sensor_b);
-  run(fmt::format("{} -> {}", recording.sensors[1].id, recording.sensors[0].id), sensor_b, sensor_a);
-  run("first half -> second half", first, second);
+  if (recording.sensors.size() == 2) {
+    const Recording sensor_a = restrict_to_sensor(recording, 0), sensor_b = restrict_to_sensor(recording, 1);
+    run(fmt::format("{} -> {}", recording.sensors[0].id, recording.sensors[1].id), sensor_a, sensor_b);
+    run(fmt::format("{} -> {}", recording.sensors[1].id, recording.sensors[0].id), sensor_b, sensor_a);
+  }
+  run(recording.timeline == Timeline::snapshots ? "first half of the frames -> second half" : "first half -> second half", first, second);
   return out;
 }
 

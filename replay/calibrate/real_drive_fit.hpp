@@ -1,17 +1,20 @@
 #pragma once
 // Fitting a sensor profile to a real drive and measuring it on data it was not fitted on
 // (docs/sensor-profiles.md, issue 18's goals): the profile's free values (the RCS an ERCS of 1
-// stands for, the diffuse face return, the occlusion loss) by a grid search on the real-drive
-// figures (object target counts and detection rates, not GOSPA), the stationary background by
-// its density; then the goal figures in sample and held out: fitted on the front radar and
-// measured on the rear one, the reverse, and fitted on the first half of the drive and measured
-// on the second.
+// stands for, the diffuse face return, the occlusion loss, a relative level's range exponent) by a
+// bounded search on the real-drive figures (object target counts and detection rates, not GOSPA),
+// the stationary background by its density; then the goal figures in sample and held out: fitted
+// on the front radar and measured on the rear one, the reverse, and fitted on the first half of
+// the drive (or the frames) and measured on the second.
+#include <atomic>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "io/recording.hpp"
 #include "replay/run/replay_run.hpp"
+#include "replay/calibrate/bounded_search.hpp"
 #include "sensor/stationary_background.hpp"
 
 namespace rcsim::replay {
@@ -57,15 +60,38 @@ nlohmann::ordered_json figures_to_json(const RealDriveFigures& figures);
 StationaryBackground fit_stationary_background(const std::vector<const Recording*>& recordings,
                                                const ReplayOptions& options, const SensorConfig& config);
 
+// One value the fit searched: where it started, where it ended, and whether that is a bound of the
+// search (then the optimum may lie beyond it).
+struct FittedValue {
+  std::string field;  // the rcsim-sensor field, dotted
+  double start = 0.0, value = 0.0, lower = 0.0, upper = 0.0;
+  bool on_bound = false;
+};
+
+struct RealDriveSearch {
+  int max_evaluations = 60;
+  const std::atomic<bool>* stop = nullptr;  // set (e.g. by SIGINT): the fit ends with the best so far, partial
+  std::function<void(const SearchProgress&)> progress;
+};
+
 struct RealDriveFit {
   nlohmann::ordered_json sensor_document;  // the recordings' rcsim-sensor document with the fitted values
+  std::vector<FittedValue> values;
   double reference_rcs_dbsm = 0.0, diffuse_relative_ercs_per_sqrt_m = 0.0, occlusion_loss_db = 0.0;
   double objective = 0.0;
   int evaluations = 0;
+  bool converged = false;
+  bool partial = false;  // stopped before it converged or spent its budget: the best so far
 };
 
-// Fits the profile the recordings' sensors share (their one sensor type) to them.
-RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, const ReplayOptions& options);
+// Fits the profile the recordings' sensors share (their one sensor type) to them: the stationary
+// background first, then by a bounded compass search (bounded_search.hpp) from the profile's own
+// values the reference RCS (a level offset, +-24 dB), the diffuse face return, the occlusion loss
+// and, for an amplitude on the radar's own scale (relative_db), the range exponent (0-4). The
+// profile with the background, and with each value at its bounds, is checked against the
+// profile's limits before the search (std::invalid_argument naming the field).
+RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, const ReplayOptions& options,
+                            const RealDriveSearch& search = {});
 
 // One hold-out: fitted on `train`, figures in sample (on train) and held out (on `test`).
 struct HoldOut {
@@ -74,8 +100,8 @@ struct HoldOut {
   RealDriveFigures in_sample, held_out;
 };
 
-// The three hold-outs of one two-sensor recording: first sensor -> second, second -> first,
-// first half -> second half.
-std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options);
+// The hold-outs of one recording: with two sensors, first -> second and second -> first; always the
+// first half of the cycles (frames) -> the second.
+std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options, const RealDriveSearch& search = {});
 
 }  // namespace rcsim::replay

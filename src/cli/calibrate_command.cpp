@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/fit_progress.hpp"
 #include "cli/recording_dirs.hpp"
 #include "cli/seed_option.hpp"
 #include "common/input_error.hpp"
@@ -28,6 +29,7 @@ struct CalibrateArgs {
   std::string start_dir;
   bool real_drive = false;
   bool hold_out = false;
+  int max_evaluations = replay::RealDriveSearch{}.max_evaluations;
 };
 
 std::vector<replay::ParameterGroup> parse_groups(const std::string& list) {
@@ -86,20 +88,37 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
   options.fidelity = Fidelity::no_tracking;
   std::vector<const Recording*> all;
   for (const Recording& r : recordings) all.push_back(&r);
-  std::cout << fmt::format("rcsim calibrate --real-drive: {} recording(s), seed {}\n", recordings.size(), args.seed);
-  const replay::RealDriveFit fit = replay::fit_real_drive(all, options);
-  std::cout << fmt::format("fitted ({} evaluations): reference_rcs_dbsm {:.1f}, diffuse_relative_ercs_per_sqrt_m {:.2f}, "
-                           "occlusion loss_db {:.0f}; background {:.1f} targets per sensor cycle\n\n",
-                           fit.evaluations, fit.reference_rcs_dbsm, fit.diffuse_relative_ercs_per_sqrt_m, fit.occlusion_loss_db,
+  std::cout << fmt::format("rcsim calibrate --real-drive: {} recording(s), seed {}, at most {} evaluations\n", recordings.size(),
+                           args.seed, args.max_evaluations);
+  const FitInterrupt interrupt;
+  replay::RealDriveFit fit;
+  {
+    FitProgress progress("calibrate --real-drive");
+    replay::RealDriveSearch search{args.max_evaluations, interrupt.flag(), [&](const replay::SearchProgress& p) { progress.update(p); }};
+    fit = replay::fit_real_drive(all, options, search);
+  }
+  std::cout << fmt::format("fitted: {} evaluations, objective {:.4f}, {}; background {:.1f} targets per sensor cycle\n",
+                           fit.evaluations, fit.objective,
+                           fit.partial ? "interrupted: the best so far (partial)"
+                                       : (fit.converged ? "converged" : "the evaluation budget spent before the steps converged"),
                            fit.sensor_document["background"]["targets_per_cycle"].get<double>());
+  nlohmann::ordered_json values = nlohmann::ordered_json::array();
+  for (const replay::FittedValue& v : fit.values) {
+    std::cout << fmt::format("  {:<52} {:>9.3f} (from {:.3f}; searched {:.3f} .. {:.3f}){}\n", v.field, v.value, v.start, v.lower,
+                             v.upper, v.on_bound ? "  ON A BOUND: the optimum may lie beyond it" : "");
+    values.push_back({{"field", v.field}, {"start", v.start}, {"value", v.value}, {"lower", v.lower}, {"upper", v.upper},
+                      {"on_bound", v.on_bound}});
+  }
+  std::cout << '\n';
   nlohmann::ordered_json index = {{"format", replay::kCalibrationFormat}, {"version", replay::kCalibrationVersion},
                                   {"created_by", "rcsim calibrate --real-drive"}, {"seed", args.seed}};
   nlohmann::ordered_json fitted_on = nlohmann::ordered_json::array();
   for (const Recording& r : recordings) fitted_on.push_back({{"recording", r.name}, {"checksum", fmt::format("{:016x}", r.checksum)}});
   index["fitted_on"] = fitted_on;
-  index["fit"] = {{"evaluations", fit.evaluations}, {"objective", fit.objective}, {"reference_rcs_dbsm", fit.reference_rcs_dbsm},
+  index["fit"] = {{"evaluations", fit.evaluations}, {"objective", fit.objective}, {"converged", fit.converged},
+                  {"partial", fit.partial}, {"reference_rcs_dbsm", fit.reference_rcs_dbsm},
                   {"diffuse_relative_ercs_per_sqrt_m", fit.diffuse_relative_ercs_per_sqrt_m},
-                  {"occlusion_loss_db", fit.occlusion_loss_db}};
+                  {"occlusion_loss_db", fit.occlusion_loss_db}, {"values", values}};
   print_figures_header();
   nlohmann::ordered_json in_sample = nlohmann::ordered_json::array();
   const SensorConfig fitted = parse_sensor_config(JsonField(fit.sensor_document, "fitted", ""));
@@ -110,9 +129,11 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
   }
   index["in_sample"] = in_sample;
   nlohmann::ordered_json hold_outs = nlohmann::ordered_json::array();
-  if (args.hold_out) {
+  if (args.hold_out && !fit.partial) {
     for (const Recording& r : recordings) {
-      for (const replay::HoldOut& h : replay::hold_outs(r, options)) {
+      FitProgress progress("calibrate --real-drive --hold-out");
+      replay::RealDriveSearch search{args.max_evaluations, interrupt.flag(), [&](const replay::SearchProgress& p) { progress.update(p); }};
+      for (const replay::HoldOut& h : replay::hold_outs(r, options, search)) {
         print_figures(fmt::format("{}: in sample", h.name.substr(0, 22)), h.in_sample);
         print_figures(fmt::format("{}: held out", h.name.substr(0, 22)), h.held_out);
         hold_outs.push_back({{"recording", r.name}, {"split", h.name}, {"reference_rcs_dbsm", h.fit.reference_rcs_dbsm},
@@ -141,6 +162,10 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
   index_writer.commit();
   std::cout << fmt::format("\ncalibration written to {}; use it with rcsim replay --calibration {}\n", args.output_dir,
                            args.output_dir);
+  if (fit.partial || interrupt.interrupted()) {
+    throw FitInterrupted(fmt::format("{} holds the best fit so far, marked partial (fit.partial); run again to finish it",
+                                     args.output_dir));
+  }
 }
 
 void run_calibrate(const CalibrateArgs& args) {
@@ -210,11 +235,15 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_flag("--cross-validate", args->cross_validate,
                 "also fit on all recordings but one, in turn, and report each held-out recording's GOSPA");
   cmd->add_flag("--real-drive", args->real_drive,
-                "fit a radar-equation profile's reference RCS, diffuse face return and occlusion loss, and the stationary "
-                "background, to real drives by their object counts and detection rates (docs/sensor-profiles.md)");
+                "fit a radar-equation profile's reference RCS, diffuse face return, occlusion loss (and a relative "
+                "level's range exponent), and the stationary background, to real drives by their object counts and "
+                "detection rates, by a bounded search (docs/sensor-profiles.md)");
   cmd->add_flag("--hold-out", args->hold_out,
-                "with --real-drive: also fit on one radar and measure on the other (both ways), and on the first half "
-                "of each drive and measure on the second");
+                "with --real-drive: also fit on the first half of each recording's cycles (frames) and measure on the "
+                "second, and with two radars on one and measure on the other (both ways)");
+  cmd->add_option("--max-evaluations", args->max_evaluations, "with --real-drive: the search's budget of replays per fit")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
   cmd->callback([args] { run_calibrate(*args); });
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/fit_progress.hpp"
 #include "cli/suggestions.hpp"
 #include "cli/verdict_options.hpp"
 #include "common/input_error.hpp"
@@ -45,6 +46,9 @@ int main(int argc, char** argv) {
   } catch (const rcsim::cli::VerdictsFailed& e) {
     std::cerr << "rcsim: failed: " << e.what() << '\n';
     return rcsim::cli::kExitVerdictsFailed;
+  } catch (const rcsim::cli::FitInterrupted& e) {
+    std::cerr << "rcsim: interrupted: " << e.what() << '\n';
+    return rcsim::cli::kExitInterrupted;
   } catch (const rcsim::InputError& e) {
     std::cerr << "rcsim: error: " << e.what() << '\n';
     return 2;

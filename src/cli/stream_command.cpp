@@ -1,4 +1,6 @@
 // rcsim stream SCENE.json|RECORDING_DIR: live UDP playback (docs/stream.md, schemas/udp-stream.md).
+#include <boost/asio/ip/address_v4.hpp>
+#include <boost/system/error_code.hpp>
 #include <fmt/format.h>
 
 #include <iostream>
