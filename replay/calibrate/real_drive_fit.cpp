@@ -183,8 +183,10 @@ std::string shared_sensor_type(const std::vector<const Recording*>& recordings) 
 // of the objects with at least 30 targets, and the mean |detection rate difference|.
 double objective(const std::vector<const Recording*>& recordings, const ReplayOptions& options, const SensorConfig& config) {
   double total = 0.0;
+  ReplayOptions counts_only = options;
+  counts_only.match_targets = false;
   for (const Recording* r : recordings) {
-    const ReplaySummary s = replay_with_sensor(*r, options, config);
+    const ReplaySummary s = replay_with_sensor(*r, counts_only, config);
     long long recorded = 0, simulated = 0;
     double rate_difference = 0.0;
     std::map<int, std::pair<long long, long long>> per_object;
@@ -212,8 +214,10 @@ StationaryBackground fit_stationary_background(const std::vector<const Recording
                                                const ReplayOptions& options, const SensorConfig& config) {
   BackgroundSink sink;
   std::string names;
+  ReplayOptions classes_only = options;
+  classes_only.match_targets = false;
   for (const Recording* r : recordings) {
-    replay_with_sensor(*r, options, config, sink);
+    replay_with_sensor(*r, classes_only, config, sink);
     names += (names.empty() ? "" : ", ") + r->name;
   }
   StationaryBackground b;

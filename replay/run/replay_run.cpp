@@ -191,7 +191,7 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
   const bool ego_known = run.rec.ego_motion_known;
   classify_targets(cycle.recorded, boxes, cells, buffers.pair_of_cell, v_WS_S, ego_known, run.options, merge);
   classify_targets(cycle.simulated, boxes, cells, buffers.pair_of_cell, v_WS_S, ego_known, run.options, merge);
-  match_targets(cycle, run.options.gospa);
+  if (run.options.match_targets) match_targets(cycle, run.options.gospa);
   const MergeCounts merges = match_merge_artefacts(cycle, run.options.merge_match_distance_m);
   if (timed) latency.note_targets(s, cycle, t_rec_s);
   acc.add_cycle(cycle, merges.recorded, merges.simulated);

@@ -33,6 +33,10 @@ struct ReplayOptions {
   // Stationary background: ego-motion-compensated radial speed within this (docs/metrics.md).
   double stationary_gate_mps = 0.5;
   double object_range_bin_m = 10.0;  // bins of the detection probability against range
+  // false: no GOSPA and no pairs (the summary's GOSPA figures are then 0, no target has a match),
+  // for a search that needs only counts and detection rates (calibrate --real-drive's objective:
+  // the assignment is 70 % of an imaging radar's replay).
+  bool match_targets = true;
 };
 
 // One target of one cycle and sensor, recorded or simulated.

@@ -15,11 +15,20 @@
 #include "common/embedded_data.hpp"
 #include "common/input_error.hpp"
 #include "common/text_file.hpp"
+#include "io/recording.hpp"
 #include "replay/import/calibration.hpp"
 #include "replay/run/run_kind.hpp"
 #include "replay/store/report_merge_files.hpp"
 
 namespace rcsim::replay {
+namespace {
+
+nlohmann::ordered_json sensor_profile_checksum(const std::string& sensor_type_override) {
+  if (sensor_type_override.empty() || !std::filesystem::is_regular_file(sensor_type_override)) return nullptr;
+  return fmt::format("{:016x}", fnv1a64(read_text_file(sensor_type_override)));
+}
+
+}  // namespace
 
 extern const char* const kReportSchemaSql;
 extern const char* const kBenchSchemaSql;
@@ -104,7 +113,10 @@ nlohmann::ordered_json run_parameters_json(const ReplayOptions& options, const E
         {"calibration_checksum", options.import.calibration_dir.empty()
                                      ? nlohmann::ordered_json()
                                      : nlohmann::ordered_json(load_calibration(options.import.calibration_dir)->checksum)},
-        {"effects", {{"clutter", e.clutter}, {"multibounce", e.multibounce}, {"occlusion", e.occlusion}}}}}};
+        {"effects", {{"clutter", e.clutter}, {"multibounce", e.multibounce}, {"occlusion", e.occlusion}}},
+        // A profile file given for every sensor (--sensor): what it holds, so that a profile
+        // derived again into the same file makes another run.
+        {"sensor_profile_checksum", sensor_profile_checksum(options.import.sensor_type_override)}}}};
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "cli/fit_progress.hpp"
 #include "cli/recording_dirs.hpp"
+#include "sensor/sensor_config.hpp"
 #include "cli/seed_option.hpp"
 #include "common/input_error.hpp"
 #include "common/atomic_file.hpp"
@@ -30,6 +31,7 @@ struct CalibrateArgs {
   bool real_drive = false;
   bool hold_out = false;
   int max_evaluations = replay::RealDriveSearch{}.max_evaluations;
+  std::string sensor;  // --sensor: the profile every sensor is fitted as, instead of its type
 };
 
 std::vector<replay::ParameterGroup> parse_groups(const std::string& list) {
@@ -82,6 +84,16 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
   for (const auto& dir : recording_dirs(args.recordings)) {
     recordings.push_back(read_recording(dir));
     replay::check_fittable(recordings.back());
+  }
+  if (!args.sensor.empty()) {
+    // A file named on the command line is relative to the working directory, not the recording.
+    const std::string type = is_builtin_sensor_config(args.sensor) ? args.sensor : std::filesystem::absolute(args.sensor).string();
+    if (!is_builtin_sensor_config(args.sensor) && !std::filesystem::is_regular_file(type)) {
+      throw InputError("--sensor", args.sensor, "no such built-in profile or rcsim-sensor file; " + unknown_sensor_message(args.sensor));
+    }
+    for (Recording& r : recordings) {
+      for (RecordingSensor& s : r.sensors) s.type = type;
+    }
   }
   replay::ReplayOptions options;
   options.seed = args.seed;
@@ -241,6 +253,10 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_flag("--hold-out", args->hold_out,
                 "with --real-drive: also fit on the first half of each recording's cycles (frames) and measure on the "
                 "second, and with two radars on one and measure on the other (both ways)");
+  cmd->add_option("--sensor", args->sensor,
+                  "with --real-drive: fit this profile (built-in name or rcsim-sensor file, e.g. from rcsim profile "
+                  "derive) for every sensor instead of the recordings' type; replay with the same --sensor and the "
+                  "--calibration written");
   cmd->add_option("--max-evaluations", args->max_evaluations, "with --real-drive: the search's budget of replays per fit")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
