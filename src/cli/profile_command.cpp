@@ -32,8 +32,9 @@ void print_derivation(const replay::profile::ProfileDerivation& d, const std::st
     std::cout << fmt::format("{:<52} {:>16}  {:<9} {}{}\n", v.field, value_text(v.value), replay::profile::value_source_name(v.source),
                              v.evidence, v.support > 0 ? fmt::format(" [{}]", v.support) : "");
   }
-  std::cout << fmt::format("\n{}: written; replay with it by naming the file as the sensors' type, or fit what the data cannot "
-                           "show with rcsim calibrate --real-drive\n",
+  std::cout << fmt::format("\n{0}: written. Fit what the data cannot show (the base's values) with rcsim calibrate RECORDING "
+                           "--real-drive --sensor {0} -o FIT, then replay with rcsim replay RECORDING --sensor {0} "
+                           "--calibration FIT\n",
                            output);
 }
 

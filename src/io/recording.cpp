@@ -317,7 +317,12 @@ void write_recording(const fs::path& dir, const Recording& rec, const std::map<s
   const fs::path target = fs::absolute(dir).lexically_normal();
   const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
   const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
-  if (!fs::is_directory(parent)) throw InputError(dir.string(), "", "the parent directory does not exist");
+  // The parent is made as `mkdir -p` would: `import ... -o out/rec` in a fresh clone just works.
+  std::error_code error;
+  fs::create_directories(parent, error);
+  if (!fs::is_directory(parent)) {
+    throw InputError(dir.string(), "", fmt::format("cannot make the parent directory: {}", error ? error.message() : "not a directory"));
+  }
   check_output_directory(target, "recording.json");
   // Ids go into CSV rows, one row per line: what the reader could not read back is not written.
   for (const auto& id : ids_of(rec)) {
