@@ -7,6 +7,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "common/json_reader.hpp"
+#include "common/quantile.hpp"
 #include "replay/calibrate/calibration_fit.hpp"
 #include "replay/run/simulated_source.hpp"
 
@@ -154,12 +156,7 @@ constexpr int kBackgroundAzimuthBins = 12;
 std::array<double, kAmplitudeQuantiles> deciles(std::vector<double> values) {
   std::array<double, kAmplitudeQuantiles> q{};
   std::sort(values.begin(), values.end());
-  for (int k = 0; k < kAmplitudeQuantiles; ++k) {
-    const double position = 0.1 * k * static_cast<double>(values.size() - 1);
-    const auto i = static_cast<std::size_t>(position);
-    const std::size_t j = std::min(i + 1, values.size() - 1);
-    q[static_cast<std::size_t>(k)] = values[i] + (position - static_cast<double>(i)) * (values[j] - values[i]);
-  }
+  for (int k = 0; k < kAmplitudeQuantiles; ++k) q[static_cast<std::size_t>(k)] = quantile_of_sorted(values, 0.1 * k);
   return q;
 }
 
@@ -270,12 +267,6 @@ std::vector<SearchParameter> search_parameters(const SensorConfig& c) {
   return p;
 }
 
-Json::json_pointer pointer_of(const std::string& field) {
-  std::string path = "/" + field;
-  for (char& ch : path) ch = ch == '.' ? '/' : ch;
-  return Json::json_pointer(path);
-}
-
 void set_value(SensorConfig& c, const std::string& field, double value) {
   if (field == "amplitude.reference_rcs_dbsm") c.amplitude.reference_rcs_dbsm = value;
   if (field == "extended_objects.diffuse_relative_ercs_per_sqrt_m") c.extended_objects.diffuse_relative_ercs_per_sqrt_m = value;
@@ -307,7 +298,7 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   for (const SearchParameter& p : parameters) {
     for (const double bound : {p.lower, p.upper}) {
       Json probe = doc;
-      probe[pointer_of(p.name)] = bound;
+      probe[field_pointer(p.name)] = bound;
       parse_sensor_config(JsonField(probe, type + " (fitted)", ""));
     }
   }
@@ -322,7 +313,7 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     const SearchParameter& p = parameters[i];
     best.values.push_back({p.name, p.start, r.best[i], p.lower, p.upper, r.on_bound[i]});
-    doc[pointer_of(p.name)] = r.best[i];
+    doc[field_pointer(p.name)] = r.best[i];
     if (p.name == "amplitude.reference_rcs_dbsm") best.reference_rcs_dbsm = r.best[i];
     if (p.name == "extended_objects.diffuse_relative_ercs_per_sqrt_m") best.diffuse_relative_ercs_per_sqrt_m = r.best[i];
     if (p.name == "occlusion.loss_db") best.occlusion_loss_db = r.best[i];

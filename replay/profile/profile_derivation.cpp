@@ -46,12 +46,6 @@ Base load_base(const std::string& name, const Recording& first) {
   return {document, std::filesystem::absolute(resolved).string()};
 }
 
-Json::json_pointer pointer_of(const std::string& field) {
-  std::string path = "/" + field;
-  for (char& c : path) c = c == '.' ? '/' : c;
-  return Json::json_pointer(path);
-}
-
 // The values the recordings' headers give.
 std::vector<DerivedValue> header_values(const DetectionPool& pool) {
   std::vector<DerivedValue> values{{"reports", "detections", ValueSource::recording, "the recordings' sensors report raw detections", 0}};
@@ -93,7 +87,7 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
   Json& doc = out.profile = base.document;
   std::vector<DerivedValue> kept;
   for (DerivedValue& v : out.values) {
-    const auto pointer = pointer_of(v.field);
+    const auto pointer = field_pointer(v.field);
     if (v.source == ValueSource::base) {
       if (!doc.contains(pointer)) continue;
       v.value = doc.at(pointer);

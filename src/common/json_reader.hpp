@@ -30,6 +30,13 @@ nlohmann::ordered_json parse_stored_json(std::string_view text);
 // Reads and parses a file.
 nlohmann::json parse_json_file(const std::string& path);
 
+// A dotted field name as a JSON pointer: "amplitude.range_exponent" -> /amplitude/range_exponent.
+inline nlohmann::json::json_pointer field_pointer(const std::string& dotted_field) {
+  std::string path = "/" + dotted_field;
+  for (char& c : path) c = c == '.' ? '/' : c;
+  return nlohmann::json::json_pointer(path);
+}
+
 class JsonField {
  public:
   JsonField(const nlohmann::json& value, std::string file, std::string path);
