@@ -33,9 +33,7 @@ struct SynthArgs {
 void require_parent_directory(const std::string& path, const std::string& what) {
   const fs::path target = fs::absolute(path).lexically_normal();
   const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
-  std::error_code error;
-  fs::create_directories(parent, error);  // as mkdir -p: a fresh clone has no out/ yet
-  if (!fs::is_directory(parent)) throw InputError(path, "", what + ": cannot make the parent directory");
+  if (!fs::is_directory(parent)) throw InputError(path, "", what + ": the parent directory does not exist");
 }
 
 void run_synth(const SynthArgs& args) {
