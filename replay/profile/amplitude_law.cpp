@@ -65,6 +65,40 @@ double azimuth_bias_db(const std::vector<double>& azimuth_rad, const std::vector
   return used == 0 ? INFINITY : std::sqrt(sum_sq / used);
 }
 
+// SNR - RCS against range with the fitted law, and its residual against azimuth with the pattern.
+void law_figures(const LawFit& fit, const AntennaGeometry& geometry, const std::vector<double>& log10_range,
+                 const std::vector<double>& azimuth_rad, const std::vector<double>& snr_minus_rcs_db, std::vector<DerivationFigure>& figures) {
+  std::vector<std::pair<double, double>> points, law;
+  std::map<int, std::pair<double, int>> bins;
+  constexpr double kBinRad = 0.025;
+  for (std::size_t i = 0; i < log10_range.size(); ++i) {
+    points.emplace_back(std::pow(10.0, log10_range[i]), snr_minus_rcs_db[i]);
+    auto& [sum, count] = bins[static_cast<int>(std::floor(azimuth_rad[i] / kBinRad))];
+    sum += snr_minus_rcs_db[i] - (fit.constant_db - 10.0 * fit.range_exponent * log10_range[i]), ++count;
+  }
+  for (double r = 1.0; r <= 300.0; r *= 1.05) law.emplace_back(r, fit.constant_db - 10.0 * fit.range_exponent * std::log10(r));
+  double far_m = 0.0;
+  for (const auto& p : points) far_m = std::max(far_m, p.first);
+  std::erase_if(law, [&](const auto& p) { return p.first > far_m; });
+  figures.push_back({"SNR - RCS against range", "range / m", "SNR - RCS / dB",
+                     fmt::format("every detection (thinned); the line: C - 10 n log10 R with C {:.1f} dB, n {:.2f} (boresight)",
+                                 fit.constant_db, fit.range_exponent),
+                     {{"detections", true, thinned(points, 4000)}, {"fitted law", false, law}}});
+  std::vector<std::pair<double, double>> means, pattern;
+  for (const auto& [bin, sc] : bins) {
+    if (sc.second >= 10) means.emplace_back(rad_to_deg((bin + 0.5) * kBinRad), sc.first / sc.second);
+  }
+  const MonopulseAntenna antenna(geometry);
+  for (const auto& m : means) {
+    pattern.emplace_back(m.first, amplitude_to_db(std::pow(antenna.sum_magnitude(deg_to_rad(m.first)), geometry.amplitude_pattern_exponent)));
+  }
+  figures.push_back({"The law's residual against azimuth", "azimuth / deg", "mean residual / dB",
+                     fmt::format("the mean of SNR - RCS - (C - 10 n log10 R) per 0.025-rad bin (at least 10 detections); the "
+                                 "line: eq. (6)'s two-way pattern, dipole {:.2f}, spacing {:.2f} wavelengths",
+                                 geometry.dipole_length_wavelengths, geometry.element_spacing_wavelengths),
+                     {{"bins", true, means}, {"pattern", false, pattern}}});
+}
+
 std::vector<DerivedValue> derive_threshold(const std::vector<double>& sorted_db, AmplitudeUnit unit) {
   const double q_db = quantile_of_sorted(sorted_db, 0.001);
   const double threshold_db = std::floor(q_db * 2.0) / 2.0;
@@ -80,7 +114,8 @@ std::vector<DerivedValue> derive_threshold(const std::vector<double>& sorted_db,
 
 }  // namespace
 
-std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nlohmann::json& base, double azimuth_half_deg) {
+std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nlohmann::json& base, double azimuth_half_deg,
+                                           std::vector<DerivationFigure>& figures) {
   std::vector<double> amplitudes_db, log10_range, azimuth_rad, snr_minus_rcs_db;
   for (const PooledCycle& c : pool.cycles) {
     for (const PooledDetection& d : c.detections) {
@@ -91,8 +126,17 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
       snr_minus_rcs_db.push_back(d.amplitude_db - d.rcs_dbsm);
     }
   }
+  std::vector<std::pair<double, double>> amplitude_at_range;
+  for (const PooledCycle& c : pool.cycles) {
+    for (const PooledDetection& d : c.detections) amplitude_at_range.emplace_back(d.range_m, d.amplitude_db);
+  }
   std::sort(amplitudes_db.begin(), amplitudes_db.end());
   std::vector<DerivedValue> values = derive_threshold(amplitudes_db, pool.amplitude_unit);
+  const double threshold_db = values.front().value.get<double>();
+  double far_m = 0.0;
+  for (const auto& [r, a] : amplitude_at_range) far_m = std::max(far_m, r);
+  figures.push_back({"Amplitude against range", "range / m", "amplitude / dB", "every detection (thinned); the line: the derived threshold",
+                     {{"detections", true, thinned(amplitude_at_range, 4000)}, {"threshold", false, {{0.0, threshold_db}, {far_m, threshold_db}}}}});
 
   const auto n = static_cast<long long>(snr_minus_rcs_db.size());
   const std::vector<std::string> law_fields{"amplitude.snr_at_1m_for_1m2_db", "amplitude.range_exponent", "antenna.dipole_length_wavelengths",
@@ -145,6 +189,7 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
   values.push_back({"amplitude.snr_at_1m_for_1m2_db", round_to(best.constant_db, 0.1), ValueSource::derived, law, n});
   values.push_back({"amplitude.range_exponent", round_to(best.range_exponent, 0.01), ValueSource::derived, law, n});
   const MonopulseAntenna antenna(geometry);
+  law_figures(best, geometry, log10_range, azimuth_rad, snr_minus_rcs_db, figures);
   const auto pattern_at = [&](double a_rad) { return amplitude_to_db(std::pow(antenna.sum_magnitude(a_rad), geometry.amplitude_pattern_exponent)); };
   values.push_back({"antenna.dipole_length_wavelengths", round_to(best_length, 0.05), ValueSource::derived,
                     fmt::format("the dipole length (0.3-1.5 wavelengths) whose two-way pattern, with the spacing, leaves the "

@@ -122,7 +122,8 @@ std::optional<double> fundamental_period(const std::vector<double>& dt_s) {
 
 }  // namespace
 
-std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& cells, double threshold_db) {
+std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& cells, double threshold_db,
+                                       std::vector<DerivationFigure>& figures) {
   std::vector<DerivedValue> values;
   // The radial speed.
   if (const auto step = lattice_step(pool, range_rate_of)) {
@@ -147,6 +148,19 @@ std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& c
     for (const auto& [sensor, residuals] : high_by_sensor) {
       if (residuals.size() >= kMinSamples && (high.empty() || rms(residuals) < rms(high))) high = residuals;
     }
+    std::map<int, std::vector<double>> by_margin;
+    for (const PooledCycle& c : pool.cycles) {
+      for (const PooledDetection& d : c.detections) {
+        if (d.stationary()) by_margin[static_cast<int>(std::floor((d.amplitude_db - threshold_db) / 2.0))].push_back(d.stationary_residual_mps);
+      }
+    }
+    std::vector<std::pair<double, double>> rms_by_margin;
+    for (const auto& [bin, residuals] : by_margin) {
+      if (residuals.size() >= kMinSamples) rms_by_margin.emplace_back(2.0 * bin + 1.0, rms(residuals));
+    }
+    figures.push_back({"Radial-speed residual of the stationary world against SNR margin", "amplitude - threshold / dB",
+                       "RMS residual / (m/s)", "per 2-dB bin with at least 30 inliers of the per-cycle stationary fit",
+                       {{"RMS", false, rms_by_margin}}});
     if (low.size() >= kMinSamples && high.size() >= kMinSamples) {
       const double at_threshold = rms(low), least = std::min(rms(high), at_threshold);
       values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", round_to(at_threshold, 0.001), ValueSource::derived,
@@ -182,6 +196,8 @@ std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& c
   }
   const std::optional<double> period_s = steps_s.size() >= 10 ? fundamental_period(steps_s) : std::nullopt;
   if (period_s) {
+    figures.push_back(histogram_figure("Time between consecutive cycles, from the static world's shift", "step / s", steps_s,
+                                       3.0 * *period_s, 60, *period_s, "cycle time"));
     values.push_back({"cycle_time_s", round_to(*period_s, 0.0001), ValueSource::derived,
                       fmt::format("the static world's shift between consecutive cycles over the speed: {} steps, median {:.1f} ms, "
                                   "each a whole multiple of {:.1f} ms (the recordings' clock: {:.1f} ms)",

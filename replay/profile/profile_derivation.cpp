@@ -75,12 +75,12 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
     const auto it = std::find_if(out.values.begin(), out.values.end(), [&](const DerivedValue& v) { return v.field == field; });
     return it->value.get<double>();
   };
-  add(derive_view_field(pool));
-  add(derive_amplitude(pool, base.document, derived_number("field_of_view.azimuth_half_deg")));
+  add(derive_view_field(pool, out.figures));
+  add(derive_amplitude(pool, base.document, derived_number("field_of_view.azimuth_half_deg"), out.figures));
   const double threshold_db = derived_number("amplitude.detection_threshold_db");
   Cells cells;
-  add(derive_resolution(pool, cells));
-  add(derive_noise(pool, cells, threshold_db));
+  add(derive_resolution(pool, cells, out.figures));
+  add(derive_noise(pool, cells, threshold_db, out.figures));
 
   // The profile: the base with every derived value in place; a value the data cannot show is the
   // base's (dropped where the base has none either).

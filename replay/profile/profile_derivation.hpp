@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/recording.hpp"
+#include "replay/profile/derivation_figures.hpp"
 #include "replay/profile/derived_value.hpp"
 
 namespace rcsim::replay::profile {
@@ -23,6 +24,7 @@ struct DeriveOptions {
 struct ProfileDerivation {
   nlohmann::ordered_json profile;  // a valid rcsim-sensor document
   std::vector<DerivedValue> values;  // in the profile's order of derivation; base values hold the base's
+  std::vector<DerivationFigure> figures;  // what they were read from (--report)
   std::string base;                  // what the base was
   long long detections = 0, sensor_cycles = 0;
 };

@@ -70,7 +70,7 @@ Gap gap_edge(const std::vector<double>& sorted) {
 
 }  // namespace
 
-std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, Cells& cells) {
+std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, Cells& cells, std::vector<DerivationFigure>& figures) {
   // Two rounds: the range cell from pairs at one radial speed, the range-rate cell from pairs
   // within half that range cell, the range cell again from pairs within a quarter of the range-rate
   // cell.
@@ -110,6 +110,10 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, Cells& ce
        described(range_gaps, cells.range_m, edges.first, "m", "at one radial speed"), static_cast<long long>(range_gaps.size())},
       {"resolution.range_rate_cell_mps", round_to(cells.range_rate_mps, 0.001), ValueSource::derived,
        described(range_rate_gaps, cells.range_rate_mps, edges.second, "m/s", "within half a range cell"), static_cast<long long>(range_rate_gaps.size())}};
+  figures.push_back(histogram_figure("Range distances of pairs at one radial speed", "range distance / m", range_gaps, 4.0 * cells.range_m,
+                                     60, cells.range_m, "range cell"));
+  figures.push_back(histogram_figure("Radial-speed distances of pairs within half a range cell", "radial-speed distance / (m/s)",
+                                     range_rate_gaps, 4.0 * cells.range_rate_mps, 60, cells.range_rate_mps, "range-rate cell"));
   values.push_back({"resolution.azimuth_cell_deg", nullptr, ValueSource::base,
                     fmt::format("not shown: {} pair(s) at one radial speed within half a range cell (two beams of one "
                                 "range-Doppler cell) among {} detections; their azimuth gap would be the beam's width",

@@ -20,7 +20,7 @@ constexpr double kNearShare = 0.05;
 
 }  // namespace
 
-std::vector<DerivedValue> derive_view_field(const DetectionPool& pool) {
+std::vector<DerivedValue> derive_view_field(const DetectionPool& pool, std::vector<DerivationFigure>& figures) {
   std::vector<double> azimuth_deg, ranges_m;
   for (const PooledCycle& c : pool.cycles) {
     for (const PooledDetection& d : c.detections) {
@@ -56,6 +56,16 @@ std::vector<DerivedValue> derive_view_field(const DetectionPool& pool) {
                                   nearest_m, 100.0 * nearest_m / max_range_m),
                       0});
   }
+  DerivationFigure f{"Detections: range against azimuth", "azimuth / deg", "range / m",
+                     "every detection (thinned); the lines: the derived view field", {}};
+  std::vector<std::pair<double, double>> points;
+  for (const PooledCycle& c : pool.cycles) {
+    for (const PooledDetection& d : c.detections) points.emplace_back(rad_to_deg(d.azimuth_rad), d.range_m);
+  }
+  const double half = values[0].value.get<double>(), far = values[1].value.get<double>();
+  f.series = {{"detections", true, thinned(points, 4000)},
+              {"view field", false, {{-half, 0.0}, {-half, far}, {half, far}, {half, 0.0}}}};
+  figures.push_back(std::move(f));
   return values;
 }
 

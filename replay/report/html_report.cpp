@@ -385,4 +385,6 @@ int write_html_report_file(const std::string& db_path, const std::string& html_p
   }
 }
 
+const char* report_stylesheet() { return kStyle; }
+
 }  // namespace rcsim::replay

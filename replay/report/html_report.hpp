@@ -26,6 +26,9 @@ enum class CampaignOverview {
   only,  // the overview alone, no run sections
 };
 
+// The stylesheet of every HTML page rcsim writes (the report, the profile derivation's).
+const char* report_stylesheet();
+
 struct HtmlReportOptions {
   std::vector<std::int64_t> run_ids;  // empty: the last `last_runs` runs of the database
   int last_runs = 20;

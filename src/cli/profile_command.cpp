@@ -11,13 +11,14 @@
 #include "common/input_error.hpp"
 #include "io/recording.hpp"
 #include "replay/profile/profile_derivation.hpp"
+#include "replay/report/profile_report.hpp"
 
 namespace rcsim::cli {
 namespace {
 
 struct DeriveArgs {
   std::vector<std::string> recordings;
-  std::string output, base, name;
+  std::string output, base, name, report;
   bool json = false;
 };
 
@@ -40,6 +41,7 @@ void print_derivation(const replay::profile::ProfileDerivation& d, const std::st
 
 void run_derive(const DeriveArgs& args) {
   check_output_file(args.output);
+  if (!args.report.empty()) check_output_file(args.report);
   std::vector<Recording> recordings;
   for (const std::string& dir : args.recordings) recordings.push_back(read_recording(dir));
   std::vector<const Recording*> pointers;
@@ -51,6 +53,11 @@ void run_derive(const DeriveArgs& args) {
   AtomicFileWriter file(args.output);
   file.stream() << d.profile.dump(2) << '\n';
   file.commit();
+  if (!args.report.empty()) {
+    AtomicFileWriter page(args.report);
+    replay::write_profile_report(page.stream(), d, args.output);
+    page.commit();
+  }
   if (!args.json) return print_derivation(d, args.output);
   nlohmann::ordered_json values = nlohmann::ordered_json::array();
   for (const auto& v : d.values) {
@@ -73,6 +80,7 @@ void add_profile_command(CLI::App& app) {
                      "Profile for what the data cannot show: a built-in name or an rcsim-sensor file (default: the recordings' sensor type)");
   derive->add_option("--name", args->name, "The profile's name (default: the output file's stem)");
   derive->add_flag("--json", args->json, "Print each value with its evidence as JSON");
+  derive->add_option("--report", args->report, "Also write an HTML page with every value and the fits it was read from");
   derive->callback([args] { run_derive(*args); });
 }
 

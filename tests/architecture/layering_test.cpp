@@ -62,7 +62,7 @@ const std::map<std::string, std::set<std::string>> kMayUse{
       "replay_store"}},
     {"replay_report",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
-      "replay_store", "replay_campaign"}},
+      "replay_calibrate", "replay_profile", "replay_store", "replay_campaign"}},
     {"stream", {"common", "io", "world", "sim", "replay_import"}},
     {"cli",
      {"common", "io", "world", "metrics", "sim", "synth", "traffic", "replay_import", "replay_run", "replay_evaluate",

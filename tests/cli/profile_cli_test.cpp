@@ -49,5 +49,22 @@ TEST_F(ProfileCli, DeriveRefusesARecordingOfTracksWithStatus2AndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST_F(ProfileCli, DeriveWritesAProfileReplayReadsAndAReportWithItsFits) {
+  if (!fs::is_directory(testing::kAimotiveRaw)) {
+    GTEST_SKIP() << "real data absent (" << testing::kAimotiveRaw.string() << "): profile derive --report is not checked";
+  }
+  const fs::path rec = dir_ / "rec", profile = dir_ / "mine.json", page = dir_ / "mine.html";
+  ASSERT_EQ(run_rcsim(fmt::format("import --from aimotive {} -o {}", testing::kAimotiveRaw.string(), rec.string())).exit_code, 0);
+  const auto result = run_rcsim(fmt::format("profile derive {} -o {} --report {}", rec.string(), profile.string(), page.string()));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(load_sensor_config_file(profile.string()).name, "mine");
+  const std::string html = read_file(page);
+  EXPECT_NE(html.find("SNR - RCS against range"), std::string::npos);
+  EXPECT_NE(html.find("Range distances of pairs at one radial speed"), std::string::npos);
+  EXPECT_NE(html.find("amplitude.range_exponent"), std::string::npos);
+  const auto replayed = run_rcsim(fmt::format("replay {} --sensor {} --db {}", rec.string(), profile.string(), (dir_ / "r.sqlite").string()));
+  EXPECT_EQ(replayed.exit_code, 0) << replayed.output;
+}
+
 }  // namespace
 }  // namespace rcsim
