@@ -18,9 +18,9 @@ struct DerivationFigure {
   std::string title, x_label, y_label, note;
   std::vector<FigureSeries> series;
   double lo = 0.0, bin_width = 0.0;
-  std::vector<long long> counts;
+  std::vector<long long> counts{};
   double marker = 0.0;
-  std::string marker_label;
+  std::string marker_label{};
 };
 
 // A histogram of `values` over [0, hi) in `bins` bins, what lies beyond in the last.

@@ -8,6 +8,7 @@
 #include "replay/profile/derivation_figures.hpp"
 #include "replay/profile/derived_value.hpp"
 #include "replay/profile/detection_pool.hpp"
+#include "replay/profile/frame_matching.hpp"
 
 namespace rcsim::replay::profile {
 
@@ -37,6 +38,11 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, Cells& ce
 // about the stationary fit by SNR margin, and the range's from stationary detections matched
 // frame to frame (drives only). Also the cycle time, from the same matching.
 std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& cells, double threshold_db,
-                                       std::vector<DerivationFigure>& figures);
+                                       const std::vector<FramePair>& frame_pairs, std::vector<DerivationFigure>& figures);
+
+// The fluctuation (Swerling 0, 1 or 3): which model's re-detection probability, given the SNR
+// margin a stationary detection was seen at, the matched cycles follow best.
+std::vector<DerivedValue> derive_fluctuation(const std::vector<FramePair>& frame_pairs, bool snapshots,
+                                             std::vector<DerivationFigure>& figures);
 
 }  // namespace rcsim::replay::profile

@@ -49,66 +49,6 @@ double rms(const std::vector<double>& x) {
   return std::sqrt(s / static_cast<double>(x.size()));
 }
 
-// One pair of consecutive cycles of one sensor, matched: the time between them the static world's
-// shift shows, and the range differences of the matched stationary detections.
-struct FramePair {
-  double dt_s = 0.0;
-  std::vector<std::pair<double, double>> range_residuals;  // (residual m, SNR margin dB)
-};
-
-Vec2 position(const PooledDetection& d) { return {d.range_m * std::cos(d.azimuth_rad), d.range_m * std::sin(d.azimuth_rad)}; }
-
-// The static world seen at cycle a moves by -v dt in the sensor frame (and turns with the ego);
-// dt is the one that matches the most stationary detections of b within the gate.
-std::optional<FramePair> match_frames(const PooledCycle& a, const PooledCycle& b, double nominal_dt_s, double threshold_db) {
-  constexpr double kGateM = 0.5;
-  std::vector<Vec2> pa, pb;
-  std::vector<const PooledDetection*> db;
-  for (const PooledDetection& d : a.detections) {
-    if (d.stationary()) pa.push_back(position(d));
-  }
-  for (const PooledDetection& d : b.detections) {
-    if (d.stationary()) pb.push_back(position(d)), db.push_back(&d);
-  }
-  if (pa.size() < 5 || pb.size() < 5) return std::nullopt;
-  const Vec2 v = 0.5 * (a.v_S_S + b.v_S_S);
-  const double turn_rad = b.X_WV.yaw_rad - a.X_WV.yaw_rad;
-  const auto predicted = [&](const Vec2& p, double dt_s) { return rotate(-turn_rad, p - v * dt_s); };
-  const auto nearest = [&](const Vec2& q, std::size_t& index) {
-    double best = INFINITY;
-    for (std::size_t i = 0; i < pb.size(); ++i) {
-      const double d = (pb[i] - q).norm();
-      if (d < best) best = d, index = i;
-    }
-    return best;
-  };
-  double best_dt_s = 0.0;
-  std::size_t best_matches = 0;
-  for (double dt_s = 0.2 * nominal_dt_s; dt_s <= 3.0 * nominal_dt_s; dt_s += 0.001) {
-    std::size_t matches = 0, index = 0;
-    for (const Vec2& p : pa) matches += nearest(predicted(p, dt_s), index) < kGateM ? 1 : 0;
-    if (matches > best_matches) best_matches = matches, best_dt_s = dt_s;
-  }
-  if (best_matches < 5) return std::nullopt;
-  // The count is flat over a gate's worth of dt: refine by the matched pairs' own shifts along v,
-  // dt_i = (p_a - R^-1 p_b) . v / |v|^2, their median.
-  std::vector<double> dt_i;
-  for (const Vec2& p : pa) {
-    std::size_t index = 0;
-    if (nearest(predicted(p, best_dt_s), index) >= kGateM) continue;
-    dt_i.push_back((p - rotate(turn_rad, pb[index])).dot(v) / v.squaredNorm());
-  }
-  best_dt_s = median(dt_i);
-  FramePair pair{best_dt_s, {}};
-  for (const Vec2& p : pa) {
-    std::size_t index = 0;
-    const Vec2 q = predicted(p, best_dt_s);
-    if (nearest(q, index) >= kGateM) continue;
-    pair.range_residuals.emplace_back(db[index]->range_m - q.norm(), db[index]->amplitude_db - threshold_db);
-  }
-  return pair;
-}
-
 // The largest cycle time of which every measured step is a whole multiple (within 10 % of it).
 std::optional<double> fundamental_period(const std::vector<double>& dt_s) {
   const double shortest = quantile(dt_s, 0.05);
@@ -123,7 +63,7 @@ std::optional<double> fundamental_period(const std::vector<double>& dt_s) {
 }  // namespace
 
 std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& cells, double threshold_db,
-                                       std::vector<DerivationFigure>& figures) {
+                                       const std::vector<FramePair>& frame_pairs, std::vector<DerivationFigure>& figures) {
   std::vector<DerivedValue> values;
   // The radial speed.
   if (const auto step = lattice_step(pool, range_rate_of)) {
@@ -180,19 +120,9 @@ std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& c
   // The range and the cycle time: stationary detections matched frame to frame (a drive).
   std::vector<double> steps_s;
   std::vector<std::pair<double, double>> residuals;
-  if (!pool.snapshots) {
-    for (std::size_t i = 0; i + 1 < pool.cycles.size(); ++i) {
-      // The same sensor's next cycle: the pool holds a recording's cycles sensor after sensor.
-      for (std::size_t j = i + 1; j < pool.cycles.size(); ++j) {
-        const PooledCycle &a = pool.cycles[i], &b = pool.cycles[j];
-        if (b.recording != a.recording || b.cycle > a.cycle + 1) break;
-        if (b.sensor != a.sensor || b.cycle != a.cycle + 1 || !a.valid_fit || !b.valid_fit) continue;
-        if (const auto pair = match_frames(a, b, b.t_s - a.t_s, threshold_db)) {
-          steps_s.push_back(pair->dt_s);
-          residuals.insert(residuals.end(), pair->range_residuals.begin(), pair->range_residuals.end());
-        }
-      }
-    }
+  for (const FramePair& pair : frame_pairs) {
+    steps_s.push_back(pair.dt_s);
+    residuals.insert(residuals.end(), pair.range_residuals.begin(), pair.range_residuals.end());
   }
   const std::optional<double> period_s = steps_s.size() >= 10 ? fundamental_period(steps_s) : std::nullopt;
   if (period_s) {

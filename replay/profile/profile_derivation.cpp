@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "common/angles.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "replay/calibrate/real_drive_fit.hpp"
@@ -80,7 +81,10 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
   const double threshold_db = derived_number("amplitude.detection_threshold_db");
   Cells cells;
   add(derive_resolution(pool, cells, out.figures));
-  add(derive_noise(pool, cells, threshold_db, out.figures));
+  const ViewLimits view{deg_to_rad(derived_number("field_of_view.azimuth_half_deg")), derived_number("field_of_view.max_range_m")};
+  const std::vector<FramePair> frame_pairs = match_consecutive_cycles(pool, threshold_db, view);
+  add(derive_noise(pool, cells, threshold_db, frame_pairs, out.figures));
+  add(derive_fluctuation(frame_pairs, pool.snapshots, out.figures));
 
   // The profile: the base with every derived value in place; a value the data cannot show is the
   // base's (dropped where the base has none either).

@@ -60,6 +60,9 @@ TEST(ProfileDerive, TheAimotiveDriveGivesAimotiveLrrsHandValues) {
   expect_derived_near(values, "resolution.range_cell_m", 1.4, 0.2 * 1.4);
   expect_derived_near(values, "resolution.range_rate_cell_mps", 0.2, 0.2 * 0.2);
   expect_derived_near(values, "amplitude.snr_at_1m_for_1m2_db", 70.5, 1.0);
+  // Re-detection against SNR margin: 0.07 at 1 dB, 0.8 above 20 dB, the heaviest fluctuation.
+  EXPECT_EQ(values.at("detection.fluctuation").source, ValueSource::derived) << values.at("detection.fluctuation").evidence;
+  EXPECT_EQ(values.at("detection.fluctuation").value, "swerling1");
   // What is written is a profile replay reads as it is, with its background.
   const SensorConfig config = parse_sensor_config(JsonField(d.profile, "derived", ""));
   EXPECT_EQ(config.name, "derived_lrr");
@@ -87,6 +90,7 @@ TEST(ProfileDerive, TheAstyxFramesGiveAstyxHiresHandValues) {
   EXPECT_EQ(values.at("amplitude.range_exponent").source, ValueSource::base);
   EXPECT_EQ(values.at("amplitude.unit").value, "relative_db");
   EXPECT_EQ(values.at("cycle_time_s").source, ValueSource::base);  // single frames
+  EXPECT_EQ(values.at("detection.fluctuation").source, ValueSource::base);
   parse_sensor_config(JsonField(d.profile, "derived", ""));
 }
 

@@ -1,0 +1,31 @@
+#pragma once
+// Stationary detections of one sensor matched from a cycle to its next after the ego's motion
+// (docs/sensor-profiles.md: "stationary targets matched frame to frame after ego motion"): the
+// time between the cycles, the range noise and the re-detection rate that `profile derive` reads.
+#include <vector>
+
+#include "replay/profile/detection_pool.hpp"
+
+namespace rcsim::replay::profile {
+
+// A stationary detection of the earlier cycle whose place the later one still sees.
+struct Redetection {
+  double margin_db = 0.0;  // its SNR margin over the threshold in the earlier cycle
+  bool seen = false;       // a stationary detection of the later cycle within the gate
+};
+
+// Two consecutive cycles of one sensor, matched.
+struct FramePair {
+  double dt_s = 0.0;  // the time the static world's shift shows
+  std::vector<std::pair<double, double>> range_residuals;  // (range m later - predicted, SNR margin dB later)
+  std::vector<Redetection> redetections;
+};
+
+struct ViewLimits {
+  double azimuth_half_rad = 0.0, max_range_m = 0.0;
+};
+
+// Every pair of consecutive cycles of one sensor with at least 5 matches; none for single frames.
+std::vector<FramePair> match_consecutive_cycles(const DetectionPool& pool, double threshold_db, const ViewLimits& view);
+
+}  // namespace rcsim::replay::profile
