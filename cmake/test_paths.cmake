@@ -1,5 +1,5 @@
 # rcsim_test_paths: the checkout's and the rcsim executable's absolute paths for tests, fuzz
-# harnesses and benchmarks (tests/test_paths.hpp: RCSIM_SOURCE_DIR, RCSIM_BINARY). They are
+# harnesses and benchmarks (tests/test_paths.hpp: RCSIM_SOURCE_DIR, RCSIM_BINARY, RCSIM_KILLABLE_BINARY). They are
 # compiled into one small generated source, so that no other compile flag holds an absolute path
 # and a fresh clone elsewhere hits the compiler cache for every test (docs/ci.md). A target uses
 # them with target_link_libraries(TARGET PRIVATE rcsim_test_paths).
@@ -9,6 +9,7 @@ file(GENERATE OUTPUT ${RCSIM_TEST_PATHS_CPP} CONTENT
 namespace rcsim::testing {
 const char* source_dir() { return \"${CMAKE_SOURCE_DIR}\"; }
 const char* rcsim_binary() { return \"$<TARGET_FILE:rcsim>\"; }
+const char* rcsim_killable_binary() { return \"$<TARGET_FILE_DIR:rcsim>/rcsim_killable\"; }
 }  // namespace rcsim::testing
 ")
 add_library(rcsim_test_paths STATIC ${RCSIM_TEST_PATHS_CPP})

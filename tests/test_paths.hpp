@@ -7,7 +7,9 @@
 namespace rcsim::testing {
 const char* source_dir();    // the checkout's root, absolute
 const char* rcsim_binary();  // the rcsim executable of this build tree, absolute
+const char* rcsim_killable_binary();  // the same with the kill hook (hooks/killable_main.cpp)
 }  // namespace rcsim::testing
 
 #define RCSIM_SOURCE_DIR (::rcsim::testing::source_dir())
 #define RCSIM_BINARY (::rcsim::testing::rcsim_binary())
+#define RCSIM_KILLABLE_BINARY (::rcsim::testing::rcsim_killable_binary())

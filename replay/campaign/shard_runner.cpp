@@ -7,7 +7,7 @@
 #include "common/input_error.hpp"
 #include "io/recording_stream.hpp"
 #include "model/model_library.hpp"
-#include "replay/run/kill_after_cycles.hpp"
+#include "replay/run/run_sink_wrapper.hpp"
 #include "replay/store/campaign_store.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"
@@ -53,8 +53,8 @@ ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log) {
         continue;
       }
       ReportWriter writer(*db, replay.store);
-      KillAfterCycles killer(writer);  // only with RCSIM_TEST_KILL_AFTER_CYCLES set
-      const ReplaySummary summary = replay_recording_dir(r.dir, options, killer);
+      std::unique_ptr<ReplaySink> wrapper;
+      const ReplaySummary summary = replay_recording_dir(r.dir, options, wrapped_run_sink(writer, wrapper));
       stored_keys.emplace(identity.key(), writer.run_id());
       ++outcome.stored;
       log << fmt::format("shard {}: {}: run {} stored ({} cycles, GOSPA mean {:.3f} m, {:.2f} s)\n", shard,

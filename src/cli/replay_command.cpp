@@ -15,7 +15,7 @@
 #include "io/recording_stream.hpp"
 #include "model/model_library.hpp"
 #include "replay/import/importer.hpp"
-#include "replay/run/kill_after_cycles.hpp"
+#include "replay/run/run_sink_wrapper.hpp"
 #include "replay/run/replay_run.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"
@@ -280,8 +280,8 @@ void replay_and_store(ReplayArgs& args) {
 void store_and_print(SQLite::Database& db, ReplayArgs& args, const Recording& recording,
                      const replay::ReplayOptions& options) {
   replay::ReportWriter writer(db, replay::store_level_from_name(args.store));
-  replay::KillAfterCycles killer(writer);  // only with RCSIM_TEST_KILL_AFTER_CYCLES set
-  PrintImportWarnings sink(killer);
+  std::unique_ptr<replay::ReplaySink> wrapper;
+  PrintImportWarnings sink(replay::wrapped_run_sink(writer, wrapper));
   const replay::ReplaySummary summary = replay::replay_recording_dir(args.recording_dir, options, sink);
   // The run judged: by --criteria, else the report's own criteria, else the default tolerances of
   // its kind (per-recording criteria only).

@@ -28,13 +28,14 @@ class SlurmCampaign : public ScratchDirTest {
     if (!cluster) std::cout << "Slurm test cluster unavailable: " << why_not_ << '\n';
     return cluster;
   }
-  void plan(int shards) {
+  // The plan's shards run `rcsim` (or, to be killed, tests/hooks/' rcsim_killable).
+  void plan(int shards, const std::string& rcsim = RCSIM_BINARY) {
     std::string recordings;
     for (const auto& r : kSlurmCampaignRecordings) recordings += (recordings.empty() ? "\"" : ", \"") + (kBundledRecordings / r).string() + "\"";
     std::ofstream(dir_ / "campaign.json") << R"({"format": "rcsim-campaign", "version": 1, "name": "slurm-test", )"
                                           << R"("recordings": [)" << recordings << R"(], "replay": {"seed": 5}})";
-    const auto planned = run_rcsim(fmt::format("campaign plan {} --shards {} -o {}", (dir_ / "campaign.json").string(),
-                                               shards, (dir_ / "plan").string()));
+    const auto planned = run_rcsim(fmt::format("campaign plan {} --shards {} -o {} --rcsim {}", (dir_ / "campaign.json").string(),
+                                               shards, (dir_ / "plan").string(), rcsim));
     ASSERT_EQ(planned.exit_code, 0) << planned.output;
   }
   // `rcsim campaign submit` against the cluster: the job id it prints first.
@@ -78,8 +79,8 @@ TEST_F(SlurmCampaign, ArrayMergesToSerial) {
 TEST_F(SlurmCampaign, KilledTasksResubmitted) {
   auto cluster = start_cluster();
   if (!cluster) GTEST_SKIP() << why_not_;
-  plan(2);
-  // sbatch passes the environment on: every task kills itself (SIGKILL) inside the first run that
+  plan(2, RCSIM_KILLABLE_BINARY);
+  // sbatch passes the environment on: every task (rcsim_killable) kills itself (SIGKILL) inside the first run that
   // reaches 420 sensor cycles, mid-transaction. The shards (longest first onto the least loaded):
   // 0 = close_front (176 cycles x 2 sensors), overtaking (251 x 2), two_in_one_cell (126 x 2);
   // 1 = corner_approach (201 x 2), front_approach (101 x 2), perpendicular_crossing (226 x 2).

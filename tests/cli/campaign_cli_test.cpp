@@ -128,7 +128,7 @@ TEST_F(CampaignCli, AShardKilledMidRunRedoesOnlyWhatIsMissing) {
   // shard that reaches 400 sensor cycles is overtaking (251 cycles x 2 sensors), the third;
   // close_front (176 x 2) and front_approach (101 x 2) are stored before.
   const std::string command = fmt::format("RCSIM_TEST_KILL_AFTER_CYCLES=400 {} campaign run-shard {} --shard 0 > {} 2>&1",
-                                          RCSIM_BINARY, dir("plan"), dir("killed.log"));
+                                          RCSIM_KILLABLE_BINARY, dir("plan"), dir("killed.log"));
   const int status = std::system(command.c_str());
   EXPECT_EQ(WEXITSTATUS(status), 128 + SIGKILL) << read_file(dir_ / "killed.log");
   const auto report = dir_ / "plan" / "shards" / "shard-0000.sqlite";

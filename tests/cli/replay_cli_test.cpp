@@ -177,10 +177,10 @@ TEST_F(ReplayCli, ReplayKilledMidwayLeavesEarlierRunsComplete) {
   ASSERT_EQ(run_rcsim("replay " + small.string() + " --db " + db).exit_code, 0);
 
   // The replay kills itself with SIGKILL after storing 3000 of its 20,000 sensor cycles: in the
-  // middle of its transaction, with no chance to clean up (RCSIM_TEST_KILL_AFTER_CYCLES).
+  // middle of its transaction, with no chance to clean up (rcsim_killable, RCSIM_TEST_KILL_AFTER_CYCLES).
   const auto complete = run_rcsim("replay " + large.string() + " --db " + db);  // a whole large run first
   ASSERT_EQ(complete.exit_code, 0) << complete.output;
-  const std::string command = std::string("RCSIM_TEST_KILL_AFTER_CYCLES=3000 ") + RCSIM_BINARY + " replay " +
+  const std::string command = std::string("RCSIM_TEST_KILL_AFTER_CYCLES=3000 ") + RCSIM_KILLABLE_BINARY + " replay " +
                               large.string() + " --db " + db + " --again > /dev/null 2>&1";
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFSIGNALED(status) || WEXITSTATUS(status) == 128 + SIGKILL) << "status " << status;

@@ -1,6 +1,6 @@
 #pragma once
-// For the interruption tests: with RCSIM_TEST_KILL_AFTER_CYCLES=N in the environment, rcsim
-// replay and rcsim campaign run-shard kill themselves (SIGKILL, no clean-up of any kind) in the
+// For the interruption tests, in the test build's rcsim_killable only (killable_main.cpp): with
+// RCSIM_TEST_KILL_AFTER_CYCLES=N in the environment, its replay and campaign run-shard kill themselves (SIGKILL, no clean-up of any kind) in the
 // first run that passes N sensor cycles to the report (counted per run), i.e. in the middle of a run's transaction, exactly like
 // a process killed from outside. Without the variable the sink only passes everything on.
 #include <csignal>

@@ -1,0 +1,65 @@
+#include "cli/command_line.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "cli/commands.hpp"
+#include "cli/fit_progress.hpp"
+#include "cli/suggestions.hpp"
+#include "cli/verdict_options.hpp"
+#include "common/input_error.hpp"
+
+namespace rcsim::cli {
+
+int run_command_line(int argc, char** argv) {
+  CLI::App app{"rcsim: radar target list simulation from reflection-center object models"};
+  app.set_version_flag("--version", std::string("rcsim ") + RCSIM_VERSION);
+  app.require_subcommand(1);
+  add_simulate_command(app);
+  add_import_command(app);
+  add_replay_command(app);
+  add_report_command(app);
+  add_export_command(app);
+  add_stream_command(app);
+  add_listen_command(app);
+  add_synth_command(app);
+  add_traffic_command(app);
+  add_bench_command(app);
+  add_calibrate_command(app);
+  add_profile_command(app);
+  add_merge_command(app);
+  add_campaign_command(app);
+  add_models_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end here with 0; any wrong option or value is bad input (README's
+    // exit statuses), not CLI11's own numbers (105, 109, ...). A mistyped option or command is
+    // named first, with what was probably meant: it is often why a required one is missing.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    if (const auto unknown = unknown_argument_message(app)) {
+      std::cerr << *unknown << '\n';
+      return 2;
+    }
+    app.exit(e);
+    return 2;
+  } catch (const VerdictsFailed& e) {
+    std::cerr << "rcsim: failed: " << e.what() << '\n';
+    return kExitVerdictsFailed;
+  } catch (const FitInterrupted& e) {
+    std::cerr << "rcsim: interrupted: " << e.what() << '\n';
+    return kExitInterrupted;
+  } catch (const rcsim::InputError& e) {
+    std::cerr << "rcsim: error: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "rcsim: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace rcsim::cli
