@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The stream's tests under ThreadSanitizer (issue 21; run by scripts/test.sh, skip there with
 # RCSIM_SKIP_TSAN=1): builds into build-tsan/ only the layers the stream uses and its in-process
-# tests (rcsim_stream_tests, tests/stream/tsan.cmake), then runs them through CTest (label tsan).
+# tests (rcsim_stream_tests, tests/app/stream/tsan.cmake), then runs them through CTest (label tsan).
 # Any report of a race fails the test it happens in; line tables (-g1) are all a report needs.
 # Usage: scripts/tsan.sh [BUILD_DIR]
 set -euo pipefail

@@ -27,8 +27,8 @@ const std::map<std::string, std::string> kLayerOfDir{
     {"replay/calibrate", "replay_calibrate"}, {"replay/profile", "replay_profile"},
     {"replay/store", "replay_store"},
     {"replay/campaign", "replay_campaign"}, {"replay/report", "replay_report"},
-    {"src/stream", "stream"},
-    {"src/cli", "cli"}};
+    {"app/stream", "stream"},
+    {"app/cli", "cli"}};
 
 const std::map<std::string, std::string> kLayerOfInclude{
     {"common", "common"},   {"io", "io"},         {"model", "world"},   {"scene", "world"},
@@ -104,14 +104,34 @@ TEST(Layering, EveryIncludeNamesItsOwnLayerOrOneBelow) {
   EXPECT_GT(files, 100);
 }
 
-// Every source directory under src/, replay/ and metrics/ belongs to a layer.
+// Every source directory under src/, replay/, metrics/ and app/ belongs to a layer.
 TEST(Layering, EverySourceDirectoryHasALayer) {
   const fs::path root = RCSIM_SOURCE_DIR;
-  for (const char* top : {"src", "replay", "metrics"}) {
+  for (const char* top : {"src", "replay", "metrics", "app"}) {
     for (const auto& entry : fs::recursive_directory_iterator(root / top)) {
       if (entry.path().extension() != ".cpp") continue;
       const std::string dir = fs::relative(entry.path().parent_path(), root).string();
       EXPECT_TRUE(kLayerOfDir.count(dir)) << dir << " (" << entry.path().filename().string() << ") is in no layer";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rcsim
+
+namespace rcsim {
+namespace {
+
+// The folders show the floors: src/ holds only what replay/ may use, app/ only the top (the
+// command line and the live replay); nothing in src/ or replay/ uses app/.
+TEST(Layering, TheTopLevelFoldersAreTheFloors) {
+  const std::set<std::string> top{"stream", "cli"};
+  for (const auto& [dir, layer] : kLayerOfDir) {
+    EXPECT_EQ(dir.rfind("app/", 0) == 0, top.count(layer) == 1) << dir << " (layer " << layer << ")";
+    if (top.count(layer)) continue;
+    for (const std::string& used : kMayUse.at(layer)) EXPECT_EQ(top.count(used), 0u) << dir << " uses " << used;
+    if (dir.rfind("src/", 0) == 0) {
+      for (const std::string& used : kMayUse.at(layer)) EXPECT_NE(used.rfind("replay_", 0), 0u) << dir << " uses " << used;
     }
   }
 }

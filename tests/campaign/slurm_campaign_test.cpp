@@ -9,7 +9,7 @@
 
 #include "campaign/campaign_figures.hpp"
 #include "campaign/slurm_cluster.hpp"
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 

@@ -42,7 +42,7 @@
 #include <utility>
 #include <vector>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 
 extern char** environ;
 

@@ -14,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::testing {

@@ -72,7 +72,7 @@ inline void check_round_trip(const stream::TargetListMessage& list) {
   }
 }
 
-// What the listener (src/stream/listener.cpp, Listener::Impl::process and handle_message) does
+// What the listener (app/stream/listener.cpp, Listener::Impl::process and handle_message) does
 // with one datagram from one sender; the socket, the pcap file and the subscription are left out.
 struct ListenerState {
   struct Source {
@@ -139,7 +139,7 @@ inline void fuzz_udp_datagrams(Input data) {
   for (auto& [from, source] : listener.sources) source.reassembler.flush();
 }
 
-// Input: one datagram on the streamer's control port (src/stream/streamer.cpp, handle_control).
+// Input: one datagram on the streamer's control port (app/stream/streamer.cpp, handle_control).
 // A request it decodes, encoded again, decodes to the same request.
 inline void fuzz_udp_control(Input data) {
   stream::ControlRequest request;

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "io/recording.hpp"
 #include "replay/store/run_rows.hpp"
 #include "scratch_dir.hpp"

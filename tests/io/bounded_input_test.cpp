@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
 #include "common/text_file.hpp"
 #include "io/recording.hpp"

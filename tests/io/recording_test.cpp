@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
 
 namespace rcsim {

@@ -10,7 +10,7 @@
 #include <regex>
 #include <string>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
 #include "io/recording.hpp"
 #include "scratch_dir.hpp"

@@ -2,7 +2,7 @@
 // Scenes and model-made recordings for the harness tests.
 #include <filesystem>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "replay/run/model_recording.hpp"
 #include "test_support.hpp"
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "common/angles.hpp"
 #include "common/rng.hpp"
 #include "io/recording.hpp"

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "replay/replay_fixtures.hpp"
 #include "sim/simulation.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "io/recording.hpp"
 
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "model/model_library.hpp"
 #include "replay/calibrate/calibration_fit.hpp"
 #include "replay/run/model_recording.hpp"
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 

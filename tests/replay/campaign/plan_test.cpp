@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "io/recording.hpp"
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 

@@ -11,7 +11,7 @@
 #include <fstream>
 #include <regex>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
 #include "metrics/sensor_view.hpp"
 #include "scratch_dir.hpp"

@@ -17,7 +17,7 @@
 #include <regex>
 #include <sstream>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
 #include "fuzz/astyx_targets.hpp"
 #include "scratch_dir.hpp"

@@ -24,7 +24,7 @@
 #include <set>
 #include <thread>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
 #include "replay/run/replay_run.hpp"
 #include "replay/store/report_store.hpp"

@@ -8,7 +8,7 @@
 #include <iostream>
 #include <thread>
 
-#include "stream_test_support.hpp"
+#include "app/stream/stream_test_support.hpp"
 
 namespace rcsim::stream {
 namespace {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scratch_dir.hpp"
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "replay/replay_fixtures.hpp"
 
 namespace rcsim {

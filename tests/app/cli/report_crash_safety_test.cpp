@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "../stream/stream_test_support.hpp"
-#include "../sanitizers.hpp"
+#include "sanitizers.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
 
 namespace {

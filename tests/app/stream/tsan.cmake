@@ -18,5 +18,5 @@ list(FILTER RCSIM_STREAM_TSAN_SOURCES EXCLUDE REGEX "/(listen_cli|wireshark_diss
 rcsim_unity(RCSIM_STREAM_TSAN_SOURCES rcsim_stream_tests ${RCSIM_STREAM_TSAN_SOURCES})
 add_executable(rcsim_stream_tests ${RCSIM_STREAM_TSAN_SOURCES})
 target_link_libraries(rcsim_stream_tests PRIVATE rcsim_stream rcsim_test_paths GTest::gtest GTest::gtest_main rcsim_warnings)
-target_include_directories(rcsim_stream_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+target_include_directories(rcsim_stream_tests PRIVATE ${CMAKE_SOURCE_DIR}/tests)
 gtest_discover_tests(rcsim_stream_tests TEST_PREFIX "tsan." PROPERTIES LABELS tsan DISCOVERY_TIMEOUT 60)

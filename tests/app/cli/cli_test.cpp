@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "scratch_dir.hpp"
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 

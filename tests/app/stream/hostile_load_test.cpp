@@ -17,7 +17,7 @@
 #include "stream/listener.hpp"
 #include "stream/sender_table.hpp"
 #include "stream/streamer.hpp"
-#include "stream_test_support.hpp"
+#include "app/stream/stream_test_support.hpp"
 #include "test_support.hpp"
 
 namespace rcsim::stream {

@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "scratch_dir.hpp"
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "replay/replay_fixtures.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_rows.hpp"

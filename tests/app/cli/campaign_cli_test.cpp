@@ -11,7 +11,7 @@
 #include <csignal>
 
 #include "campaign/campaign_figures.hpp"
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "replay/campaign/run_figures.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "../stream/stream_test_support.hpp"
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "replay/store/report_merge.hpp"
 #include "replay/store/report_store.hpp"
 #include "scratch_dir.hpp"

@@ -20,7 +20,7 @@
 #include "stream/endpoints.hpp"
 #include "stream/listener.hpp"
 #include "stream/reassembly.hpp"
-#include "stream_test_support.hpp"
+#include "app/stream/stream_test_support.hpp"
 #include "test_support.hpp"
 
 namespace rcsim::stream {

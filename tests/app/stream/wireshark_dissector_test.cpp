@@ -14,7 +14,7 @@
 #include "stream/cycle_source.hpp"
 #include "stream/listener.hpp"
 #include "stream/streamer.hpp"
-#include "stream_test_support.hpp"
+#include "app/stream/stream_test_support.hpp"
 #include "test_support.hpp"
 
 namespace rcsim::stream {

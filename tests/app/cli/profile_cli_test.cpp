@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
-#include "cli/run_rcsim.hpp"
+#include "app/cli/run_rcsim.hpp"
 #include "common/json_reader.hpp"
 #include "scratch_dir.hpp"
 #include "sensor/sensor_config.hpp"
