@@ -10,6 +10,7 @@
 #include "cli/recording_dirs.hpp"
 #include "sensor/sensor_config.hpp"
 #include "cli/seed_option.hpp"
+#include "common/decibel.hpp"
 #include "common/input_error.hpp"
 #include "common/atomic_file.hpp"
 #include "replay/calibrate/calibration_fit.hpp"
@@ -50,7 +51,7 @@ std::vector<replay::ParameterGroup> parse_groups(const std::string& list) {
 
 // A change as a ratio in dB (ERCS) or a difference in the parameter's unit.
 std::string change_text(const replay::CalibrationParameter& p) {
-  if (p.group == replay::ParameterGroup::ercs) return fmt::format("{:+.2f} dB", 20.0 * std::log10(p.value / p.initial));
+  if (p.group == replay::ParameterGroup::ercs) return fmt::format("{:+.2f} dB", amplitude_to_db(p.value / p.initial));
   return fmt::format("{:+.3f}", p.value - p.initial);
 }
 

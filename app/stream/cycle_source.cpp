@@ -22,13 +22,10 @@ ListLevel list_level(OutputLevel level) {
   throw std::invalid_argument("the ideal level is not streamed (its rows name objects and reflectors); use tracks or detections");
 }
 
-// Along-heading speed of a body, as the recordings write it.
-double heading_speed_mps(const BodyState& body) {
-  return body.v_WB_W.dot(Vec2(std::cos(body.X_WB.yaw_rad), std::sin(body.X_WB.yaw_rad)));
-}
+
 
 WirePose wire_pose(const BodyState& body) {
-  return {body.X_WB.x_m, body.X_WB.y_m, body.X_WB.yaw_rad, heading_speed_mps(body)};
+  return {body.X_WB.x_m, body.X_WB.y_m, body.X_WB.yaw_rad, body.heading_speed_mps()};
 }
 
 // The simulated target list of every sensor of `simulation` after its latest cycle.

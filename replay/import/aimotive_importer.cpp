@@ -333,7 +333,7 @@ void add_world_boxes(const std::vector<std::vector<BodyBox>>& boxes, const std::
       const Vec2 v_VO_V = Vec2(ego.speed_mps, 0.0) + ego.yaw_rate_radps * Vec2(-p_VO_V.y(), p_VO_V.x()) + b.v_rel_V;
       const Pose2 X_WO = compose(X_WV, b.X_VO);
       rec.boxes[it->second].push_back({t_s[k], X_WO.x_m, X_WO.y_m, X_WO.yaw_rad,
-                                       v_VO_V.dot(Vec2(std::cos(b.X_VO.yaw_rad), std::sin(b.X_VO.yaw_rad))), 0});
+                                       speed_along_heading_mps(v_VO_V, b.X_VO.yaw_rad), 0});
       lengths[b.id].push_back(b.length_m);
       widths[b.id].push_back(b.width_m);
     }

@@ -10,7 +10,7 @@ namespace {
 
 constexpr double kGateM = 0.5;
 
-Vec2 position(const PooledDetection& d) { return {d.range_m * std::cos(d.azimuth_rad), d.range_m * std::sin(d.azimuth_rad)}; }
+Vec2 position(const PooledDetection& d) { return point_from_polar(d.range_m, d.azimuth_rad); }
 
 // The static world seen at cycle a moves by -v dt in the sensor frame (and turns with the ego);
 // dt is the one that matches the most stationary detections of b within the gate.

@@ -75,7 +75,7 @@ void add_target(const Recording& rec, const PicturedWindow& w, int cycle, int se
   const EgoSample& e = rec.ego[static_cast<std::size_t>(cycle)];
   const RecordingSensor& s = rec.sensors[static_cast<std::size_t>(sensor)];
   const Pose2 X_WS = compose(Pose2{e.x_m, e.y_m, e.yaw_rad}, Pose2{s.x_m, s.y_m, s.yaw_rad});
-  const Vec2 p_WT_W = transform_point(X_WS, Vec2(range_m * std::cos(azimuth_rad), range_m * std::sin(azimuth_rad)));
+  const Vec2 p_WT_W = transform_point(X_WS, point_from_polar(range_m, azimuth_rad));
   spec.targets.push_back({inverse_transform_point(w.X_WV, p_WT_W), compared, w.last - cycle, false, {}});
 }
 

@@ -29,7 +29,7 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
     const double t_s = scene.cycle_time_at(k);
     simulation.run_cycle(k);
     const BodyState& ego = simulation.snapshot().ego;
-    rec.ego.push_back({t_s, ego.X_WB.x_m, ego.X_WB.y_m, ego.X_WB.yaw_rad, ego.v_WB_W.norm(), ego.yaw_rate_radps});
+    rec.ego.push_back(ego_sample(t_s, ego));
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       if (!scene.objects[o].present_at(t_s)) continue;
       const BodyState s = simulation.object_state(o);
@@ -39,7 +39,7 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
       box.x_m = s.X_WB.x_m + noise.position_sigma_m * annotation.normal();
       box.y_m = s.X_WB.y_m + noise.position_sigma_m * annotation.normal();
       box.yaw_rad = s.X_WB.yaw_rad + noise.yaw_sigma_rad * annotation.normal();
-      box.speed_mps = s.v_WB_W.dot(Vec2(std::cos(s.X_WB.yaw_rad), std::sin(s.X_WB.yaw_rad)));
+      box.speed_mps = s.heading_speed_mps();
       rec.boxes[o].push_back(box);
     }
     for (std::size_t i = 0; i < simulation.sensor_count(); ++i) {

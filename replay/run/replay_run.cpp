@@ -19,10 +19,6 @@ namespace rcsim::replay {
 
 namespace {
 
-Vec2 cartesian_S(double range_m, double azimuth_rad) {
-  return {range_m * std::cos(azimuth_rad), range_m * std::sin(azimuth_rad)};
-}
-
 // What stays fixed over a run: the scene and what its geometry says each cycle.
 struct RunContext {
   const Recording& rec;
@@ -76,7 +72,7 @@ void classify_targets(std::vector<ComparedTarget>& targets, const std::vector<me
                       const Vec2& v_WS_S, bool ego_motion_known, const ReplayOptions& options,
                       const metrics::MergeParameters& merge) {
   for (ComparedTarget& t : targets) {
-    t.p_ST_S = cartesian_S(t.range_m, t.azimuth_rad);
+    t.p_ST_S = point_from_polar(t.range_m, t.azimuth_rad);
     // A merge artefact first: it belongs to no object, whatever box it lies near.
     const int cell = metrics::merge_artefact_of(cells, boxes, t.range_m, t.range_rate_mps, t.azimuth_rad, t.p_ST_S, merge);
     t.merge_pair = cell >= 0 ? pair_of_cell[static_cast<std::size_t>(cell)] : -1;

@@ -336,7 +336,7 @@ StoreLevel store_level_from_name(std::string_view name) {
   throw std::invalid_argument("unknown store level '" + std::string(name) + "' (full, summary)");
 }
 
-Vec2 StoredTarget::p_ST_S() const { return {range_m * std::cos(azimuth_rad), range_m * std::sin(azimuth_rad)}; }
+Vec2 StoredTarget::p_ST_S() const { return point_from_polar(range_m, azimuth_rad); }
 
 namespace {
 

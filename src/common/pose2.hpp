@@ -46,6 +46,16 @@ inline Pose2 inverse(const Pose2& X_AB) {
   return {p.x(), p.y(), -X_AB.yaw_rad};
 }
 
+// The unit vector of a heading: (cos yaw, sin yaw).
+inline Vec2 heading_vector(double yaw_rad) { return {std::cos(yaw_rad), std::sin(yaw_rad)}; }
+
+// The signed speed along a heading: a velocity's component along it (negative when reversing).
+// The one formula of every "speed_mps" a recording holds (ego.csv, objects.csv).
+inline double speed_along_heading_mps(const Vec2& v, double yaw_rad) { return v.dot(heading_vector(yaw_rad)); }
+
+// Polar to Cartesian: the point at range_m and azimuth_rad (counter-clockwise from the x axis).
+inline Vec2 point_from_polar(double range_m, double azimuth_rad) { return range_m * heading_vector(azimuth_rad); }
+
 // Planar cross product a x b (the z component): positive when b lies counter-clockwise of a,
 // within a half turn.
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -58,6 +68,9 @@ struct BodyState {
   Pose2 X_WB;
   Vec2 v_WB_W = Vec2::Zero();
   double yaw_rate_radps = 0.0;
+
+  // Its signed speed along its heading (ego.csv's and objects.csv's speed_mps).
+  double heading_speed_mps() const { return speed_along_heading_mps(v_WB_W, X_WB.yaw_rad); }
 
   // Velocity of a point P fixed on the body, from its world position.
   Vec2 point_velocity_W(const Vec2& p_WP_W) const {

@@ -13,6 +13,7 @@
 #include <numbers>
 #include <unistd.h>
 
+#include "common/angles.hpp"
 #include "common/atomic_file.hpp"
 #include "common/limits.hpp"
 #include "common/safe_text.hpp"
@@ -413,6 +414,10 @@ void write_recording(const fs::path& dir, const Recording& rec, const std::map<s
     fs::remove_all(temp, ignored);
     throw;
   }
+}
+
+EgoSample ego_sample(double t_s, const BodyState& ego) {
+  return {t_s, ego.X_WB.x_m, ego.X_WB.y_m, wrap_angle_rad(ego.X_WB.yaw_rad), ego.heading_speed_mps(), ego.yaw_rate_radps};
 }
 
 }  // namespace rcsim

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/amplitude_unit.hpp"
+#include "common/pose2.hpp"
 
 namespace rcsim {
 
@@ -53,6 +54,10 @@ struct RecordingObject {
 struct EgoSample {
   double t_s = 0.0, x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, speed_mps = 0.0, yaw_rate_radps = 0.0;
 };
+
+// The ego's row at t_s from its state: the yaw wrapped, the signed speed along its heading. Every
+// writer of a recording from a scene (rcsim synth, model-made recordings) takes it from here.
+EgoSample ego_sample(double t_s, const BodyState& ego);
 
 // One objects.csv row: an annotated box centre in the world frame.
 struct AnnotatedBox {

@@ -110,8 +110,7 @@ AnnotatedBox Annotator::annotate(std::size_t object, double t_s, const BodyState
   box.x_m = truth.X_WB.x_m + b.dx_m + config_.position_jitter_sigma_m * rng_.normal();
   box.y_m = truth.X_WB.y_m + b.dy_m + config_.position_jitter_sigma_m * rng_.normal();
   box.yaw_rad = wrap_angle_rad(truth.X_WB.yaw_rad + b.dyaw_rad + config_.yaw_jitter_sigma_rad * rng_.normal());
-  const Vec2 heading(std::cos(truth.X_WB.yaw_rad), std::sin(truth.X_WB.yaw_rad));
-  box.speed_mps = truth.v_WB_W.dot(heading) + config_.speed_sigma_mps * rng_.normal();
+  box.speed_mps = truth.heading_speed_mps() + config_.speed_sigma_mps * rng_.normal();
   return box;
 }
 
@@ -164,9 +163,7 @@ Recording make_recording(const Scene& scene, const SynthConfig& design, std::uin
   for (int k = 0; k < simulator.cycle_count(); ++k) {
     const double t_s = scene.cycle_time_at(k);
     const BodyState ego = scene.ego.state_at(t_s);
-    const Vec2 heading(std::cos(ego.X_WB.yaw_rad), std::sin(ego.X_WB.yaw_rad));
-    rec.ego.push_back({t_s, ego.X_WB.x_m, ego.X_WB.y_m, wrap_angle_rad(ego.X_WB.yaw_rad), ego.v_WB_W.dot(heading),
-                       ego.yaw_rate_radps});
+    rec.ego.push_back(ego_sample(t_s, ego));
     // The annotator labels the objects near the ego (within annotation.max_range_m).
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       if (!scene.objects[i].present_at(t_s)) continue;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/angles.hpp"
+#include "common/decibel.hpp"
 #include "common/rng.hpp"
 
 namespace rcsim::synth {
@@ -261,7 +262,7 @@ std::vector<WorldScatterer> road_clutter_near(const Clutter& clutter, std::uint6
         const double rcs_db = clutter.median_rcs_rel_db + clutter.rcs_spread_db * rng.normal();
         const double height_m = rng.uniform(0.02, 0.15);
         if ((p - p_WS_W).squaredNorm() > radius_m * radius_m) continue;
-        out.push_back({isotropic(Vec2::Zero(), height_m, 0.0, std::pow(10.0, rcs_db / 10.0)), p});
+        out.push_back({isotropic(Vec2::Zero(), height_m, 0.0, db_to_power(rcs_db)), p});
       }
     }
   }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/angles.hpp"
+#include "common/decibel.hpp"
 #include "synth/propagation.hpp"
 
 namespace rcsim::synth {
@@ -97,7 +98,7 @@ double unit_scatterer_snr_db(const SynthConfig& config, double range_m) {
   const double filter = std::pow(propagation.if_gain(range_m) / propagation.if_gain(r_cal), 2.0);
   // Coherent gain of an N-point symmetric Hann window: (sum w)^2 / sum w^2 = 2 (N - 1) / 3.
   const double window_gain = 2.0 * (config.waveform.samples_per_chirp - 1) / 3.0 * 2.0 * (config.waveform.chirps - 1) / 3.0;
-  return 10.0 * std::log10(derived.snr_unit_per_sample * spreading * filter * window_gain);
+  return power_to_db(derived.snr_unit_per_sample * spreading * filter * window_gain);
 }
 
 SynthConfig sensor_design(const SensorConfig& profile, const SynthConfig& design) {

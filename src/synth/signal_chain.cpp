@@ -5,6 +5,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "common/angles.hpp"
+#include "common/decibel.hpp"
 
 namespace rcsim::synth {
 namespace {
@@ -144,7 +145,7 @@ double SignalChain::cfar_factor(int range_cells) const { return cfar_false_alarm
 
 double SignalChain::noise_floor_db() const {
   const double cell_power = noise_sigma_ * noise_sigma_ * sum_of_squares(range_window_) * sum_of_squares(doppler_window_);
-  return 10.0 * std::log10(cell_power) + calibration_db_;
+  return power_to_db(cell_power) + calibration_db_;
 }
 
 void SignalChain::synthesize(const std::vector<Echo>& echoes) {
@@ -304,7 +305,7 @@ std::vector<SignalChain::CfarCandidate> SignalChain::blank_sidelobes(std::vector
   });
   // A peak far below a stronger neighbour in its range row or Doppler column is that neighbour's
   // window sidelobe.
-  const double blank = std::pow(10.0, -p.sidelobe_blanking_db / 10.0);
+  const double blank = db_to_power(-p.sidelobe_blanking_db);
   const int reach = p.sidelobe_blanking_cells;
   std::vector<CfarCandidate> kept;
   for (const auto& c : candidates) {
@@ -344,7 +345,7 @@ std::vector<Detection> SignalChain::estimate_detections(const std::vector<CfarCa
     det.range_m = (c.r + dr) * derived_.range_bin_m -
                   det.range_rate_mps * kSpeedOfLight_mps / (derived_.wavelength_m * derived_.chirp_slope_hzps);
     det.amplitude_db = to_db * (lr + ld - l0) + calibration_db_;
-    det.snr_db = 10.0 * std::log10(c.power / c.noise);
+    det.snr_db = power_to_db(c.power / c.noise);
     // Monopulse: delta/sum = j tan(psi/2), psi = 2 pi d/lambda sin(phi)  (sum/delta pair of eq. (6)).
     const std::complex<double> s = map_.sum(c.r, c.d), dl = map_.delta(c.r, c.d);
     const double im_ratio = (dl * std::conj(s)).imag() / std::max(std::norm(s), 1e-30);

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "synth/reference_simulator.hpp"
 #include "test_support.hpp"
 
 namespace rcsim::replay {
@@ -50,6 +51,27 @@ TEST(ModelRecording, NoiseAndAnnotationRangeAsAsked) {
   const Recording again = model_recording(scene, "poles", 3, {0.05, 0.0, 20.0});
   EXPECT_EQ(again.boxes[0][7].x_m, noisy.boxes[0][7].x_m);  // same seed, same draws
   EXPECT_EQ(again.targets.size(), noisy.targets.size());
+}
+
+}  // namespace
+}  // namespace rcsim::replay
+
+namespace rcsim::replay {
+namespace {
+
+// Both writers of a recording from a scene (the model's, rcsim synth's) give ego.csv's speed as
+// the signed speed along the heading: a reversing ego drives at -2 m/s in both.
+TEST(ModelRecording, TheEgoSpeedIsSignedAsSynthWritesIt) {
+  Scene scene = two_poles_ahead(0.5);
+  scene.ego = Trajectory({testing::sample(0.0, 10.0, 0.0, 0.0, -2.0), testing::sample(0.5, 9.0, 0.0, 0.0, -2.0)});
+  const Recording model = model_recording(scene, "reversing", 1);
+  const Recording synth = synth::make_recording(scene, synth::SynthConfig{}, 1, {"reversing", "", "test"});
+  ASSERT_EQ(model.ego.size(), synth.ego.size());
+  for (std::size_t k = 0; k < model.ego.size(); ++k) {
+    EXPECT_NEAR(model.ego[k].speed_mps, -2.0, 1e-9) << k;
+    EXPECT_EQ(model.ego[k].speed_mps, synth.ego[k].speed_mps) << k;
+    EXPECT_EQ(model.ego[k].yaw_rad, synth.ego[k].yaw_rad) << k;
+  }
 }
 
 }  // namespace
