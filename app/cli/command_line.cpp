@@ -20,6 +20,7 @@ int run_command_line(int argc, char** argv) {
   app.require_subcommand(1);
   add_simulate_command(app);
   add_import_command(app);
+  add_scene_command(app);
   add_replay_command(app);
   add_report_command(app);
   add_export_command(app);

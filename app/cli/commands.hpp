@@ -22,6 +22,7 @@ void add_simulate_command(CLI::App& app);
 void add_models_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_import_command(CLI::App& app);
+void add_scene_command(CLI::App& app);
 void add_replay_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 void add_stream_command(CLI::App& app);

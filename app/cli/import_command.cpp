@@ -1,5 +1,6 @@
-// rcsim import RECORDING_DIR -o SCENE.json: a scene from a recording's ego log and annotated boxes.
 // rcsim import --from DATASET RAW_DIR -o RECORDING_DIR [--frames LIST]: a recording from a real dataset's layout.
+// rcsim scene RECORDING_DIR -o SCENE.json: a scene from a recording's ego log and annotated boxes
+// (once spelt `rcsim import RECORDING_DIR`, which still works and says so).
 #include <fmt/format.h>
 #include <iostream>
 
@@ -27,7 +28,28 @@ void import_dataset(const std::string& dataset, const std::string& raw_dir, cons
                            rec.objects.size(), rec.targets.size(), output);
 }
 
+void write_scene_of(const std::string& recording_dir, const std::string& output, const ImportArgs& import) {
+  const Recording recording = read_recording(recording_dir);
+  const replay::ImportedScene scene = replay::import_recording(recording, ModelLibrary::builtin(), import_options(import));
+  for (const auto& warning : scene.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
+  replay::write_scene_file(output, scene);
+}
+
 }  // namespace
+
+void add_scene_command(CLI::App& app) {
+  struct Args {
+    std::string recording_dir;
+    std::string output;
+    ImportArgs import;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("scene", "a scene from a recording's ego log and annotated object boxes");
+  cmd->add_option("RECORDING_DIR", args->recording_dir, "recording directory (rcsim-recording)")->required();
+  cmd->add_option("-o,--output", args->output, "scene file to write (rcsim-scene)")->required();
+  add_import_options(*cmd, args->import);
+  cmd->callback([args] { write_scene_of(args->recording_dir, args->output, args->import); });
+}
 
 void add_import_command(CLI::App& app) {
   struct Args {
@@ -43,17 +65,10 @@ void add_import_command(CLI::App& app) {
   for (const auto& importer : replay::dataset_importers()) {
     datasets += fmt::format("\n  {}: {}", importer.name, importer.description);
   }
-  auto* cmd = app.add_subcommand(
-      "import",
-      "a scene from a recording's ego log and annotated object boxes; with --from, a recording from a real "
-      "dataset's own layout");
-  cmd->add_option("INPUT_DIR", args->input_dir,
-                  "recording directory (rcsim-recording); with --from, the dataset's directory")
-      ->required();
-  cmd->add_option("-o,--output", args->output,
-                  "scene file to write (rcsim-scene); with --from, the recording directory to write")
-      ->required();
-  auto* from = cmd->add_option("--from", args->dataset, "import a real dataset (docs/importers.md):" + datasets);
+  auto* cmd = app.add_subcommand("import", "a recording from a real dataset's own layout (--from DATASET)");
+  cmd->add_option("INPUT_DIR", args->input_dir, "the dataset's directory")->required();
+  cmd->add_option("-o,--output", args->output, "the recording directory to write")->required();
+  auto* from = cmd->add_option("--from", args->dataset, "the dataset's kind (docs/importers.md):" + datasets);
   cmd->add_option("--ego-log", args->ego_log,
                   "with --from: the ego log to use, in ego.csv's columns (t_s from the first keyframe, x_m, y_m, "
                   "yaw_rad, speed_mps, yaw_rate_radps); without it the ego motion is estimated from the Doppler")
@@ -69,11 +84,10 @@ void add_import_command(CLI::App& app) {
       import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log, args->frames});
       return;
     }
-    const Recording recording = read_recording(args->input_dir);
-    const replay::ImportedScene scene =
-        replay::import_recording(recording, ModelLibrary::builtin(), import_options(args->import));
-    for (const auto& warning : scene.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
-    replay::write_scene_file(args->output, scene);
+    // The old spelling of `rcsim scene`: still works, and says so.
+    std::cerr << "rcsim: note: `rcsim import RECORDING_DIR -o SCENE.json` is now `rcsim scene RECORDING_DIR -o "
+                 "SCENE.json` (`import` takes --from DATASET); writing the scene\n";
+    write_scene_of(args->input_dir, args->output, args->import);
   });
 }
 

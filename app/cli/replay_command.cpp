@@ -142,7 +142,7 @@ nlohmann::ordered_json summary_json(std::int64_t run_id, const Recording& rec, c
           {"wall_s", s.total_wall_s}};
 }
 
-// Prints what the import noticed (bridged or split annotation gaps) to stderr, as rcsim import
+// Prints what the import noticed (bridged or split annotation gaps) to stderr, as rcsim scene
 // does: the recording is read as the replay goes, so each warning as soon as it is found, the
 // first kMaxPrinted of them, then how many more there were.
 class PrintImportWarnings final : public replay::ReplaySink {

@@ -1,4 +1,4 @@
-// rcsim import / replay as a user runs them: the JSON summary, many runs in one database,
+// rcsim scene / replay as a user runs them: the JSON summary, many runs in one database,
 // determinism, refusals, and a replay killed midway.
 #include <gtest/gtest.h>
 
@@ -142,13 +142,19 @@ TEST_F(ReplayCli, AnotherSensorConfigurationIsStoredWithItsRun) {
   EXPECT_LT(simulated(2), simulated(1));  // a higher threshold detects less
 }
 
-TEST_F(ReplayCli, ImportWritesALoadableScene) {
+TEST_F(ReplayCli, SceneWritesALoadableSceneAndImportStillDoesSayingSo) {
   const fs::path rec = recording(2.0);
   const fs::path scene = dir_ / "scene.json";
-  ASSERT_EQ(run_rcsim("import " + rec.string() + " -o " + scene.string()).exit_code, 0);
+  ASSERT_EQ(run_rcsim("scene " + rec.string() + " -o " + scene.string()).exit_code, 0);
   const auto r = run_rcsim("simulate " + scene.string() + " --level tracks", false);
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_GT(data_rows(r.output), 10u);
+  // The old spelling: the same scene, and a note of the new one.
+  const fs::path old_spelling = dir_ / "old.json";
+  const auto old = run_rcsim("import " + rec.string() + " -o " + old_spelling.string());
+  EXPECT_EQ(old.exit_code, 0);
+  EXPECT_NE(old.output.find("is now `rcsim scene RECORDING_DIR -o SCENE.json`"), std::string::npos) << old.output;
+  EXPECT_EQ(read_file(old_spelling), read_file(scene));
 }
 
 TEST_F(ReplayCli, BadRecordingsAreNamedAndNothingIsStored) {
