@@ -13,8 +13,8 @@
 #include "cli/replay_options.hpp"
 #include "cli/seed_option.hpp"
 #include "common/input_error.hpp"
-#include "replay/evaluate/speed_error.hpp"
-#include "replay/store/speed_error_store.hpp"
+#include "replay/evaluate/bench.hpp"
+#include "replay/store/bench_store.hpp"
 #include "replay/import/calibration.hpp"
 #include "replay/store/report_store.hpp"
 

@@ -81,7 +81,7 @@ nlohmann::json sensor_to_json(const SensorConfig& c) {
   }
   return {{"name", c.name},
           {"description", c.description},
-          {"reports", c.reports == SensorOutput::detections ? "detections" : "tracks"},
+          {"reports", list_level_name(c.reports)},
           {"carrier_frequency_hz", c.carrier_frequency_hz},
           {"cycle_time_s", c.cycle_time_s},
           {"azimuth_half_deg", rad_to_deg(c.fov.azimuth_half_rad)},
@@ -111,7 +111,7 @@ void print_sensors(bool json) {
                              c.fov.max_range_m, law_name(c.amplitude.kind), c.amplitude.detection_threshold_db,
                              fluctuation_name(c.detection.fluctuation), c.resolution.range_cell_m,
                              c.resolution.range_rate_cell_mps,
-                             c.reports == SensorOutput::detections ? "detections" : "tracks", c.description);
+                             list_level_name(c.reports), c.description);
   }
   if (json) std::cout << all.dump(2) << '\n';
 }

@@ -29,9 +29,9 @@ void run_simulate(const SimulateArgs& args) {
   const ModelLibrary library = ModelLibrary::builtin();
   const Scene scene = load_scene_file(args.scene_path, library);
   SimulationOptions options;
-  options.level = args.level == "ideal" ? OutputLevel::ideal
-                  : args.level == "detections" ? OutputLevel::detections
-                                               : OutputLevel::tracks;
+  options.level = args.level == "ideal" ? ListLevel::ideal
+                  : args.level == "detections" ? ListLevel::detections
+                                               : ListLevel::tracks;
   options.seed = args.seed;
   options.noise = !args.no_noise;
   options.fidelity = fidelity_from_arg(args.fidelity);

@@ -56,7 +56,7 @@ auto parsed_or_input_error(const std::string& option, Parse parse) {
 
 void run_stream(const StreamArgs& args) {
   stream::SourceOptions source_options;
-  source_options.simulation.level = args.level == "detections" ? OutputLevel::detections : OutputLevel::tracks;
+  source_options.simulation.level = args.level == "detections" ? ListLevel::detections : ListLevel::tracks;
   source_options.simulation.seed = args.seed;
   source_options.simulation.noise = !args.no_noise;
   source_options.simulation.fidelity = fidelity_from_arg(args.fidelity);

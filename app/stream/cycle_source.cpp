@@ -13,11 +13,11 @@
 namespace rcsim::stream {
 namespace {
 
-ListLevel list_level(OutputLevel level) {
+WireLevel list_level(ListLevel level) {
   switch (level) {
-    case OutputLevel::detections: return ListLevel::detections;
-    case OutputLevel::tracks: return ListLevel::tracks;
-    case OutputLevel::ideal: break;
+    case ListLevel::detections: return WireLevel::detections;
+    case ListLevel::tracks: return WireLevel::tracks;
+    case ListLevel::ideal: break;
   }
   throw std::invalid_argument("the ideal level is not streamed (its rows name objects and reflectors); use tracks or detections");
 }
@@ -31,7 +31,7 @@ WirePose wire_pose(const BodyState& body) {
 // The simulated target list of every sensor of `simulation` after its latest cycle.
 void add_simulated(const Simulation& simulation, const Scene& scene, std::uint32_t cycle, const SourceOptions& options,
                    CycleFrame& frame) {
-  const ListLevel level = list_level(options.simulation.level);
+  const WireLevel level = list_level(options.simulation.level);
   for (std::size_t s = 0; s < simulation.sensor_count(); ++s) {
     TargetListMessage message;
     message.cycle = cycle;
@@ -39,7 +39,7 @@ void add_simulated(const Simulation& simulation, const Scene& scene, std::uint32
     message.level = level;
     message.sensor_id = scene.sensors[s].id;
     const SensorCycleState& state = simulation.sensor_state(s);
-    if (level == ListLevel::tracks) {
+    if (level == WireLevel::tracks) {
       for (const ReportedTarget& r : state.reported) {
         message.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db});
       }
@@ -150,7 +150,7 @@ class RecordingSource final : public CycleSource {
       TargetListMessage message;
       message.cycle = frame.cycle;
       message.sensor_index = static_cast<std::uint16_t>(s);
-      message.level = ListLevel::recorded;
+      message.level = WireLevel::recorded;
       message.sensor_id = header.sensors[s].id;
       for (const RecordedTarget& r : recorded_) {
         if (r.sensor == static_cast<int>(s)) message.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db});

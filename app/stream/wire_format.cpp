@@ -399,9 +399,9 @@ DecodeError decode_target_list(std::span<const std::uint8_t> payload, TargetList
   r.u16();
   if (!r.ok()) return DecodeError::bad_length;
   if (r.remaining() != id_length + n * kTargetBytes) return DecodeError::bad_length;
-  if (level > static_cast<std::uint8_t>(ListLevel::recorded) || id_length == 0) return DecodeError::bad_value;
+  if (level > static_cast<std::uint8_t>(WireLevel::recorded) || id_length == 0) return DecodeError::bad_value;
   if (static_cast<std::uint64_t>(out.first_index) + n > out.total_count) return DecodeError::bad_value;
-  m.level = static_cast<ListLevel>(level);
+  m.level = static_cast<WireLevel>(level);
   m.sensor_id = r.text(id_length);
   if (!is_utf8(m.sensor_id)) return DecodeError::bad_value;
   m.targets.resize(n);

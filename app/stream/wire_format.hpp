@@ -62,7 +62,7 @@ struct Header {
 };
 
 // Level byte of a target list: which stage of the sensor cycle it is.
-enum class ListLevel : std::uint8_t { ideal = 0, detections = 1, tracks = 2, recorded = 3 };
+enum class WireLevel : std::uint8_t { ideal = 0, detections = 1, tracks = 2, recorded = 3 };
 
 struct WireTarget {
   std::int32_t id = 0;
@@ -73,7 +73,7 @@ struct WireTarget {
 struct TargetListMessage {
   std::uint32_t cycle = 0;
   std::uint16_t sensor_index = 0;
-  ListLevel level = ListLevel::tracks;
+  WireLevel level = WireLevel::tracks;
   std::string sensor_id;  // 1..255 bytes
   std::vector<WireTarget> targets;
 };

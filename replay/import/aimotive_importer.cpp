@@ -487,7 +487,7 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
   for (std::size_t s = 0; s < mounts.size(); ++s) {
     // The built-in profile derived from these radars (docs/sensor-profiles.md).
     rec.sensors.push_back({mounts[s].label, aimotive::kSensorProfile, mounts[s].X_VS.x_m, mounts[s].X_VS.y_m,
-                           mounts[s].X_VS.yaw_rad, ReportedLevel::detections});
+                           mounts[s].X_VS.yaw_rad, ListLevel::detections});
   }
   for (std::size_t k = 0; k < frames.size(); ++k) {
     for (std::size_t s = 0; s < mounts.size(); ++s) {

@@ -616,7 +616,7 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
   }
 
   rec.sensors.push_back({dataset.radar, astyx::kSensorProfile, mount->X_VS.x_m, mount->X_VS.y_m, mount->X_VS.yaw_rad,
-                         ReportedLevel::detections, AmplitudeUnit::relative_db, astyx::kRangeRateInterval_mps});
+                         ListLevel::detections, AmplitudeUnit::relative_db, astyx::kRangeRateInterval_mps});
 
   const bool demo = dataset.listing.filename() == "dataset_info.json";
   rec.description = fmt::format(

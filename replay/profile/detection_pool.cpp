@@ -54,7 +54,7 @@ void fit_stationary_aliased(PooledCycle& cycle, const RangeRateInterval& interva
 
 void check_sensors(const Recording& r, DetectionPool& pool, bool first) {
   for (const RecordingSensor& s : r.sensors) {
-    if (s.reports != ReportedLevel::detections) {
+    if (s.reports != ListLevel::detections) {
       throw InputError(r.dir.string(), fmt::format("sensor {}", s.id),
                        "reports tracks; a profile is derived from raw detections (a recording whose sensors report "
                        "\"detections\", schemas/recording.md)");

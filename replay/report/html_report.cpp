@@ -10,7 +10,7 @@
 #include "replay/campaign/default_criteria.hpp"
 #include "replay/report/campaign_section.hpp"
 #include "replay/report/verdict_section.hpp"
-#include "replay/report/speed_error_section.hpp"
+#include "replay/report/bench_section.hpp"
 #include "replay/store/campaign_store.hpp"
 #include "replay/store/report_reader.hpp"
 #include "replay/report/html_cells.hpp"

@@ -57,7 +57,7 @@ struct ComparedTarget {
 struct ObjectInCycle {
   int object = -1;
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  // annotated (smoothed) box in the world
-  bool in_view = false;                        // detectable by the scene geometry (SceneGeometry)
+  bool detectable = false;  // the scene geometry (SceneGeometry) says a sensor can detect it; not "in view" (object_figures: the box in the field of view)
 };
 
 struct CycleComparison {
@@ -179,7 +179,7 @@ class RecordedCycles {
 // (schemas/recording.md): raw detections are compared without the tracker (no_tracking), tracks
 // with it (full).
 inline Fidelity default_fidelity_for(const Recording& recording) {
-  return recording.all_sensors_report(ReportedLevel::detections) ? Fidelity::no_tracking : Fidelity::full;
+  return recording.all_sensors_report(ListLevel::detections) ? Fidelity::no_tracking : Fidelity::full;
 }
 
 // rcsim replay: the reflection-center model (options.fidelity) against the recording in

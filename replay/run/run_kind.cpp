@@ -3,8 +3,9 @@
 namespace rcsim::replay {
 
 std::string run_level_of(const Recording& recording) {
-  if (recording.all_sensors_report(ReportedLevel::tracks)) return "tracks";
-  if (recording.all_sensors_report(ReportedLevel::detections)) return "detections";
+  for (const ListLevel level : {ListLevel::tracks, ListLevel::detections}) {
+    if (recording.all_sensors_report(level)) return list_level_name(level);
+  }
   return "mixed";
 }
 

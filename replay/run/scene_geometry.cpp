@@ -11,7 +11,7 @@ namespace {
 
 SimulationOptions geometry_options() {
   SimulationOptions options;
-  options.level = OutputLevel::ideal;  // ideal targets and their echoes; no cells, noise or tracks
+  options.level = ListLevel::ideal;  // ideal targets and their echoes; no cells, noise or tracks
   options.noise = false;
   options.fidelity = Fidelity::full;
   return options;

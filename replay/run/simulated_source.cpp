@@ -6,7 +6,7 @@ namespace rcsim::replay {
 
 SimulationOptions model_options(std::uint64_t seed, Fidelity fidelity) {
   SimulationOptions options;
-  options.level = OutputLevel::tracks;
+  options.level = ListLevel::tracks;
   options.seed = seed;
   options.fidelity = fidelity;
   return options;

@@ -135,7 +135,7 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
     if (s.has("reports")) {
       const std::string reports = s.string("reports");
       if (reports == "detections") {
-        sensor.reports = ReportedLevel::detections;
+        sensor.reports = ListLevel::detections;
       } else if (reports != "tracks") {
         s.fail("reports", "must be \"tracks\" or \"detections\", got \"" + reports + "\"");
       }
@@ -213,7 +213,7 @@ std::string header_text(const Recording& rec) {
   // The lowest version that holds the fields used, so that version 1 and 2 recordings are
   // rewritten byte for byte as they were: 3 where a version 3 field differs from its default, 2
   // where a sensor reports detections, else 1.
-  const int version = uses_version_3(rec) ? 3 : !rec.all_sensors_report(ReportedLevel::tracks) ? 2 : 1;
+  const int version = uses_version_3(rec) ? 3 : !rec.all_sensors_report(ListLevel::tracks) ? 2 : 1;
   json["format"] = "rcsim-recording";
   json["version"] = version;
   json["name"] = rec.name;
@@ -227,7 +227,7 @@ std::string header_text(const Recording& rec) {
   for (const auto& s : rec.sensors) {
     json["sensors"].push_back({{"id", s.id}, {"type", s.type}, {"x_m", s.x_m}, {"y_m", s.y_m}, {"yaw_rad", s.yaw_rad}});
     auto& sensor = json["sensors"].back();
-    if (version >= 2) sensor["reports"] = s.reports == ReportedLevel::detections ? "detections" : "tracks";
+    if (version >= 2) sensor["reports"] = list_level_name(s.reports);
     if (version >= 3) {
       sensor["amplitude_unit"] = std::string(kAmplitudeUnitWords[static_cast<std::size_t>(s.amplitude_unit)]);
       if (s.range_rate_interval_mps) {
@@ -253,7 +253,7 @@ std::vector<EgoSample> read_ego_log(const fs::path& path) {
   return rows;
 }
 
-bool Recording::all_sensors_report(ReportedLevel level) const {
+bool Recording::all_sensors_report(ListLevel level) const {
   return std::all_of(sensors.begin(), sensors.end(), [&](const RecordingSensor& s) { return s.reports == level; });
 }
 

@@ -12,14 +12,10 @@
 #include <vector>
 
 #include "common/amplitude_unit.hpp"
+#include "common/list_level.hpp"
 #include "common/pose2.hpp"
 
 namespace rcsim {
-
-// What a sensor's target list holds: confirmed tracks (the paper's sensor, rcsim's own
-// recordings) or raw detections, one per cycle and reflection (today's radars' detection
-// interfaces). Replay compares the simulation at that level by default.
-enum class ReportedLevel { tracks, detections };
 
 // A radar with a small unambiguous Doppler interval reports radial speeds wrapped into it
 // (version 3): a measured v lies in [min, max), and v + k (max - min) reads the same.
@@ -36,7 +32,7 @@ struct RecordingSensor {
   std::string id;
   std::string type;  // built-in sensor configuration name or a path relative to the recording
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  // pose in the ego vehicle frame
-  ReportedLevel reports = ReportedLevel::tracks;  // version 2; version 1 recordings report tracks
+  ListLevel reports = ListLevel::tracks;  // detections or tracks (version 2; version 1 recordings report tracks); replay compares at this level by default
   AmplitudeUnit amplitude_unit = AmplitudeUnit::snr_db;     // version 3
   std::optional<RangeRateInterval> range_rate_interval_mps = std::nullopt;  // version 3: none, unambiguous
 };
@@ -97,7 +93,7 @@ struct Recording {
   int streamed_cycles = 0;
 
   int cycle_count() const { return ego.empty() ? streamed_cycles : static_cast<int>(ego.size()); }
-  bool all_sensors_report(ReportedLevel level) const;
+  bool all_sensors_report(ListLevel level) const;
   int sensor_index(const std::string& id) const;  // -1 if unknown
 };
 

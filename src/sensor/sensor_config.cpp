@@ -170,7 +170,7 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   if (root.has("reports")) {
     const std::string reports = root.string("reports");
     if (reports == "detections") {
-      c.reports = SensorOutput::detections;
+      c.reports = ListLevel::detections;
     } else if (reports != "tracks") {
       root.fail("reports", fmt::format("must be \"tracks\" or \"detections\", got \"{}\"", reports));
     }
@@ -283,7 +283,7 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   c.noise.range_rate_sigma_min_mps = non_negative(noise, "range_rate_sigma_min_mps");
 
   // A sensor that reports detections has no tracker: its `tracking` section may be left out.
-  if (c.reports == SensorOutput::tracks || root.has("tracking")) c.tracker = parse_tracker(root.member("tracking"));
+  if (c.reports == ListLevel::tracks || root.has("tracking")) c.tracker = parse_tracker(root.member("tracking"));
 
   c.clutter = parse_clutter(root.member("clutter"));
   c.multibounce = parse_multibounce(root.member("multibounce"));

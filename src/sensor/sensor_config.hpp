@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/amplitude_unit.hpp"
+#include "common/list_level.hpp"
 #include "common/json_reader.hpp"
 #include "sensor/stationary_background.hpp"
 
@@ -143,14 +144,10 @@ struct OcclusionConfig {
   double loss_db = std::numeric_limits<double>::infinity();  // infinite: the reflector is hidden
 };
 
-// What the sensor puts out: tracks confirmed by its internal tracker (paper III-E), or its raw
-// detections of each cycle (most of today's radars' detection interfaces).
-enum class SensorOutput { tracks, detections };
-
 struct SensorConfig {
   std::string name;
   std::string description;
-  SensorOutput reports = SensorOutput::tracks;
+  ListLevel reports = ListLevel::tracks;
   double carrier_frequency_hz = 24.0e9;
   double cycle_time_s = 0.04;
   FieldOfView fov;

@@ -35,7 +35,7 @@ double reflection_radius_m(const ObjectModel& model);
 //      N_echoes * A_X <= N_echoes * A_ref(R_X) * max_ercs(object of X).
 // Echoes of an object whose nearest reflection point is beyond both bounds (plus a 1 dB margin) can
 // only change cells below the threshold, which yield no entry (III-C) and draw no noise: the output
-// is identical. Range culling is off at OutputLevel::ideal (the ideal list shows every echo) and
+// is identical. Range culling is off at ListLevel::ideal (the ideal list shows every echo) and
 // when the slope s is not positive.
 CullingBounds make_culling_bounds(const SensorConfig& config, const Effects& effects,
                                   std::span<const SceneObject> objects, bool range_culling, bool view_culling);

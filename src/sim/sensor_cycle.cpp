@@ -24,7 +24,7 @@ SensorModel::SensorModel(const MountedSensor& mount_in, const Effects& effects_i
       options(options_in),
       // The ideal target list shows every echo: only the view culling (exact) applies there.
       culling(options_in.culling && !objects.empty()
-                  ? make_culling_bounds(mount_in.config, effects_in, objects, options_in.level != OutputLevel::ideal, true)
+                  ? make_culling_bounds(mount_in.config, effects_in, objects, options_in.level != ListLevel::ideal, true)
                   : CullingBounds{}) {}
 
 SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflector_capacity, double cycle_time_s, std::uint64_t seed,
@@ -51,7 +51,7 @@ SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflect
 }
 
 bool reports_detections(const SensorModel& model) {
-  return model.options.fidelity == Fidelity::no_tracking || model.mount.config.reports == SensorOutput::detections;
+  return model.options.fidelity == Fidelity::no_tracking || model.mount.config.reports == ListLevel::detections;
 }
 
 void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_objects, const SceneSnapshot& snapshot,
@@ -85,7 +85,7 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   if (model.effects.multibounce) add_multibounce_targets(config.multibounce, state.ideal);
   // ideal targets => echoes: amplitude and weighted sum/delta pointers          (eqs. (1)-(3), (6))
   compute_echoes(config.amplitude, model.antenna, state.ideal, state.echoes);
-  if (model.options.level == OutputLevel::ideal) return;
+  if (model.options.level == ListLevel::ideal) return;
   // echoes => resolution cells, strongest first, upper amplitude bound          (eqs. (4)-(5))
   form_resolution_cells(config.resolution, model.cell_gate_amplitude, state.echoes, state.cell_buffers, state.cells);
   // cells => cells whose RCS fluctuates from cycle to cycle (Swerling 1, 3)      (III-B, detection.hpp)
@@ -114,7 +114,7 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   if (rng != nullptr) add_stationary_background(config.background, state.kinematics, *rng, state.detections);
   // detections => radial speeds wrapped into the unambiguous interval (Doppler aliasing)   (imaging-radar.md)
   alias_range_rates(config.resolution, state.detections);
-  if (model.options.level == OutputLevel::detections) return;
+  if (model.options.level == ListLevel::detections) return;
   // detections => tracked target list, reported after four measurements         (III-E)
   //   (a sensor that reports its detections, or fidelity no_tracking: the detections as they are)
   if (reports_detections(model)) {

@@ -4,6 +4,7 @@
 // SensorCycleState.
 #include <span>
 
+#include "common/list_level.hpp"
 #include "common/rng.hpp"
 #include "scene/scene.hpp"
 #include "sim/antenna.hpp"
@@ -17,10 +18,8 @@
 
 namespace rcsim {
 
-enum class OutputLevel { ideal, detections, tracks };
-
 struct SimulationOptions {
-  OutputLevel level = OutputLevel::tracks;
+  ListLevel level = ListLevel::tracks;
   std::uint64_t seed = 0;
   bool noise = true;  // false: every random draw off (no noise, no clutter)
   Fidelity fidelity = Fidelity::full;  // docs/fidelity.md

@@ -10,13 +10,13 @@
 
 namespace rcsim {
 
-TargetListWriter::TargetListWriter(std::ostream& out, TargetListFormat format, OutputLevel level)
+TargetListWriter::TargetListWriter(std::ostream& out, TargetListFormat format, ListLevel level)
     : out_(out), format_(format), level_(level) {}
 
 void TargetListWriter::write_header() {
   if (format_ != TargetListFormat::Csv) return;
   out_ << "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db";
-  if (level_ == OutputLevel::ideal) out_ << ",object,reflector";
+  if (level_ == ListLevel::ideal) out_ << ",object,reflector";
   out_ << '\n';
 }
 
@@ -25,7 +25,7 @@ void TargetListWriter::write_row(int cycle, double t_s, const std::string& senso
   if (format_ == TargetListFormat::Csv) {
     out_ << fmt::format("{:.6f},{},{},{},{:.4f},{:.6f},{:.4f},{:.3f}", t_s, cycle, csv_field(sensor_id), row.id,
                         row.range_m, row.azimuth_rad, row.range_rate_mps, row.amplitude_db);
-    if (level_ == OutputLevel::ideal) out_ << ',' << csv_field(*row.object) << ',' << csv_field(row.reflector);
+    if (level_ == ListLevel::ideal) out_ << ',' << csv_field(*row.object) << ',' << csv_field(row.reflector);
     out_ << '\n';
     return;
   }
@@ -34,7 +34,7 @@ void TargetListWriter::write_row(int cycle, double t_s, const std::string& senso
       "\"range_rate_mps\":{:.4f},\"amplitude_db\":{:.3f}",
       t_s, cycle, nlohmann::json(sensor_id).dump(), row.id, row.range_m, row.azimuth_rad, row.range_rate_mps,
       row.amplitude_db);
-  if (level_ == OutputLevel::ideal) {
+  if (level_ == ListLevel::ideal) {
     out_ << ",\"object\":" << nlohmann::json(*row.object).dump() << ",\"reflector\":" << nlohmann::json(row.reflector).dump();
   }
   out_ << "}\n";
@@ -43,7 +43,7 @@ void TargetListWriter::write_row(int cycle, double t_s, const std::string& senso
 void TargetListWriter::write_sensor_cycle(const Scene& scene, int cycle, double t_s, const std::string& sensor_id,
                                           const SensorCycleState& state) {
   switch (level_) {
-    case OutputLevel::ideal:
+    case ListLevel::ideal:
       for (std::size_t i = 0; i < state.ideal.size(); ++i) {
         const auto& t = state.ideal[i];
         const auto& object = scene.objects[static_cast<std::size_t>(t.object_index)];
@@ -59,14 +59,14 @@ void TargetListWriter::write_sensor_cycle(const Scene& scene, int cycle, double 
                    amplitude_to_db(state.echoes[i].amplitude), &object.id, std::move(reflector)});
       }
       break;
-    case OutputLevel::detections:
+    case ListLevel::detections:
       for (std::size_t i = 0; i < state.detections.size(); ++i) {
         const auto& d = state.detections[i];
         write_row(cycle, t_s, sensor_id,
                   {static_cast<int>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, nullptr, {}});
       }
       break;
-    case OutputLevel::tracks:
+    case ListLevel::tracks:
       for (const auto& r : state.reported) {
         write_row(cycle, t_s, sensor_id, {r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, nullptr, {}});
       }

@@ -12,7 +12,7 @@ enum class TargetListFormat { Csv, Jsonl };
 
 class TargetListWriter {
  public:
-  TargetListWriter(std::ostream& out, TargetListFormat format, OutputLevel level);
+  TargetListWriter(std::ostream& out, TargetListFormat format, ListLevel level);
 
   void write_header();
   // All rows of one sensor's cycle at the writer's level.
@@ -31,7 +31,7 @@ class TargetListWriter {
 
   std::ostream& out_;
   TargetListFormat format_;
-  OutputLevel level_;
+  ListLevel level_;
   long long rows_ = 0;
 };
 

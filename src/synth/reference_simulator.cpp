@@ -135,7 +135,7 @@ Recording make_recording(const Scene& scene, const SynthConfig& design, std::uin
     recorded.x_m = sensor.X_VS.x_m;
     recorded.y_m = sensor.X_VS.y_m;
     recorded.yaw_rad = sensor.X_VS.yaw_rad;
-    recorded.reports = config.reports_detections ? ReportedLevel::detections : ReportedLevel::tracks;
+    recorded.reports = config.reports_detections ? ListLevel::detections : ListLevel::tracks;
     const Derived derived = derive(config);
     signal_chains[sensor.id] = {{"carrier_hz", config.waveform.carrier_hz},
                                 {"bandwidth_hz", config.waveform.bandwidth_hz},

@@ -144,7 +144,7 @@ SynthConfig sensor_design(const SensorConfig& profile, const SynthConfig& design
   c.tracker.confirmation_hits = profile.tracker.confirmation_hits;  // paper III-E
   c.tracker.max_misses_tentative = profile.tracker.max_misses_tentative;
   c.tracker.max_misses_confirmed = profile.tracker.max_misses_confirmed;
-  c.reports_detections = profile.reports == SensorOutput::detections;
+  c.reports_detections = profile.reports == ListLevel::detections;
   return c;
 }
 

@@ -163,7 +163,7 @@ inline std::vector<std::pair<std::string, stream::Bytes>> udp_datagram_seeds() {
   TargetListMessage list;
   list.cycle = 7;
   list.sensor_index = 1;
-  list.level = ListLevel::tracks;
+  list.level = WireLevel::tracks;
   list.sensor_id = "front_left";
   for (int i = 0; i < 60; ++i) list.targets.push_back({i, 5.0 + i, 0.01 * i - 0.3, -1.5, 12.0 + 0.1 * i});
   GroundTruthMessage truth;

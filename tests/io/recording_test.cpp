@@ -76,9 +76,9 @@ TEST_F(RecordingFiles, RoundTripKeepsEveryRowAndIsByteStable) {
 TEST_F(RecordingFiles, VersionTwoDeclaresRawDetectionsAndVersionOneStaysReadable) {
   write_recording(dir_ / "v1", rec_);
   EXPECT_NE(testing::read_file(dir_ / "v1" / "recording.json").find("\"version\": 1"), std::string::npos);
-  EXPECT_TRUE(read_recording(dir_ / "v1").all_sensors_report(ReportedLevel::tracks));
+  EXPECT_TRUE(read_recording(dir_ / "v1").all_sensors_report(ListLevel::tracks));
   Recording raw = rec_;
-  raw.sensors[0].reports = ReportedLevel::detections;
+  raw.sensors[0].reports = ListLevel::detections;
   for (auto& t : raw.targets) t.id = -1;
   write_recording(dir_ / "v2", raw);
   const std::string header = testing::read_file(dir_ / "v2" / "recording.json");
@@ -86,7 +86,7 @@ TEST_F(RecordingFiles, VersionTwoDeclaresRawDetectionsAndVersionOneStaysReadable
   EXPECT_NE(header.find("\"reports\": \"detections\""), std::string::npos);
   EXPECT_EQ(testing::read_file(dir_ / "v2" / "targets.csv").rfind("t_s,cycle,sensor,range_m,", 0), 0u);  // no id column
   const Recording back = read_recording(dir_ / "v2");
-  EXPECT_TRUE(back.all_sensors_report(ReportedLevel::detections));
+  EXPECT_TRUE(back.all_sensors_report(ListLevel::detections));
   EXPECT_EQ(back.targets[1].id, -1);
   // Version 1 has no "reports"; an unknown level and an unknown version are refused.
   std::string v1_with_reports = header;

@@ -36,7 +36,7 @@ class RecordingV3 : public testing::ScratchDirTest {
       rec_.ego.push_back({1.0 * k, 0.0, 0.0, 0.0, 0.0, 0.0});
       rec_.targets.push_back({1.0 * k, k, 0, -1, 15.0 + k, 0.1, -2.0, 52.5});
     }
-    rec_.sensors[0].reports = ReportedLevel::detections;
+    rec_.sensors[0].reports = ListLevel::detections;
   }
 
   // rec_ with every version 3 field away from its default.
@@ -92,7 +92,7 @@ TEST_F(RecordingV3, RoundTripKeepsEveryVersion3FieldAndIsByteStable) {
   ASSERT_TRUE(back.sensors[0].range_rate_interval_mps.has_value());
   EXPECT_DOUBLE_EQ(back.sensors[0].range_rate_interval_mps->min_mps, -5.2374);
   EXPECT_DOUBLE_EQ(back.sensors[0].range_rate_interval_mps->max_mps, 5.1562);
-  EXPECT_EQ(back.sensors[0].reports, ReportedLevel::detections);
+  EXPECT_EQ(back.sensors[0].reports, ListLevel::detections);
   EXPECT_EQ(back.objects[0].attributes.at("dataset_class"), "Car");
   EXPECT_EQ(back.objects[0].attributes.at("occlusion"), 1);
   EXPECT_TRUE(back.objects[1].attributes.empty());
@@ -113,7 +113,7 @@ TEST_F(RecordingV3, EachVersion3FieldAloneMakesVersion3AndDefaultsMakeNone) {
   };
   Recording r = rec_;
   EXPECT_EQ(version_of(r, "v2"), 2);
-  r.sensors[0].reports = ReportedLevel::tracks;
+  r.sensors[0].reports = ListLevel::tracks;
   for (auto& t : r.targets) t.id = 1;
   EXPECT_EQ(version_of(r, "v1"), 1);
   Recording a = r;
@@ -135,7 +135,7 @@ TEST_F(RecordingV3, EachVersion3FieldAloneMakesVersion3AndDefaultsMakeNone) {
   const Recording back = read_recording(dir_ / "timeline");
   EXPECT_EQ(back.timeline, Timeline::snapshots);
   EXPECT_TRUE(back.ego_motion_known);
-  EXPECT_EQ(back.sensors[0].reports, ReportedLevel::tracks);
+  EXPECT_EQ(back.sensors[0].reports, ListLevel::tracks);
   EXPECT_EQ(back.sensors[0].amplitude_unit, AmplitudeUnit::snr_db);
   EXPECT_FALSE(back.sensors[0].range_rate_interval_mps.has_value());
 }

@@ -139,7 +139,7 @@ TEST(Scene, PolylineObjectStandsStillAlongItsPoints) {
   // Ideal level: every rail target lies on the rail (y = 3.5 m) and has the range rate of a
   // stationary point seen at 20 m/s: -20 cos(az).
   SimulationOptions options;
-  options.level = OutputLevel::ideal;
+  options.level = ListLevel::ideal;
   options.noise = false;
   Simulation simulation(scene, options);
   int targets = 0;

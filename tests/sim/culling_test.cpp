@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string target_lists(const Scene& scene, OutputLevel level, bool culling, std::uint64_t seed = 3) {
+std::string target_lists(const Scene& scene, ListLevel level, bool culling, std::uint64_t seed = 3) {
   SimulationOptions options;
   options.level = level;
   options.seed = seed;
@@ -28,7 +28,7 @@ std::string target_lists(const Scene& scene, OutputLevel level, bool culling, st
 }
 
 void expect_culling_invisible(const Scene& scene, const std::string& name) {
-  for (const OutputLevel level : {OutputLevel::ideal, OutputLevel::detections, OutputLevel::tracks}) {
+  for (const ListLevel level : {ListLevel::ideal, ListLevel::detections, ListLevel::tracks}) {
     const std::string on = target_lists(scene, level, true);
     const std::string off = target_lists(scene, level, false);
     EXPECT_GT(on.size(), 0u);
@@ -38,7 +38,7 @@ void expect_culling_invisible(const Scene& scene, const std::string& name) {
   // there; with a 400 m view range it does (BoundsCullFarAndBehind), and must not change anything.
   Scene long_range = scene;
   for (auto& sensor : long_range.sensors) sensor.config.fov.max_range_m = 400.0;
-  for (const OutputLevel level : {OutputLevel::detections, OutputLevel::tracks}) {
+  for (const ListLevel level : {ListLevel::detections, ListLevel::tracks}) {
     EXPECT_TRUE(target_lists(long_range, level, true) == target_lists(long_range, level, false))
         << name << " (400 m view range) level " << static_cast<int>(level);
   }
@@ -254,12 +254,12 @@ TEST(Culling, DiffusePiecesByteIdentical) {
     const Scene original = load_scene_file((fs::path(RCSIM_SOURCE_DIR) / "docs/examples" / file).string(), testing::library());
     Scene diffuse = original;
     for (auto& sensor : diffuse.sensors) sensor.config.extended_objects.diffuse_relative_ercs_per_sqrt_m = 0.5;
-    srr24_with_pieces += target_lists(diffuse, OutputLevel::ideal, true).find("#diffuse") != std::string::npos;
+    srr24_with_pieces += target_lists(diffuse, ListLevel::ideal, true).find("#diffuse") != std::string::npos;
     expect_culling_invisible(diffuse, std::string(file) + " (srr24, diffuse 0.5)");
     Scene lrr = original;
     for (auto& sensor : lrr.sensors) sensor.config = builtin_sensor_config("aimotive_lrr");
     lrr.effects.occlusion = true;
-    lrr_with_pieces += target_lists(lrr, OutputLevel::ideal, true).find("#diffuse") != std::string::npos;
+    lrr_with_pieces += target_lists(lrr, ListLevel::ideal, true).find("#diffuse") != std::string::npos;
     expect_culling_invisible(lrr, std::string(file) + " (aimotive_lrr)");
   }
   EXPECT_EQ(srr24_with_pieces, 3);
@@ -279,7 +279,7 @@ TEST(Culling, DiffusePiecesInRandomTrafficByteIdentical) {
     sensor.config.extended_objects.diffuse_relative_ercs_per_sqrt_m = 2.0;
     sensor.config.fov.max_range_m = 400.0;
   }
-  for (const OutputLevel level : {OutputLevel::detections, OutputLevel::tracks}) {
+  for (const ListLevel level : {ListLevel::detections, ListLevel::tracks}) {
     const std::string on = target_lists(scene, level, true);
     EXPECT_GT(on.size(), 0u);
     EXPECT_TRUE(on == target_lists(scene, level, false)) << "level " << static_cast<int>(level);

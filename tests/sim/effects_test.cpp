@@ -28,7 +28,7 @@ TEST(Effects, MultibounceDuplicatesAtIntegerMultiples) {
   add_object(scene, "near", "pole", {sample(0, 1.0, 0.0, 0, -0.5)});
   add_object(scene, "far", "pole", {sample(0, 5.0, 0.0, 0, 0)});
   SimulationOptions o;
-  o.level = OutputLevel::ideal;
+  o.level = ListLevel::ideal;
   Simulation sim(scene, o);
   sim.run_cycle(0);
   const auto& t = sim.sensor_state(0).ideal;
@@ -54,7 +54,7 @@ TEST(Effects, OcclusionHidesWhatIsBehindANearerObject) {
   add_object(scene, "behind", "pole", {sample(0, 15.0, 0.0, 0, 0)});
   add_object(scene, "car", "passenger_car", {sample(0, 8.0, 0.0, kPi / 2, 0)});
   SimulationOptions o;
-  o.level = OutputLevel::ideal;
+  o.level = ListLevel::ideal;
   {
     Simulation sim(scene, o);
     sim.run_cycle(0);
@@ -89,7 +89,7 @@ TEST(Effects, ClutterRateAndPlacement) {
 TEST(Effects, OffUnlessAsked) {
   Scene scene = single_sensor_scene(2.0);
   add_object(scene, "near", "pole", {sample(0, 1.0, 0.0, 0, 0)});
-  Simulation sim(scene, SimulationOptions{OutputLevel::detections, 5, true});
+  Simulation sim(scene, SimulationOptions{ListLevel::detections, 5, true});
   for (int k = 0; k < sim.cycle_count(); ++k) {
     sim.run_cycle(k);
     EXPECT_EQ(sim.sensor_state(0).detections.size(), 1u);  // no duplicates, no clutter
@@ -198,7 +198,7 @@ TEST(Effects, OcclusionLossInTheSensorCycle) {
   add_object(scene, "behind", "pole", {sample(0, 15.0, 0.0, 0, 0)});
   add_object(scene, "car", "passenger_car", {sample(0, 8.0, 0.0, kPi / 2, 0)});
   SimulationOptions o;
-  o.level = OutputLevel::ideal;
+  o.level = ListLevel::ideal;
   Simulation open(scene, o);
   open.run_cycle(0);
   scene.effects.occlusion = true;

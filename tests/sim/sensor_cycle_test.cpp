@@ -20,7 +20,7 @@ using testing::add_object;
 using testing::sample;
 using testing::single_sensor_scene;
 
-SimulationOptions exact(OutputLevel level) {
+SimulationOptions exact(ListLevel level) {
   SimulationOptions o;
   o.level = level;
   o.noise = false;
@@ -36,7 +36,7 @@ Scene pole_at(double range_m, double azimuth_rad) {
 
 TEST(SensorCycle, ReferenceReflectorAmplitudeAtBoresight) {
   const Scene scene = pole_at(10.0, 0.0);
-  Simulation sim(scene, exact(OutputLevel::detections));
+  Simulation sim(scene, exact(ListLevel::detections));
   sim.run_cycle(0);
   const auto& d = sim.sensor_state(0).detections;
   ASSERT_EQ(d.size(), 1u);
@@ -50,7 +50,7 @@ TEST(SensorCycle, ReferenceReflectorDropsBelowThresholdAt27Point3m) {
   // 26.5 - 0.75 R = 6 dB  =>  R = 27.333 m
   for (const auto& [range_m, expected] : {std::pair{27.30, 1u}, std::pair{27.36, 0u}}) {
     const Scene scene = pole_at(range_m, 0.0);
-    Simulation sim(scene, exact(OutputLevel::detections));
+    Simulation sim(scene, exact(ListLevel::detections));
     sim.run_cycle(0);
     EXPECT_EQ(sim.sensor_state(0).detections.size(), expected) << range_m << " m";
   }
@@ -59,7 +59,7 @@ TEST(SensorCycle, ReferenceReflectorDropsBelowThresholdAt27Point3m) {
 TEST(SensorCycle, LoneReflectorAngleIsExactAcrossTheViewField) {
   for (double deg = -34.0; deg <= 34.0; deg += 2.0) {
     const Scene scene = pole_at(8.0, deg_to_rad(deg));
-    Simulation sim(scene, exact(OutputLevel::detections));
+    Simulation sim(scene, exact(ListLevel::detections));
     sim.run_cycle(0);
     const auto& d = sim.sensor_state(0).detections;
     ASSERT_EQ(d.size(), 1u) << deg;
@@ -73,7 +73,7 @@ TEST(SensorCycle, LoneReflectorAngleIsExactAcrossTheViewField) {
 
 TEST(SensorCycle, OutsideTheViewFieldNothingIsSeen) {
   const Scene scene = pole_at(8.0, deg_to_rad(36.0));
-  Simulation sim(scene, exact(OutputLevel::ideal));
+  Simulation sim(scene, exact(ListLevel::ideal));
   sim.run_cycle(0);
   EXPECT_TRUE(sim.sensor_state(0).ideal.empty());
 }
@@ -85,7 +85,7 @@ TEST(SensorCycle, TwoEqualReflectorsInOneCellMergeToTheMiddle) {
     add_object(scene, "pole" + std::to_string(int(deg)), "pole",
                {sample(0, 12.0 * std::cos(deg_to_rad(deg)), 12.0 * std::sin(deg_to_rad(deg)), 0, 0)});
   }
-  Simulation sim(scene, exact(OutputLevel::detections));
+  Simulation sim(scene, exact(ListLevel::detections));
   sim.run_cycle(0);
   const auto& d = sim.sensor_state(0).detections;
   ASSERT_EQ(d.size(), 1u);
@@ -103,7 +103,7 @@ TEST(SensorCycle, RangeRateIncludesYawRateAndMountingOffset) {
   scene.ego = Trajectory({ego});
   scene.sensors[0].X_VS = {3.7, 0.0, kPi / 2};
   add_object(scene, "pole", "pole", {sample(0, 3.7, 10.0, 0, 0)});
-  Simulation sim(scene, exact(OutputLevel::ideal));
+  Simulation sim(scene, exact(ListLevel::ideal));
   sim.run_cycle(0);
   const auto& t = sim.sensor_state(0).ideal;
   ASSERT_EQ(t.size(), 1u);
@@ -126,7 +126,7 @@ TEST(SensorCycle, RangeRateIncludesTheTargetsYawRate) {
   s.yaw_rate_radps = 1.0;
   object.trajectory = Trajectory({s});
   scene.objects.push_back(object);
-  Simulation sim(scene, exact(OutputLevel::ideal));
+  Simulation sim(scene, exact(ListLevel::ideal));
   sim.run_cycle(0);
   const auto& t = sim.sensor_state(0).ideal;
   ASSERT_EQ(t.size(), 1u);
@@ -137,7 +137,7 @@ TEST(SensorCycle, PerpendicularCrossingHoldsLateralPositionThenFollowsCorner) {
   // Paper Fig. 4/5: a car crosses 6 m ahead from left to right at 2 m/s (yaw -90 deg).
   Scene scene = single_sensor_scene(8.0);
   add_object(scene, "car", "passenger_car", {sample(0, 6.9, 8.0, -kPi / 2, 2.0)});
-  Simulation sim(scene, exact(OutputLevel::detections));
+  Simulation sim(scene, exact(ListLevel::detections));
   std::vector<std::pair<double, double>> side, corner;  // (car y, nearest target's lateral y)
   for (int k = 0; k < sim.cycle_count(); ++k) {
     sim.run_cycle(k);
@@ -180,7 +180,7 @@ TEST(SensorCycle, SidePlaneReflectionPointBarelyMovesWithTheCar) {
   // with the model's 72 m radius it moves d/(r+d) = 6/78 of the car's motion.
   Scene scene = single_sensor_scene(1.0);
   add_object(scene, "car", "passenger_car", {sample(0, 6.9, 0.5, -kPi / 2, 2.0)});
-  Simulation sim(scene, exact(OutputLevel::ideal));
+  Simulation sim(scene, exact(ListLevel::ideal));
   std::vector<double> lateral;
   for (int k = 0; k < sim.cycle_count(); ++k) {
     sim.run_cycle(k);
@@ -209,7 +209,7 @@ TEST(SensorCyclePresence, AnObjectTakesPartOnlyWhilePresent) {
   testing::add_object(scene, "board", "guide_board", {testing::sample(0, 5.0, 0.0, kPi / 2, 0)});
   scene.objects.back().presence = {{-1.0, 0.3}};
   SimulationOptions options;
-  options.level = OutputLevel::ideal;
+  options.level = ListLevel::ideal;
   options.noise = false;
   Simulation sim(scene, options);
   const auto pole_targets = [&](double t_s) {
@@ -233,11 +233,11 @@ namespace {
 TEST(SensorCycleReports, DetectionsWithoutTrackingSectionParse) {
   nlohmann::json doc = testing::builtin_sensor_json("srr24");
   ASSERT_FALSE(doc.is_null());
-  EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).reports, SensorOutput::tracks);  // absent: tracks
+  EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).reports, ListLevel::tracks);  // absent: tracks
   doc["reports"] = "detections";
   doc.erase("tracking");
-  EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).reports, SensorOutput::detections);
-  EXPECT_EQ(builtin_sensor_config("aimotive_lrr").reports, SensorOutput::detections);
+  EXPECT_EQ(parse_sensor_config(JsonField(doc, "s.json", "")).reports, ListLevel::detections);
+  EXPECT_EQ(builtin_sensor_config("aimotive_lrr").reports, ListLevel::detections);
   // A tracker needs its section.
   doc["reports"] = "tracks";
   EXPECT_NE(testing::sensor_config_error(doc).find("tracking"), std::string::npos) << testing::sensor_config_error(doc);
@@ -263,10 +263,10 @@ TEST(SensorCycleReports, ASensorThatReportsDetectionsReportsThemAtTheTracksLevel
   testing::add_object(scene, "pole2", "pole", {testing::sample(0, 14.0, -3.0, 0, 0)});
   testing::add_object(scene, "car", "passenger_car", {testing::sample(0, 20.0, 2.0, kPi, 3.0)});
   SimulationOptions at_tracks;
-  at_tracks.level = OutputLevel::tracks;
+  at_tracks.level = ListLevel::tracks;
   at_tracks.seed = 11;
   SimulationOptions at_detections = at_tracks;
-  at_detections.level = OutputLevel::detections;
+  at_detections.level = ListLevel::detections;
   Simulation tracks(scene, at_tracks), detections(scene, at_detections);
   ASSERT_GT(tracks.cycle_count(), 10);
   std::size_t total = 0;

@@ -146,7 +146,7 @@ TEST(SynthSensorDesign, OneRecordingHasOneCycleClockAndOneLevel) {
   scene.cycle_time_s = 0.04;
   MountedSensor detecting = scene.sensors[0];
   detecting.id = "detecting";
-  detecting.config.reports = SensorOutput::detections;
+  detecting.config.reports = ListLevel::detections;
   scene.sensors.push_back(detecting);
   const std::string levels = design_refusal([&] { require_one_recording(scene, SynthConfig{}); });
   EXPECT_NE(levels.find("\"detecting\" (srr24) raw detections"), std::string::npos) << levels;

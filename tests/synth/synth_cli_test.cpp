@@ -136,7 +136,7 @@ TEST_F(SynthCli, AimotiveLrrIsSynthesisedAsA77GhzLongRangeRadar) {
   const rcsim::Recording rec = rcsim::read_recording(out);
   ASSERT_EQ(rec.sensors.size(), 1u);
   EXPECT_EQ(rec.sensors[0].type, "aimotive_lrr");
-  EXPECT_EQ(rec.sensors[0].reports, rcsim::ReportedLevel::detections);
+  EXPECT_EQ(rec.sensors[0].reports, rcsim::ListLevel::detections);
   EXPECT_NEAR(rec.cycle_time_s, 0.0554, 1e-12);  // its own cycle time
   EXPECT_EQ(rec.cycle_count(), 19);               // 0 .. 0.9972 s
   const auto& chain = rec.source["signal_chain"]["front"];

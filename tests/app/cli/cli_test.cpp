@@ -204,7 +204,7 @@ TEST_F(CliUsage, AMistypedCommandIsNamedWithTheNearestCommand) {
       {"replya x --seed 1", "rcsim: unknown command 'replya'; did you mean 'replay'?"},
       {"simulte x", "did you mean 'simulate'?"},
       {"campaign sttaus p", "rcsim campaign: unknown command 'sttaus'; did you mean 'status'?"},
-      {"frobnicate", "rcsim: unknown command 'frobnicate' (commands: simulate, import, replay"},
+      {"frobnicate", "rcsim: unknown command 'frobnicate' (commands: simulate, import, scene, replay"},
   };
   for (const auto& [args, message] : cases) {
     const auto r = run_usage(args);

@@ -64,7 +64,7 @@ TEST_F(ReplayCli, ComparesAtTheLevelTheSensorsReport) {
   Recording rec = testing::model_recording(testing::two_cars_scene(1.0), 2);
   const fs::path tracks = dir_ / "tracks", raw = dir_ / "raw";
   write_recording(tracks, rec);
-  for (auto& s : rec.sensors) s.reports = ReportedLevel::detections;
+  for (auto& s : rec.sensors) s.reports = ListLevel::detections;
   write_recording(raw, rec);
   const std::string db = (dir_ / "r.sqlite").string();
   for (const auto& [dir, extra] : {std::pair{tracks, ""}, std::pair{raw, ""}, std::pair{raw, " --fidelity full"}}) {

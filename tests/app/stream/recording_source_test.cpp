@@ -35,16 +35,16 @@ class WholeRecording {
     frame.t_s = ego.t_s;
     frame.timestamp_ns = to_timestamp_ns(ego.t_s);
     for (std::size_t s = 0; s < rec_.sensors.size(); ++s) {
-      TargetListMessage m = list(k, s, ListLevel::recorded);
+      TargetListMessage m = list(k, s, WireLevel::recorded);
       for (const RecordedTarget& r : rec_.targets) {
         if (r.cycle == k && r.sensor == static_cast<int>(s)) m.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db});
       }
       frame.messages.push_back({MessageType::recorded_targets, m.sensor_index, encode_target_list(m, options_.max_datagram_bytes)});
     }
     simulation_->run_at(ego.t_s - imported_.time_offset_s);
-    const bool tracks = options_.simulation.level == OutputLevel::tracks;
+    const bool tracks = options_.simulation.level == ListLevel::tracks;
     for (std::size_t s = 0; s < rec_.sensors.size(); ++s) {
-      TargetListMessage m = list(k, s, tracks ? ListLevel::tracks : ListLevel::detections);
+      TargetListMessage m = list(k, s, tracks ? WireLevel::tracks : WireLevel::detections);
       const SensorCycleState& state = simulation_->sensor_state(s);
       if (tracks) {
         for (const ReportedTarget& r : state.reported) m.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db});
@@ -75,7 +75,7 @@ class WholeRecording {
   std::size_t target_rows() const { return rec_.targets.size(); }
 
  private:
-  TargetListMessage list(int k, std::size_t s, ListLevel level) const {
+  TargetListMessage list(int k, std::size_t s, WireLevel level) const {
     TargetListMessage m;
     m.cycle = static_cast<std::uint32_t>(k);
     m.sensor_index = static_cast<std::uint16_t>(s);
@@ -144,7 +144,7 @@ TEST(RecordingSource, SeeksAndDetectionsAndSmallDatagramsStayIdentical) {
   const fs::path dir = fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / "city_drive_60s";
   SourceOptions options;
   options.simulation.seed = 4;
-  options.simulation.level = OutputLevel::detections;
+  options.simulation.level = ListLevel::detections;
   options.max_datagram_bytes = 400;  // lists and ground truth in several fragments
   auto streamed = open_source(dir, options);
   const auto check = [&](std::initializer_list<std::pair<int, int>> spans) {

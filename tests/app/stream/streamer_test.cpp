@@ -453,7 +453,7 @@ TEST(StreamLoopback, FragmentedCyclesReassembleEndToEnd) {
                                {rcsim::testing::sample(0.0, 4.0 + 0.7 * i, 0.02 * (i % 7), 0.0, 0.0)});
   }
   SourceOptions source_options;
-  source_options.simulation.level = OutputLevel::detections;
+  source_options.simulation.level = ListLevel::detections;
   source_options.simulation.noise = false;
   source_options.max_datagram_bytes = 400;
   auto source = make_scene_source(scene, source_options);
@@ -598,7 +598,7 @@ TEST(StreamLoopback, BadOptionsAreRefused) {
   EXPECT_EQ(parse_message_mask("simulated,truth"), kSimulatedBit | kTruthBit);
   EXPECT_THROW(parse_message_mask("tracks"), std::invalid_argument);
   SourceOptions ideal;
-  ideal.simulation.level = OutputLevel::ideal;
+  ideal.simulation.level = ListLevel::ideal;
   EXPECT_THROW(make_scene_source(two_sensor_scene(0.2), ideal), std::invalid_argument);
 }
 

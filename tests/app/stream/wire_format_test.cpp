@@ -18,7 +18,7 @@ TargetListMessage make_list(std::size_t n, std::string sensor = "front_left") {
   TargetListMessage m;
   m.cycle = 123456;
   m.sensor_index = 3;
-  m.level = ListLevel::tracks;
+  m.level = WireLevel::tracks;
   m.sensor_id = std::move(sensor);
   for (std::size_t i = 0; i < n; ++i) {
     const double x = static_cast<double>(i);

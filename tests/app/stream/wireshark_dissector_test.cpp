@@ -134,7 +134,7 @@ TEST(StreamDissector, TsharkDecodesTheLoopbackStreamAsTheListenerDoes) {
     rcsim::testing::add_object(scene, fmt::format("pole{}", i), "pole", {rcsim::testing::sample(0.0, 4.0 + 0.7 * i, 0.0, 0.0, 0.0)});
   }
   SourceOptions source_options;
-  source_options.simulation.level = OutputLevel::detections;
+  source_options.simulation.level = ListLevel::detections;
   source_options.simulation.noise = false;
   source_options.max_datagram_bytes = 400;
   auto source = make_scene_source(scene, source_options);

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "replay/evaluate/speed_error.hpp"
+#include "replay/evaluate/bench.hpp"
 
 namespace rcsim::replay {
 

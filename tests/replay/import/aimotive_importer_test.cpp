@@ -93,7 +93,7 @@ TEST_F(AimotiveImporter, CountsAndMountingAsTheSampleHasThem) {
   // The radars get the built-in profile derived from them; no configuration file beside it.
   for (const auto& sensor : rec().sensors) EXPECT_EQ(sensor.type, "aimotive_lrr") << sensor.id;
   EXPECT_TRUE(imported_->extra_files.empty());
-  EXPECT_TRUE(rec().all_sensors_report(ReportedLevel::detections));
+  EXPECT_TRUE(rec().all_sensors_report(ListLevel::detections));
   // RCS (dBsm), SNR and elevation kept as the optional columns.
   for (const RecordedTarget& t : rec().targets) {
     EXPECT_DOUBLE_EQ(t.snr_db, t.amplitude_db);

@@ -104,7 +104,7 @@ TEST_F(AstyxImporter, TheHiresSetIsOneSnapshotRecordingOfItsRadar) {
   const RecordingSensor& s = r.sensors[0];
   EXPECT_EQ(s.id, "radar_6455");
   EXPECT_EQ(s.type, "astyx_hires");
-  EXPECT_EQ(s.reports, ReportedLevel::detections);
+  EXPECT_EQ(s.reports, ListLevel::detections);
   EXPECT_EQ(s.amplitude_unit, AmplitudeUnit::relative_db);
   EXPECT_DOUBLE_EQ(s.x_m, 0.0);
   EXPECT_DOUBLE_EQ(s.yaw_rad, 0.0);  // the radar is the reference frame

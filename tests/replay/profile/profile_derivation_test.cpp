@@ -95,7 +95,7 @@ TEST(ProfileDerive, TheAstyxFramesGiveAstyxHiresHandValues) {
 }
 
 // A small recording of one sensor: `targets` detections per cycle, as `place` puts them.
-Recording made_up(int cycles, int targets, ReportedLevel reports, double (*range_m)(int)) {
+Recording made_up(int cycles, int targets, ListLevel reports, double (*range_m)(int)) {
   Recording r;
   r.dir = "made_up";
   r.name = "made_up";
@@ -124,11 +124,11 @@ void expect_refused(const Recording& r, const std::string& words) {
 TEST(ProfileDerive, RefusesWhatAProfileCannotComeFromNamingWhatIsMissing) {
   const auto spread = [](int i) { return 10.0 + i; };
   const auto one_range = [](int) { return 42.0; };
-  expect_refused(made_up(10, 50, ReportedLevel::tracks, spread), "reports tracks; a profile is derived from raw detections");
-  expect_refused(made_up(1, 500, ReportedLevel::detections, spread), "1 sensor cycle(s): a profile needs at least 2");
-  expect_refused(made_up(10, 5, ReportedLevel::detections, spread), "50 detection(s): a profile needs at least 100");
-  expect_refused(made_up(10, 50, ReportedLevel::detections, one_range), "every detection lies at one range");
-  Recording unknown_base = made_up(10, 50, ReportedLevel::detections, spread);
+  expect_refused(made_up(10, 50, ListLevel::tracks, spread), "reports tracks; a profile is derived from raw detections");
+  expect_refused(made_up(1, 500, ListLevel::detections, spread), "1 sensor cycle(s): a profile needs at least 2");
+  expect_refused(made_up(10, 5, ListLevel::detections, spread), "50 detection(s): a profile needs at least 100");
+  expect_refused(made_up(10, 50, ListLevel::detections, one_range), "every detection lies at one range");
+  Recording unknown_base = made_up(10, 50, ListLevel::detections, spread);
   unknown_base.sensors.front().type = "aimotive-lrr";
   expect_refused(unknown_base, "did you mean \"aimotive_lrr\"?");
 }

@@ -1,6 +1,6 @@
 // The speed-against-error plot (replay/report/svg_pareto.hpp): the Pareto front by hand,
 // superscript labels of the log axis, a plot with nothing to draw. The placed plot itself is
-// checked in speed_error_section_test.cpp on a stored bench.
+// checked in bench_section_test.cpp on a stored bench.
 #include "replay/report/svg_pareto.hpp"
 
 #include <gtest/gtest.h>

@@ -18,7 +18,7 @@ Scene pole_ahead() {
 
 TEST(SimulatedSource, ModelOptionsCompareTracksWithTheGivenSeed) {
   const SimulationOptions options = model_options(42, Fidelity::points_only);
-  EXPECT_EQ(options.level, OutputLevel::tracks);
+  EXPECT_EQ(options.level, ListLevel::tracks);
   EXPECT_EQ(options.seed, 42u);
   EXPECT_EQ(options.fidelity, Fidelity::points_only);
 }

@@ -50,7 +50,7 @@ class HashingSink final : public ReplaySink {
       }
     }
     for (const ObjectInCycle& o : c.objects) {
-      for (double v : {static_cast<double>(o.object), o.x_m, o.y_m, o.yaw_rad, o.in_view ? 1.0 : 0.0}) add(v);
+      for (double v : {static_cast<double>(o.object), o.x_m, o.y_m, o.yaw_rad, o.detectable ? 1.0 : 0.0}) add(v);
     }
   }
   void end_run(const ReplaySummary& s) override {

@@ -1,8 +1,8 @@
 #pragma once
 // The "Speed against error" section of the HTML report: one bench of `rcsim bench` (read by
-// store/speed_error_reader.hpp), summarised per fidelity level over its recordings, and rendered
+// store/bench_reader.hpp), summarised per fidelity level over its recordings, and rendered
 // as the Pareto plot, one small plot per recording and two tables. Text is escaped here.
-#include "replay/store/speed_error_reader.hpp"
+#include "replay/store/bench_reader.hpp"
 
 #include <cstdint>
 #include <optional>

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "replay/evaluate/speed_error.hpp"
+#include "replay/evaluate/bench.hpp"
 
 namespace rcsim::replay {
 

@@ -1,4 +1,4 @@
-#include "replay/store/speed_error_reader.hpp"
+#include "replay/store/bench_reader.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "replay/evaluate/speed_error.hpp"
+#include "replay/evaluate/bench.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>

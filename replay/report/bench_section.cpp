@@ -1,4 +1,4 @@
-#include "replay/report/speed_error_section.hpp"
+#include "replay/report/bench_section.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
-#include "replay/evaluate/speed_error.hpp"
+#include "replay/evaluate/bench.hpp"
 #include "replay/report/html_cells.hpp"
 #include "replay/report/svg_pareto.hpp"
 #include "replay/report/svg_writer.hpp"

@@ -1,4 +1,4 @@
-#include "replay/store/speed_error_store.hpp"
+#include "replay/store/bench_store.hpp"
 
 #include <chrono>
 #include <fmt/chrono.h>

@@ -1,7 +1,7 @@
 // The "Speed against error" section of the HTML report: bench rows written straight into the
 // report database with hand-chosen numbers, then the page checked against the hand-computed
 // aggregates, the Pareto front, the axes and the escaping.
-#include "replay/report/speed_error_section.hpp"
+#include "replay/report/bench_section.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// Storing a bench (replay/store/speed_error_store.hpp): NULLs where a level has no speed or
+// Storing a bench (replay/store/bench_store.hpp): NULLs where a level has no speed or
 // ratio, increasing ids, the bench's seed.
-#include "replay/store/speed_error_store.hpp"
+#include "replay/store/bench_store.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-// rcsim bench's core (replay/evaluate/speed_error.hpp): rows against replay, the reference and
+// rcsim bench's core (replay/evaluate/bench.hpp): rows against replay, the reference and
 // noise-floor rows, hand-computed summaries and goals.
-#include "replay/evaluate/speed_error.hpp"
+#include "replay/evaluate/bench.hpp"
 
 #include <gtest/gtest.h>
 
