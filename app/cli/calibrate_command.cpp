@@ -1,6 +1,6 @@
 // rcsim calibrate [RECORDING_DIR ...] -o DIR: fit the reflectors' ERCS (and, if asked, the
 // amplitude law and the multibounce loss) to recordings, as the paper derives them by inspection
-// of measurements (docs/calibration.md); rcsim replay/bench --calibration DIR use the result.
+// of measurements (docs/calibration.md); rcsim replay or rcsim bench --calibration DIR use the result.
 #include <cmath>
 #include <fmt/format.h>
 #include <iostream>
@@ -223,7 +223,7 @@ void run_calibrate(const CalibrateArgs& args) {
     print_fits("held out (each recording with the parameters fitted on the others)", held_out);
   }
   replay::write_calibration(args.output_dir, result, options, recordings, args.cross_validate ? &held_out : nullptr);
-  std::cout << fmt::format("\ncalibration written to {}; use it with rcsim replay/bench --calibration {}\n",
+  std::cout << fmt::format("\ncalibration written to {}; use it with rcsim replay or rcsim bench --calibration {}\n",
                            args.output_dir, args.output_dir);
 }
 

@@ -101,7 +101,7 @@ std::vector<RecordingFit> cross_validate(const std::vector<Recording>& recording
                                          const std::function<void(const RecordingFit&)>& done = {});
 
 // Writes the fitted documents (DIR/<name>.json) and the index DIR/calibration.json
-// (rcsim-calibration v1) that rcsim replay/bench --calibration DIR read; each file atomically,
+// (rcsim-calibration v1) that rcsim replay or rcsim bench --calibration DIR read; each file atomically,
 // the index last.
 // The rcsim-sensor document a recording's sensor type names: built-in or a file relative to
 // `base_dir` (the recording's directory).

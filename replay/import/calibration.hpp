@@ -1,6 +1,6 @@
 #pragma once
 // A calibration (rcsim-calibration v1, schemas/calibration.md): sensor configurations and object
-// models fitted to recordings by rcsim calibrate (replay/calibration_fit.hpp), which replace the
+// models fitted to recordings by rcsim calibrate (replay/calibrate/calibration_fit.hpp), which replace the
 // built-ins of the same name when rcsim replay or rcsim bench is given --calibration DIR.
 #include <map>
 #include <memory>

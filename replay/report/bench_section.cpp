@@ -134,7 +134,7 @@ std::string parameters_block(const BenchInfo& info) {
 }  // namespace
 
 BenchSummary summarise_bench(const BenchData& bench, std::optional<int> recording) {
-  // The bench's own summary (replay/bench_run.hpp), so that report and rcsim bench agree.
+  // The bench's own summary (replay/evaluate/bench.hpp), so that report and rcsim bench agree.
   std::vector<replay::BenchRow> rows;
   std::vector<double> floors;
   for (const BenchRow& r : bench.rows) {

@@ -152,7 +152,7 @@ class DiscardingSink final : public ReplaySink {
 };
 
 // What is compared against the recording: the reflection-center model at a fidelity level
-// (replay/simulated_source.hpp: ModelSource) or the signal-level reference (ReferenceSource).
+// (replay/run/simulated_source.hpp: ModelSource) or the signal-level reference (ReferenceSource).
 class SimulatedSource {
  public:
   virtual ~SimulatedSource() = default;

@@ -1,5 +1,5 @@
 #pragma once
-// Stores a bench (replay/bench_run.hpp) in the report database: one bench_runs row and its
+// Stores a bench (replay/evaluate/bench.hpp) in the report database: one bench_runs row and its
 // bench_rows, in one transaction (schemas/report-database.md).
 #include <SQLiteCpp/SQLiteCpp.h>
 

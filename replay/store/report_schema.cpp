@@ -129,7 +129,7 @@ CREATE TABLE IF NOT EXISTS summaries (
 ) STRICT;
 )SQL";
 
-// Added in version 2: `rcsim bench` (speed against error, replay/bench_run.hpp).
+// Added in version 2: `rcsim bench` (speed against error, replay/evaluate/bench.hpp).
 extern const char* const kBenchSchemaSql;
 const char* const kBenchSchemaSql = R"SQL(
 CREATE TABLE IF NOT EXISTS bench_runs (
