@@ -60,12 +60,10 @@ std::optional<double> fundamental_period(const std::vector<double>& dt_s) {
   return std::nullopt;
 }
 
-}  // namespace
-
-std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& cells, double threshold_db,
-                                       const std::vector<FramePair>& frame_pairs, std::vector<DerivationFigure>& figures) {
+// The radial speed's noise: a quantised speed's step / sqrt(12), else the stationary fit's residual
+// near the threshold and (the quietest sensor's) far above it.
+std::vector<DerivedValue> range_rate_noise(const DetectionPool& pool, double threshold_db, std::vector<DerivationFigure>& figures) {
   std::vector<DerivedValue> values;
-  // The radial speed.
   if (const auto step = lattice_step(pool, range_rate_of)) {
     const double sigma = round_to(*step / std::sqrt(12.0), 0.001);
     const std::string why = fmt::format("the radial speed is quantised in steps of {:.4f} m/s: step / sqrt(12)", *step);
@@ -117,29 +115,35 @@ std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& c
     }
   }
 
-  // The range and the cycle time: stationary detections matched frame to frame (a drive).
+  return values;
+}
+
+// The cycle time from the static world's shift between matched cycles: the largest time of which
+// every step is a whole multiple; else the recordings' clock (a drive) or the base's (single frames).
+DerivedValue cycle_time(const DetectionPool& pool, const std::vector<FramePair>& frame_pairs, std::vector<DerivationFigure>& figures) {
   std::vector<double> steps_s;
-  std::vector<std::pair<double, double>> residuals;
-  for (const FramePair& pair : frame_pairs) {
-    steps_s.push_back(pair.dt_s);
-    residuals.insert(residuals.end(), pair.range_residuals.begin(), pair.range_residuals.end());
-  }
+  for (const FramePair& pair : frame_pairs) steps_s.push_back(pair.dt_s);
   const std::optional<double> period_s = steps_s.size() >= 10 ? fundamental_period(steps_s) : std::nullopt;
   if (period_s) {
     figures.push_back(histogram_figure("Time between consecutive cycles, from the static world's shift", "step / s", steps_s,
                                        3.0 * *period_s, 60, *period_s, "cycle time"));
-    values.push_back({"cycle_time_s", round_to(*period_s, 0.0001), ValueSource::derived,
-                      fmt::format("the static world's shift between consecutive cycles over the speed: {} steps, median {:.1f} ms, "
-                                  "each a whole multiple of {:.1f} ms (the recordings' clock: {:.1f} ms)",
-                                  steps_s.size(), 1e3 * median(steps_s), 1e3 * *period_s, 1e3 * pool.recorded_cycle_time_s),
-                      static_cast<long long>(steps_s.size())});
-  } else {
-    values.push_back({"cycle_time_s", pool.snapshots ? nlohmann::json() : nlohmann::json(round_to(pool.recorded_cycle_time_s, 0.0001)),
-                      pool.snapshots ? ValueSource::base : ValueSource::recording,
-                      pool.snapshots ? "not observable: single frames, none follows another"
-                                     : fmt::format("the recordings' clock ({} frame pairs matched, too few to show the radar's own)", steps_s.size()),
-                      0});
+    return {"cycle_time_s", round_to(*period_s, 0.0001), ValueSource::derived,
+            fmt::format("the static world's shift between consecutive cycles over the speed: {} steps, median {:.1f} ms, "
+                        "each a whole multiple of {:.1f} ms (the recordings' clock: {:.1f} ms)",
+                        steps_s.size(), 1e3 * median(steps_s), 1e3 * *period_s, 1e3 * pool.recorded_cycle_time_s),
+            static_cast<long long>(steps_s.size())};
   }
+  if (pool.snapshots) return {"cycle_time_s", nullptr, ValueSource::base, "not observable: single frames, none follows another", 0};
+  return {"cycle_time_s", round_to(pool.recorded_cycle_time_s, 0.0001), ValueSource::recording,
+          fmt::format("the recordings' clock ({} frame pairs matched, too few to show the radar's own)", steps_s.size()), 0};
+}
+
+// The range's noise: matched stationary detections' range differences (a drive), a quantised
+// range's step / sqrt(12), or, for single frames, the range cell / sqrt(12).
+std::vector<DerivedValue> range_noise(const DetectionPool& pool, const Cells& cells, const std::vector<FramePair>& frame_pairs) {
+  std::vector<DerivedValue> values;
+  std::vector<std::pair<double, double>> residuals;  // (range m, SNR margin dB)
+  for (const FramePair& pair : frame_pairs) residuals.insert(residuals.end(), pair.range_residuals.begin(), pair.range_residuals.end());
   std::vector<double> low, high;
   for (const auto& [residual_m, margin_db] : residuals) {
     if (margin_db < kLowMarginDb + 2.0) low.push_back(residual_m);
@@ -176,6 +180,17 @@ std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& c
     values.push_back({"measurement_noise.range_sigma_at_threshold_m", nullptr, ValueSource::base, why, 0});
     values.push_back({"measurement_noise.range_sigma_min_m", nullptr, ValueSource::base, why, 0});
   }
+  return values;
+}
+
+}  // namespace
+
+std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& cells, double threshold_db,
+                                       const std::vector<FramePair>& frame_pairs, std::vector<DerivationFigure>& figures) {
+  std::vector<DerivedValue> values = range_rate_noise(pool, threshold_db, figures);
+  values.push_back(cycle_time(pool, frame_pairs, figures));
+  const std::vector<DerivedValue> range = range_noise(pool, cells, frame_pairs);
+  values.insert(values.end(), range.begin(), range.end());
   return values;
 }
 
