@@ -444,121 +444,128 @@ void RunRowWriter::add_cycle(const StoredCycle& cycle, const std::vector<StoredT
 
 void RunRowWriter::flush(int sensor, SensorBlock& block) {
   if (block.cycles.empty()) return;
-  const int first_cycle = block.cycles.front().cycle;
-  const int n = static_cast<int>(block.cycles.size());
-  const bool with_pose = store_ == StoreLevel::full;
-  const bool with_classes = block.cycles.front().classes.has_value();
-  {
-    std::array<ColumnWriter, kCycleColumns> w;
-    LinearPrediction t, x, y, yaw;
-    for (const StoredCycle& c : block.cycles) {
-      w[kTime].put_exact(c.t_s, t.predict());
-      t.push(c.t_s);
-      if (with_pose) {
-        w[kSensorX].put_exact(c.X_WS->x_m, x.predict());
-        w[kSensorY].put_exact(c.X_WS->y_m, y.predict());
-        w[kSensorYaw].put_exact(c.X_WS->yaw_rad, yaw.predict());
-        x.push(c.X_WS->x_m);
-        y.push(c.X_WS->y_m);
-        yaw.push(c.X_WS->yaw_rad);
-      }
-      w[kNRecorded].put_unsigned(static_cast<std::uint64_t>(c.n_recorded));
-      w[kNSimulated].put_unsigned(static_cast<std::uint64_t>(c.n_simulated));
-      w[kNAssigned].put_unsigned(static_cast<std::uint64_t>(c.n_assigned));
-      w[kLocalisation].put_exact(c.gospa_localisation_mp, 0.0);
-      w[kMissed].put_exact(c.gospa_missed_mp, part_prediction(half_cutoff_p_, c.n_recorded, c.n_assigned));
-      w[kFalse].put_exact(c.gospa_false_mp, part_prediction(half_cutoff_p_, c.n_simulated, c.n_assigned));
-      w[kGospa].put_exact(c.gospa_m, gospa_prediction(c.gospa_localisation_mp, c.gospa_missed_mp, c.gospa_false_mp, order_p_));
-      w[kOspa].put_exact(c.ospa_m, ospa_prediction(c.gospa_localisation_mp, c.n_recorded, c.n_simulated, c.n_assigned,
-                                                   half_cutoff_p_, order_p_));
-      w[kMergeRecorded].put_unsigned(static_cast<std::uint64_t>(c.merge_recorded));
-      w[kMergeSimulated].put_unsigned(static_cast<std::uint64_t>(c.merge_simulated));
-      w[kMergeMatched].put_unsigned(static_cast<std::uint64_t>(c.merge_matched));
-      if (with_classes) {
-        const StoredCycle::Classes& k = *c.classes;
-        w[kNObjectRecorded].put_unsigned(static_cast<std::uint64_t>(k.n_object_recorded));
-        w[kNObjectSimulated].put_unsigned(static_cast<std::uint64_t>(k.n_object_simulated));
-        w[kNBackgroundRecorded].put_unsigned(static_cast<std::uint64_t>(k.n_background_recorded));
-        w[kNBackgroundSimulated].put_unsigned(static_cast<std::uint64_t>(k.n_background_simulated));
-        w[kGospaObject].put_exact(k.gospa_object_m, c.gospa_m);
-        w[kOspaObject].put_exact(k.ospa_object_m, c.ospa_m);
-      }
-    }
-    SQLite::Statement& s = *insert_cycles_;
-    s.bind(1, run_id_);
-    s.bind(2, first_cycle);
-    s.bind(3, sensor);
-    s.bind(4, n);
-    s.bind(5, half_cutoff_p_);
-    s.bind(6, order_p_);
-    for (int c = 0; c < kCycleColumns; ++c) {
-      const bool stored = (with_pose || (c != kSensorX && c != kSensorY && c != kSensorYaw)) &&
-                          (with_classes || c < kNObjectRecorded);
-      if (stored) {
-        bind_column(s, 7 + c, w[static_cast<std::size_t>(c)]);
-      } else {
-        s.bind(7 + c);
-      }
-    }
-    s.exec();
-    s.reset();
-  }
-  if (store_ == StoreLevel::full) {
-    std::array<ColumnWriter, kTargetColumns> w;
-    bool optional[3] = {false, false, false};
-    for (const StoredTargetList& list : block.targets) {
-      for (const auto* side : {&list.recorded, &list.simulated}) {
-        for (const StoredTarget& t : *side) {
-          optional[0] = optional[0] || !std::isnan(t.rcs_dbsm);
-          optional[1] = optional[1] || !std::isnan(t.snr_db);
-          optional[2] = optional[2] || !std::isnan(t.elevation_rad);
-        }
-      }
-    }
-    for (const StoredTargetList& list : block.targets) {
-      w[kListRecorded].put_unsigned(list.recorded.size());
-      w[kListSimulated].put_unsigned(list.simulated.size());
-      for (const auto* side : {&list.recorded, &list.simulated}) {
-        for (const StoredTarget& t : *side) {
-          w[kTrack].put_signed(std::max(-1, t.track_id));
-          w[kRange].put_float32(t.range_m);
-          w[kAzimuth].put_float32(t.azimuth_rad);
-          w[kRangeRate].put_float32(t.range_rate_mps);
-          w[kAmplitude].put_float32(t.amplitude_db);
-          w[kObject].put_signed(std::max(-1, t.object));
-          w[kMatch].put_signed(std::max(-1, t.match_idx));
-          w[kFlags].put_unsigned(class_code(t.target_class) + (t.merge_artefact ? kMergeFlag : 0));
-          if (has_offset(t)) {
-            if (!t.p_OT_O) {
-              throw std::invalid_argument(fmt::format("cycle {}: a target of object {} has no offset in its frame",
-                                                      list.cycle, t.object));
-            }
-            w[kXo].put_float32(t.p_OT_O->x());
-            w[kYo].put_float32(t.p_OT_O->y());
-          }
-          if (optional[0]) w[kRcs].put_float32(t.rcs_dbsm);
-          if (optional[1]) w[kSnr].put_float32(t.snr_db);
-          if (optional[2]) w[kElevation].put_float32(t.elevation_rad);
-        }
-      }
-    }
-    SQLite::Statement& s = *insert_targets_;
-    s.bind(1, run_id_);
-    s.bind(2, first_cycle);
-    s.bind(3, sensor);
-    s.bind(4, n);
-    for (int c = 0; c < kTargetColumns; ++c) {
-      if (c >= kRcs && !optional[c - kRcs]) {
-        s.bind(5 + c);
-      } else {
-        bind_column(s, 5 + c, w[static_cast<std::size_t>(c)]);
-      }
-    }
-    s.exec();
-    s.reset();
-  }
+  write_cycle_block(sensor, block.cycles);
+  if (store_ == StoreLevel::full) write_target_block(sensor, block.cycles.front().cycle, block.targets);
   block.cycles.clear();
   block.targets.clear();
+}
+
+// One cycle_blocks row: each column predicted from what came before (time and pose linearly,
+// GOSPA from its parts), so that only the residuals take room.
+void RunRowWriter::write_cycle_block(int sensor, const std::vector<StoredCycle>& cycles) {
+  const int first_cycle = cycles.front().cycle;
+  const int n = static_cast<int>(cycles.size());
+  const bool with_pose = store_ == StoreLevel::full;
+  const bool with_classes = cycles.front().classes.has_value();
+  std::array<ColumnWriter, kCycleColumns> w;
+  LinearPrediction t, x, y, yaw;
+  for (const StoredCycle& c : cycles) {
+    w[kTime].put_exact(c.t_s, t.predict());
+    t.push(c.t_s);
+    if (with_pose) {
+      w[kSensorX].put_exact(c.X_WS->x_m, x.predict());
+      w[kSensorY].put_exact(c.X_WS->y_m, y.predict());
+      w[kSensorYaw].put_exact(c.X_WS->yaw_rad, yaw.predict());
+      x.push(c.X_WS->x_m);
+      y.push(c.X_WS->y_m);
+      yaw.push(c.X_WS->yaw_rad);
+    }
+    w[kNRecorded].put_unsigned(static_cast<std::uint64_t>(c.n_recorded));
+    w[kNSimulated].put_unsigned(static_cast<std::uint64_t>(c.n_simulated));
+    w[kNAssigned].put_unsigned(static_cast<std::uint64_t>(c.n_assigned));
+    w[kLocalisation].put_exact(c.gospa_localisation_mp, 0.0);
+    w[kMissed].put_exact(c.gospa_missed_mp, part_prediction(half_cutoff_p_, c.n_recorded, c.n_assigned));
+    w[kFalse].put_exact(c.gospa_false_mp, part_prediction(half_cutoff_p_, c.n_simulated, c.n_assigned));
+    w[kGospa].put_exact(c.gospa_m, gospa_prediction(c.gospa_localisation_mp, c.gospa_missed_mp, c.gospa_false_mp, order_p_));
+    w[kOspa].put_exact(c.ospa_m, ospa_prediction(c.gospa_localisation_mp, c.n_recorded, c.n_simulated, c.n_assigned,
+                                                 half_cutoff_p_, order_p_));
+    w[kMergeRecorded].put_unsigned(static_cast<std::uint64_t>(c.merge_recorded));
+    w[kMergeSimulated].put_unsigned(static_cast<std::uint64_t>(c.merge_simulated));
+    w[kMergeMatched].put_unsigned(static_cast<std::uint64_t>(c.merge_matched));
+    if (with_classes) {
+      const StoredCycle::Classes& k = *c.classes;
+      w[kNObjectRecorded].put_unsigned(static_cast<std::uint64_t>(k.n_object_recorded));
+      w[kNObjectSimulated].put_unsigned(static_cast<std::uint64_t>(k.n_object_simulated));
+      w[kNBackgroundRecorded].put_unsigned(static_cast<std::uint64_t>(k.n_background_recorded));
+      w[kNBackgroundSimulated].put_unsigned(static_cast<std::uint64_t>(k.n_background_simulated));
+      w[kGospaObject].put_exact(k.gospa_object_m, c.gospa_m);
+      w[kOspaObject].put_exact(k.ospa_object_m, c.ospa_m);
+    }
+  }
+  SQLite::Statement& s = *insert_cycles_;
+  s.bind(1, run_id_);
+  s.bind(2, first_cycle);
+  s.bind(3, sensor);
+  s.bind(4, n);
+  s.bind(5, half_cutoff_p_);
+  s.bind(6, order_p_);
+  for (int c = 0; c < kCycleColumns; ++c) {
+    const bool stored = (with_pose || (c != kSensorX && c != kSensorY && c != kSensorYaw)) &&
+                        (with_classes || c < kNObjectRecorded);
+    if (stored) {
+      bind_column(s, 7 + c, w[static_cast<std::size_t>(c)]);
+    } else {
+      s.bind(7 + c);
+    }
+  }
+  s.exec();
+  s.reset();
+}
+
+// One target_blocks row; the optional columns (RCS, SNR, elevation) only where a target has them.
+void RunRowWriter::write_target_block(int sensor, int first_cycle, const std::vector<StoredTargetList>& targets) {
+  std::array<ColumnWriter, kTargetColumns> w;
+  bool optional[3] = {false, false, false};
+  for (const StoredTargetList& list : targets) {
+    for (const auto* side : {&list.recorded, &list.simulated}) {
+      for (const StoredTarget& t : *side) {
+        optional[0] = optional[0] || !std::isnan(t.rcs_dbsm);
+        optional[1] = optional[1] || !std::isnan(t.snr_db);
+        optional[2] = optional[2] || !std::isnan(t.elevation_rad);
+      }
+    }
+  }
+  for (const StoredTargetList& list : targets) {
+    w[kListRecorded].put_unsigned(list.recorded.size());
+    w[kListSimulated].put_unsigned(list.simulated.size());
+    for (const auto* side : {&list.recorded, &list.simulated}) {
+      for (const StoredTarget& t : *side) {
+        w[kTrack].put_signed(std::max(-1, t.track_id));
+        w[kRange].put_float32(t.range_m);
+        w[kAzimuth].put_float32(t.azimuth_rad);
+        w[kRangeRate].put_float32(t.range_rate_mps);
+        w[kAmplitude].put_float32(t.amplitude_db);
+        w[kObject].put_signed(std::max(-1, t.object));
+        w[kMatch].put_signed(std::max(-1, t.match_idx));
+        w[kFlags].put_unsigned(class_code(t.target_class) + (t.merge_artefact ? kMergeFlag : 0));
+        if (has_offset(t)) {
+          if (!t.p_OT_O) {
+            throw std::invalid_argument(fmt::format("cycle {}: a target of object {} has no offset in its frame",
+                                                    list.cycle, t.object));
+          }
+          w[kXo].put_float32(t.p_OT_O->x());
+          w[kYo].put_float32(t.p_OT_O->y());
+        }
+        if (optional[0]) w[kRcs].put_float32(t.rcs_dbsm);
+        if (optional[1]) w[kSnr].put_float32(t.snr_db);
+        if (optional[2]) w[kElevation].put_float32(t.elevation_rad);
+      }
+    }
+  }
+  SQLite::Statement& s = *insert_targets_;
+  s.bind(1, run_id_);
+  s.bind(2, first_cycle);
+  s.bind(3, sensor);
+  s.bind(4, static_cast<int>(targets.size()));
+  for (int c = 0; c < kTargetColumns; ++c) {
+    if (c >= kRcs && !optional[c - kRcs]) {
+      s.bind(5 + c);
+    } else {
+      bind_column(s, 5 + c, w[static_cast<std::size_t>(c)]);
+    }
+  }
+  s.exec();
+  s.reset();
 }
 
 void RunRowWriter::add_object_states(int cycle, const std::vector<StoredObjectState>& states) {

@@ -125,7 +125,10 @@ class RunRowWriter {
     std::vector<StoredCycle> cycles;
     std::vector<StoredTargetList> targets;
   };
+  // A sensor's open block into its rows: the cycles' columns, then (a full run) the targets'.
   void flush(int sensor, SensorBlock& block);
+  void write_cycle_block(int sensor, const std::vector<StoredCycle>& cycles);
+  void write_target_block(int sensor, int first_cycle, const std::vector<StoredTargetList>& targets);
   void flush_object_states();
 
   SQLite::Database& db_;
