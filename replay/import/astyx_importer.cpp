@@ -498,6 +498,119 @@ nlohmann::json ego_motion_report(bool known, const DopplerSpeeds& doppler) {
            "and 15.6 m/s, against CAN speeds of 0.6, 7.8 and 15.3 m/s"}};
 }
 
+// The frames' targets at cycle k, in the vehicle's horizontal plane.
+void add_frame_targets(const Frame& frame, const Mount& mount, int k, Recording& rec) {
+  for (const RadarPoint& p : read_radar_file(frame.radar)) {
+    RecordedTarget t = planar_target(p, mount.T_VS, mount.X_VS);
+    if (!(t.range_m <= limits::kMaxRange_m)) {  // a mounting can push a point beyond
+      throw InputError(frame.radar.string(), fmt::format("line {}", p.line),
+                       fmt::format("{} m from the radar exceeds the limit of {} m", t.range_m, limits::kMaxRange_m));
+    }
+    t.t_s = static_cast<double>(k);
+    t.cycle = k;
+    t.sensor = 0;
+    rec.targets.push_back(t);
+  }
+}
+
+// Without CAN: the ego's speed from the stationary world's aliased Doppler of one frame's targets.
+void fit_frame_speed(const Recording& rec, std::size_t first_target, const Mount& mount, EgoSample& ego, DopplerSpeeds& doppler) {
+  std::vector<DopplerTarget> doppler_targets;
+  doppler_targets.reserve(rec.targets.size() - first_target);
+  for (std::size_t i = first_target; i < rec.targets.size(); ++i) {
+    const RecordedTarget& t = rec.targets[i];
+    doppler_targets.push_back({t.azimuth_rad, t.elevation_rad, t.range_rate_mps});
+  }
+  const AliasedSpeedFit fit =
+      fit_speed_aliased(doppler_targets, mount.X_VS.yaw_rad, kRangeRateInterval_mps.min_mps, kRangeRateInterval_mps.max_mps);
+  doppler.inliers += fit.inliers;
+  doppler.candidates += fit.candidates;
+  if (fit.valid) {
+    ego.speed_mps = fit.speed_mps;
+    doppler.max_speed_mps = std::max(doppler.max_speed_mps, fit.speed_mps);
+    ++doppler.fitted;
+  } else {
+    ++doppler.unfitted;
+  }
+}
+
+// The labelled boxes of one frame as objects of their own (one box each), counting what is kept
+// (by model) and left out (by class).
+void add_frame_boxes(const Labels& labels, const Frame& frame, double t_s, Recording& rec, std::map<std::string, int>& kept,
+                     std::map<std::string, int>& left_out) {
+  for (const Box& b : labels.boxes) {
+    if (b.model.empty()) {
+      ++left_out[b.dataset_class];
+      continue;
+    }
+    ++kept[b.model];
+    RecordingObject object{b.id, b.model, b.length_m, b.width_m};
+    object.attributes = {{"dataset_class", b.dataset_class}, {"occlusion", b.occlusion},
+                         {"label_certainty", b.label_certainty}, {"height_m", b.height_m},
+                         {"z_m", b.z_m},                        {"frame", frame.number}};
+    rec.objects.push_back(std::move(object));
+    // The world is the reference frame: the ego stands at its origin in every frame.
+    rec.boxes.push_back({{t_s, b.X_VO.x_m, b.X_VO.y_m, wrap_angle_rad(b.X_VO.yaw_rad), 0.0, 0}});
+  }
+}
+
+std::vector<std::string> left_out_warnings(const std::map<std::string, int>& left_out) {
+  std::vector<std::string> models, warnings;
+  if (!left_out.empty()) {
+    const ModelLibrary library = ModelLibrary::builtin();
+    for (const auto& [name, model] : library.models()) models.push_back(name);
+  }
+  for (const auto& [name, count] : left_out) {
+    std::string normalised = name;
+    std::replace(normalised.begin(), normalised.end(), '_', ' ');
+    warnings.push_back(fmt::format("{} boxes of class {} left out: {} (the object models: {})", count, name,
+                                   is_person_or_rider(normalised) ? "no object model for people and riders"
+                                                                  : "not a class the dataset documents, and no object model for it",
+                                   fmt::join(models, ", ")));
+  }
+  return warnings;
+}
+
+// What the frames are: CAN on all of them (the ego motion known) or on none.
+bool ego_motion_known(const Dataset& dataset, const std::vector<Frame>& frames) {
+  const bool known = std::all_of(frames.begin(), frames.end(), [](const Frame& f) { return !f.canbus.empty(); });
+  if (known) return true;
+  for (const Frame& f : frames) {
+    if (!f.canbus.empty()) {
+      throw InputError(dataset.listing.string(), fmt::format("data.{}", f.number),
+                       "some frames have CAN data (canbus) and some none: import them apart (--frames)");
+    }
+  }
+  return false;
+}
+
+// The recording's provenance (schemas/recording.md `source`).
+nlohmann::json astyx_source(const std::string& dataset_name, const std::vector<int>& numbers, const nlohmann::json& frame_indices,
+                            bool ego_known, const DopplerSpeeds& doppler) {
+  return {
+      {"dataset", "Astyx HiRes2019 (Meyer and Kuschk, Automotive Radar Dataset for Deep Learning Based 3D Object "
+                  "Detection, EuRAD 2019)"},
+      {"licence", kLicence},
+      {"importer", "rcsim import --from astyx"},
+      {"sequence", dataset_name},
+      {"frames", numbers},
+      {"frame_index", frame_indices},
+      {"timeline", "each cycle is one labelled frame (a snapshot), cycle k the k-th of source.frames; t_s = k and "
+                   "cycle_time_s = 1 only order the frames, they are no times; frame_index is each frame's index "
+                   "in the original recording"},
+      {"amplitude_db", "Mag, the radar's own dB-like level (range-compensated: not an SNR, not an RCS)"},
+      {"range_rate_mps", fmt::format("-V_r: the dataset's V_r is positive for a target that comes closer (the "
+                                     "stationary world on the demo frames), aliased into {} levels of {} m/s; not "
+                                     "ego-compensated",
+                                     kDopplerLevels, kDopplerStep_mps)},
+      {"targets", "each point X Y Z: range_m and azimuth_rad in the horizontal plane, elevation_rad = atan2(Z, "
+                  "hypot(X, Y))"},
+      {"boxes", "groundtruth_obj3d: center3d and the yaw of orientation_quat (w, x, y, z) in the radar's reference "
+                "frame, dimension3d length and width; the labels hold no velocities, so speed_mps is 0; each object "
+                "is one box of one frame (id fNNNNNN_KK: frame, index in its file)"},
+      {"ego_motion", ego_motion_report(ego_known, doppler)}};
+}
+
 }  // namespace
 }  // namespace astyx
 
@@ -509,15 +622,7 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
   }
   const astyx::Dataset dataset = astyx::find_dataset(raw_dir);
   const std::vector<astyx::Frame> frames = astyx::choose_frames(dataset, options.frames);
-  const bool ego_known = std::all_of(frames.begin(), frames.end(), [](const astyx::Frame& f) { return !f.canbus.empty(); });
-  if (!ego_known) {
-    for (const astyx::Frame& f : frames) {
-      if (!f.canbus.empty()) {
-        throw InputError(dataset.listing.string(), fmt::format("data.{}", f.number),
-                         "some frames have CAN data (canbus) and some none: import them apart (--frames)");
-      }
-    }
-  }
+  const bool ego_known = astyx::ego_motion_known(dataset, frames);
 
   DatasetRecording out;
   Recording& rec = out.recording;
@@ -550,102 +655,24 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
     if (ego_known) ego = astyx::read_canbus(frame.canbus);
     rec.ego.push_back({t_s, 0.0, 0.0, 0.0, ego.speed_mps, ego.yaw_rate_radps});
     const std::size_t first_target = rec.targets.size();
-
-    for (const astyx::RadarPoint& p : astyx::read_radar_file(frame.radar)) {
-      RecordedTarget t = astyx::planar_target(p, mount->T_VS, mount->X_VS);
-      if (!(t.range_m <= limits::kMaxRange_m)) {  // a mounting can push a point beyond
-        throw InputError(frame.radar.string(), fmt::format("line {}", p.line),
-                         fmt::format("{} m from the radar exceeds the limit of {} m", t.range_m, limits::kMaxRange_m));
-      }
-      t.t_s = t_s;
-      t.cycle = static_cast<int>(k);
-      t.sensor = 0;
-      rec.targets.push_back(t);
-    }
-    if (!ego_known) {
-      std::vector<DopplerTarget> doppler_targets;
-      doppler_targets.reserve(rec.targets.size() - first_target);
-      for (std::size_t i = first_target; i < rec.targets.size(); ++i) {
-        const RecordedTarget& t = rec.targets[i];
-        doppler_targets.push_back({t.azimuth_rad, t.elevation_rad, t.range_rate_mps});
-      }
-      const AliasedSpeedFit fit = fit_speed_aliased(doppler_targets, mount->X_VS.yaw_rad, astyx::kRangeRateInterval_mps.min_mps,
-                                                    astyx::kRangeRateInterval_mps.max_mps);
-      doppler.inliers += fit.inliers;
-      doppler.candidates += fit.candidates;
-      if (fit.valid) {
-        rec.ego.back().speed_mps = fit.speed_mps;
-        doppler.max_speed_mps = std::max(doppler.max_speed_mps, fit.speed_mps);
-        ++doppler.fitted;
-      } else {
-        ++doppler.unfitted;
-      }
-    }
-
+    astyx::add_frame_targets(frame, *mount, static_cast<int>(k), rec);
+    if (!ego_known) astyx::fit_frame_speed(rec, first_target, *mount, rec.ego.back(), doppler);
     const astyx::Labels labels = astyx::read_labels(frame);
     numbers.push_back(frame.number);
     frame_indices.push_back(static_cast<long long>(labels.frame_index));
-    for (const astyx::Box& b : labels.boxes) {
-      if (b.model.empty()) {
-        ++left_out[b.dataset_class];
-        continue;
-      }
-      ++kept[b.model];
-      RecordingObject object{b.id, b.model, b.length_m, b.width_m};
-      object.attributes = {{"dataset_class", b.dataset_class}, {"occlusion", b.occlusion},
-                           {"label_certainty", b.label_certainty}, {"height_m", b.height_m},
-                           {"z_m", b.z_m},                        {"frame", frame.number}};
-      rec.objects.push_back(std::move(object));
-      // The world is the reference frame: the ego stands at its origin in every frame.
-      rec.boxes.push_back({{t_s, b.X_VO.x_m, b.X_VO.y_m, wrap_angle_rad(b.X_VO.yaw_rad), 0.0, 0}});
-    }
+    astyx::add_frame_boxes(labels, frame, t_s, rec, kept, left_out);
   }
-  std::vector<std::string> models;
-  if (!left_out.empty()) {
-    const ModelLibrary library = ModelLibrary::builtin();
-    for (const auto& [name, model] : library.models()) models.push_back(name);
-  }
-  for (const auto& [name, count] : left_out) {
-    std::string normalised = name;
-    std::replace(normalised.begin(), normalised.end(), '_', ' ');
-    out.warnings.push_back(fmt::format("{} boxes of class {} left out: {} (the object models: {})", count, name,
-                                       astyx::is_person_or_rider(normalised)
-                                           ? "no object model for people and riders"
-                                           : "not a class the dataset documents, and no object model for it",
-                                       fmt::join(models, ", ")));
-  }
+  out.warnings = astyx::left_out_warnings(left_out);
 
   rec.sensors.push_back({dataset.radar, astyx::kSensorProfile, mount->X_VS.x_m, mount->X_VS.y_m, mount->X_VS.yaw_rad,
                          ListLevel::detections, AmplitudeUnit::relative_db, astyx::kRangeRateInterval_mps});
-
   const bool demo = dataset.listing.filename() == "dataset_info.json";
   rec.description = fmt::format(
       "Astyx HiRes2019 {}: {} labelled frames ({}) of the imaging radar {}, one frame one cycle (snapshots); {} boxes "
       "of cars and {} of trucks and buses; {}",
       demo ? "demo frames" : "dataset", frames.size(), astyx::as_ranges(numbers), dataset.radar, kept["passenger_car"],
       kept["truck_trailer"], ego_known ? "ego motion from CAN" : "no ego motion (snapshots without CAN)");
-  rec.source = {
-      {"dataset", "Astyx HiRes2019 (Meyer and Kuschk, Automotive Radar Dataset for Deep Learning Based 3D Object "
-                  "Detection, EuRAD 2019)"},
-      {"licence", astyx::kLicence},
-      {"importer", "rcsim import --from astyx"},
-      {"sequence", dataset_name},
-      {"frames", numbers},
-      {"frame_index", frame_indices},
-      {"timeline", "each cycle is one labelled frame (a snapshot), cycle k the k-th of source.frames; t_s = k and "
-                   "cycle_time_s = 1 only order the frames, they are no times; frame_index is each frame's index "
-                   "in the original recording"},
-      {"amplitude_db", "Mag, the radar's own dB-like level (range-compensated: not an SNR, not an RCS)"},
-      {"range_rate_mps", fmt::format("-V_r: the dataset's V_r is positive for a target that comes closer (the "
-                                     "stationary world on the demo frames), aliased into {} levels of {} m/s; not "
-                                     "ego-compensated",
-                                     astyx::kDopplerLevels, astyx::kDopplerStep_mps)},
-      {"targets", "each point X Y Z: range_m and azimuth_rad in the horizontal plane, elevation_rad = atan2(Z, "
-                  "hypot(X, Y))"},
-      {"boxes", "groundtruth_obj3d: center3d and the yaw of orientation_quat (w, x, y, z) in the radar's reference "
-                "frame, dimension3d length and width; the labels hold no velocities, so speed_mps is 0; each object "
-                "is one box of one frame (id fNNNNNN_KK: frame, index in its file)"},
-      {"ego_motion", astyx::ego_motion_report(ego_known, doppler)}};
+  rec.source = astyx::astyx_source(dataset_name, numbers, frame_indices, ego_known, doppler);
   if (doppler.unfitted > 0) {
     out.warnings.push_back(fmt::format("{} of {} frames: too few stationary points agree on a speed; the ego is taken "
                                        "as standing there (source.ego_motion)",
