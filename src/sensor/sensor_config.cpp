@@ -157,6 +157,117 @@ MultibounceConfig parse_multibounce(const JsonField& mb) {
   return c;
 }
 
+FieldOfView parse_field_of_view(const JsonField& fov) {
+  FieldOfView out;
+  fov.expect_only({"azimuth_half_deg", "min_range_m", "max_range_m"});
+  const double half_deg = positive(fov, "azimuth_half_deg");
+  if (half_deg >= 90.0) fov.fail("azimuth_half_deg", "must be below 90 (the antenna model covers the front half)");
+  out.azimuth_half_rad = deg_to_rad(half_deg);
+  out.min_range_m = non_negative(fov, "min_range_m");
+  out.max_range_m = positive(fov, "max_range_m", limits::kMaxRange_m);
+  if (out.max_range_m <= out.min_range_m) fov.fail("max_range_m", "must exceed min_range_m");
+  return out;
+}
+
+ExtendedObjects parse_extended_objects(const JsonField& extended) {
+  ExtendedObjects out;
+  extended.expect_only({"diffuse_relative_ercs_per_sqrt_m", "max_pieces_per_face", "diffuse_surface", "box_side_inset_m"});
+  if (extended.has("diffuse_surface")) {
+    const std::string surface = extended.string("diffuse_surface");
+    if (surface == "box") {
+      out.surface = ExtendedObjects::Surface::box;
+    } else if (surface != "model_faces") {
+      extended.fail("diffuse_surface", fmt::format("must be \"model_faces\" or \"box\", got \"{}\"", surface));
+    }
+  }
+  if (extended.has("box_side_inset_m")) {
+    if (out.surface != ExtendedObjects::Surface::box) {
+      extended.fail("box_side_inset_m", "needs \"diffuse_surface\": \"box\"");
+    }
+    out.box_side_inset_m = non_negative(extended, "box_side_inset_m");
+    if (out.box_side_inset_m > 1.0) extended.fail("box_side_inset_m", "must be at most 1");
+  }
+  if (extended.has("max_pieces_per_face")) {
+    out.max_pieces_per_face = positive_int(extended, "max_pieces_per_face", kMaxPiecesPerFace);
+  }
+  out.diffuse_relative_ercs_per_sqrt_m = non_negative(extended, "diffuse_relative_ercs_per_sqrt_m");
+  if (out.diffuse_relative_ercs_per_sqrt_m > 100.0) {
+    extended.fail("diffuse_relative_ercs_per_sqrt_m", "must be at most 100");
+  }
+    return out;
+}
+
+// eq. (6)'s array, its spacing bounded so that eq. (7) inverts over the view field.
+AntennaGeometry parse_antenna(const JsonField& antenna, const FieldOfView& fov) {
+  AntennaGeometry out;
+  antenna.expect_only({"dipole_length_wavelengths", "element_spacing_wavelengths", "amplitude_pattern_exponent"});
+  out.dipole_length_wavelengths = positive(antenna, "dipole_length_wavelengths");
+  out.element_spacing_wavelengths = positive(antenna, "element_spacing_wavelengths");
+  if (const auto n = antenna.optional_number("amplitude_pattern_exponent")) {
+    if (!(*n >= 1.0 && *n <= 4.0)) antenna.fail("amplitude_pattern_exponent", "must be in [1, 4] (1: the paper's |H_sum|)");
+    out.amplitude_pattern_exponent = *n;
+  }
+  // eq. (7) inverts while u = pi (d / lambda) sin(phi) stays within pi/2 over the view field:
+  // d / lambda <= 0.5 / sin(half view), 0.5 for a view field reaching +-90 deg.
+  const double max_spacing = 0.5 / std::sin(fov.azimuth_half_rad);
+  if (out.element_spacing_wavelengths > max_spacing) {
+    antenna.fail("element_spacing_wavelengths",
+                 fmt::format("must be at most 0.5 / sin(azimuth_half) = {:.4f} so that eq. (7) stays monotone over the "
+                             "view field, got {}", max_spacing, out.element_spacing_wavelengths));
+  }
+  return out;
+}
+
+ResolutionCell parse_resolution(const JsonField& res) {
+  ResolutionCell out;
+  res.expect_only({"range_cell_m", "range_rate_cell_mps", "azimuth_cell_deg", "unambiguous_range_rate_mps"});
+  out.range_cell_m = positive(res, "range_cell_m");
+  out.range_rate_cell_mps = positive(res, "range_rate_cell_mps");
+  if (res.has("azimuth_cell_deg")) out.azimuth_cell_rad = deg_to_rad(positive(res, "azimuth_cell_deg", 30.0));
+  if (res.has("unambiguous_range_rate_mps")) {
+    const auto interval = number_pair(res, "unambiguous_range_rate_mps");
+    if (!(interval.first < 0.0 && interval.second > 0.0 && interval.second - interval.first <= 2.0 * limits::kMaxSpeed_mps)) {
+      res.fail("unambiguous_range_rate_mps",
+               fmt::format("must be [min, max] with min < 0 < max and max - min at most {} m/s, got [{}, {}]",
+                           2.0 * limits::kMaxSpeed_mps, interval.first, interval.second));
+    }
+    out.unambiguous_min_mps = interval.first;
+    out.unambiguous_max_mps = interval.second;
+  }
+  return out;
+}
+
+// The angle's noise. An array that resolves azimuth has beams, not monopulse: `array` (angle and
+// pointer noise) instead of `monopulse`.
+void parse_angle_noise(const JsonField& root, SensorConfig& c) {
+  if (c.resolution.resolves_azimuth()) {
+    const auto array = root.member("array");
+    array.expect_only({"azimuth_sigma_deg", "pointer_noise_sigma"});
+    c.array.azimuth_sigma_rad = deg_to_rad(non_negative(array, "azimuth_sigma_deg", 30.0));
+    c.pointer_noise_sigma = non_negative(array, "pointer_noise_sigma");
+  } else if (root.has("array")) {
+    root.fail("array", "only for an array that resolves azimuth (resolution.azimuth_cell_deg)");
+  }
+  if (c.resolution.resolves_azimuth()) {
+    if (root.has("monopulse")) root.fail("monopulse", "an array that resolves azimuth has beams: its noise is in `array`");
+  } else {
+    const auto mono = root.member("monopulse");
+    mono.expect_only({"pointer_noise_sigma"});
+    c.pointer_noise_sigma = non_negative(mono, "pointer_noise_sigma");
+  }
+}
+
+MeasurementNoise parse_measurement_noise(const JsonField& noise) {
+  MeasurementNoise out;
+  noise.expect_only({"range_sigma_at_threshold_m", "range_sigma_min_m", "range_rate_sigma_at_threshold_mps",
+                     "range_rate_sigma_min_mps"});
+  out.range_sigma_at_threshold_m = non_negative(noise, "range_sigma_at_threshold_m");
+  out.range_sigma_min_m = non_negative(noise, "range_sigma_min_m");
+  out.range_rate_sigma_at_threshold_mps = non_negative(noise, "range_rate_sigma_at_threshold_mps");
+  out.range_rate_sigma_min_mps = non_negative(noise, "range_rate_sigma_min_mps");
+  return out;
+}
+
 }  // namespace
 
 SensorConfig parse_sensor_config(const JsonField& root) {
@@ -178,15 +289,7 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   c.carrier_frequency_hz = positive(root, "carrier_frequency_hz");
   c.cycle_time_s = positive(root, "cycle_time_s", limits::kMaxCycleTime_s);
 
-  const auto fov = root.member("field_of_view");
-  fov.expect_only({"azimuth_half_deg", "min_range_m", "max_range_m"});
-  const double half_deg = positive(fov, "azimuth_half_deg");
-  if (half_deg >= 90.0) fov.fail("azimuth_half_deg", "must be below 90 (the antenna model covers the front half)");
-  c.fov.azimuth_half_rad = deg_to_rad(half_deg);
-  c.fov.min_range_m = non_negative(fov, "min_range_m");
-  c.fov.max_range_m = positive(fov, "max_range_m", limits::kMaxRange_m);
-  if (c.fov.max_range_m <= c.fov.min_range_m) fov.fail("max_range_m", "must exceed min_range_m");
-
+  c.fov = parse_field_of_view(root.member("field_of_view"));
   c.amplitude = parse_amplitude_law(root.member("amplitude"));
   if (const auto detection = root.optional_member("detection")) c.detection = parse_detection_model(*detection);
   if (const auto occlusion = root.optional_member("occlusion")) {
@@ -194,94 +297,14 @@ SensorConfig parse_sensor_config(const JsonField& root) {
     c.occlusion.loss_db = non_negative(*occlusion, "loss_db");
     if (c.occlusion.loss_db > kMaxLevelMagnitudeDb) occlusion->fail("loss_db", fmt::format("must be at most {}", kMaxLevelMagnitudeDb));
   }
-  if (const auto extended = root.optional_member("extended_objects")) {
-    extended->expect_only({"diffuse_relative_ercs_per_sqrt_m", "max_pieces_per_face", "diffuse_surface", "box_side_inset_m"});
-    if (extended->has("diffuse_surface")) {
-      const std::string surface = extended->string("diffuse_surface");
-      if (surface == "box") {
-        c.extended_objects.surface = ExtendedObjects::Surface::box;
-      } else if (surface != "model_faces") {
-        extended->fail("diffuse_surface", fmt::format("must be \"model_faces\" or \"box\", got \"{}\"", surface));
-      }
-    }
-    if (extended->has("box_side_inset_m")) {
-      if (c.extended_objects.surface != ExtendedObjects::Surface::box) {
-        extended->fail("box_side_inset_m", "needs \"diffuse_surface\": \"box\"");
-      }
-      c.extended_objects.box_side_inset_m = non_negative(*extended, "box_side_inset_m");
-      if (c.extended_objects.box_side_inset_m > 1.0) extended->fail("box_side_inset_m", "must be at most 1");
-    }
-    if (extended->has("max_pieces_per_face")) {
-      c.extended_objects.max_pieces_per_face = positive_int(*extended, "max_pieces_per_face", kMaxPiecesPerFace);
-    }
-    c.extended_objects.diffuse_relative_ercs_per_sqrt_m = non_negative(*extended, "diffuse_relative_ercs_per_sqrt_m");
-    if (c.extended_objects.diffuse_relative_ercs_per_sqrt_m > 100.0) {
-      extended->fail("diffuse_relative_ercs_per_sqrt_m", "must be at most 100");
-    }
-  }
-
-  const auto antenna = root.member("antenna");
-  antenna.expect_only({"dipole_length_wavelengths", "element_spacing_wavelengths", "amplitude_pattern_exponent"});
-  c.antenna.dipole_length_wavelengths = positive(antenna, "dipole_length_wavelengths");
-  c.antenna.element_spacing_wavelengths = positive(antenna, "element_spacing_wavelengths");
-  if (const auto n = antenna.optional_number("amplitude_pattern_exponent")) {
-    if (!(*n >= 1.0 && *n <= 4.0)) antenna.fail("amplitude_pattern_exponent", "must be in [1, 4] (1: the paper's |H_sum|)");
-    c.antenna.amplitude_pattern_exponent = *n;
-  }
-  // eq. (7) inverts while u = pi (d / lambda) sin(phi) stays within pi/2 over the view field:
-  // d / lambda <= 0.5 / sin(half view), 0.5 for a view field reaching +-90 deg.
-  const double max_spacing = 0.5 / std::sin(c.fov.azimuth_half_rad);
-  if (c.antenna.element_spacing_wavelengths > max_spacing) {
-    antenna.fail("element_spacing_wavelengths",
-                 fmt::format("must be at most 0.5 / sin(azimuth_half) = {:.4f} so that eq. (7) stays monotone over the "
-                             "view field, got {}", max_spacing, c.antenna.element_spacing_wavelengths));
-  }
-
-  const auto res = root.member("resolution");
-  res.expect_only({"range_cell_m", "range_rate_cell_mps", "azimuth_cell_deg", "unambiguous_range_rate_mps"});
-  c.resolution.range_cell_m = positive(res, "range_cell_m");
-  c.resolution.range_rate_cell_mps = positive(res, "range_rate_cell_mps");
-  if (res.has("azimuth_cell_deg")) c.resolution.azimuth_cell_rad = deg_to_rad(positive(res, "azimuth_cell_deg", 30.0));
-  if (res.has("unambiguous_range_rate_mps")) {
-    const auto interval = number_pair(res, "unambiguous_range_rate_mps");
-    if (!(interval.first < 0.0 && interval.second > 0.0 && interval.second - interval.first <= 2.0 * limits::kMaxSpeed_mps)) {
-      res.fail("unambiguous_range_rate_mps",
-               fmt::format("must be [min, max] with min < 0 < max and max - min at most {} m/s, got [{}, {}]",
-                           2.0 * limits::kMaxSpeed_mps, interval.first, interval.second));
-    }
-    c.resolution.unambiguous_min_mps = interval.first;
-    c.resolution.unambiguous_max_mps = interval.second;
-  }
+  if (const auto extended = root.optional_member("extended_objects")) c.extended_objects = parse_extended_objects(*extended);
+  c.antenna = parse_antenna(root.member("antenna"), c.fov);
+  c.resolution = parse_resolution(root.member("resolution"));
   if (c.detection.strongest_beam_per_cell && !c.resolution.resolves_azimuth()) {
     root.fail("detection.reported_beams", "needs an array that resolves azimuth (resolution.azimuth_cell_deg)");
   }
-
-  // An array that resolves azimuth has beams, not monopulse: `array` (angle and pointer noise)
-  // instead of `monopulse`.
-  if (c.resolution.resolves_azimuth()) {
-    const auto array = root.member("array");
-    array.expect_only({"azimuth_sigma_deg", "pointer_noise_sigma"});
-    c.array.azimuth_sigma_rad = deg_to_rad(non_negative(array, "azimuth_sigma_deg", 30.0));
-    c.pointer_noise_sigma = non_negative(array, "pointer_noise_sigma");
-  } else if (root.has("array")) {
-    root.fail("array", "only for an array that resolves azimuth (resolution.azimuth_cell_deg)");
-  }
-  if (c.resolution.resolves_azimuth()) {
-    if (root.has("monopulse")) root.fail("monopulse", "an array that resolves azimuth has beams: its noise is in `array`");
-  } else {
-    const auto mono = root.member("monopulse");
-    mono.expect_only({"pointer_noise_sigma"});
-    c.pointer_noise_sigma = non_negative(mono, "pointer_noise_sigma");
-  }
-
-  const auto noise = root.member("measurement_noise");
-  noise.expect_only({"range_sigma_at_threshold_m", "range_sigma_min_m", "range_rate_sigma_at_threshold_mps",
-                     "range_rate_sigma_min_mps"});
-  c.noise.range_sigma_at_threshold_m = non_negative(noise, "range_sigma_at_threshold_m");
-  c.noise.range_sigma_min_m = non_negative(noise, "range_sigma_min_m");
-  c.noise.range_rate_sigma_at_threshold_mps = non_negative(noise, "range_rate_sigma_at_threshold_mps");
-  c.noise.range_rate_sigma_min_mps = non_negative(noise, "range_rate_sigma_min_mps");
-
+  parse_angle_noise(root, c);
+  c.noise = parse_measurement_noise(root.member("measurement_noise"));
   // A sensor that reports detections has no tracker: its `tracking` section may be left out.
   if (c.reports == ListLevel::tracks || root.has("tracking")) c.tracker = parse_tracker(root.member("tracking"));
 
