@@ -314,24 +314,18 @@ std::vector<std::string> ids_of(const Recording& rec) {
 
 }  // namespace
 
-void write_recording(const fs::path& dir, const Recording& rec, const std::map<std::string, std::string>& extra_files) {
-  const fs::path target = fs::absolute(dir).lexically_normal();
-  const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
-  const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
-  // The parent is made as `mkdir -p` would: `import ... -o out/rec` in a fresh clone just works.
-  std::error_code error;
-  fs::create_directories(parent, error);
-  if (!fs::is_directory(parent)) {
-    throw InputError(dir.string(), "", fmt::format("cannot make the parent directory: {}", error ? error.message() : "not a directory"));
-  }
-  check_output_directory(target, "recording.json");
-  // Ids go into CSV rows, one row per line: what the reader could not read back is not written.
+namespace {
+
+// What the reader could not read back is not written: ids that are not one line, version 3's
+// fields as the reader takes them.
+void check_writable(const Recording& rec) {
+  // Ids go into CSV rows, one row per line.
   for (const auto& id : ids_of(rec)) {
     if (const auto bad = find_control_character(id)) {
       throw std::invalid_argument(fmt::format("the id '{}' holds {}: a recording's ids are one line", id, *bad));
     }
   }
-  // Version 3's fields as the reader takes them: what it could not read back is not written.
+  // Version 3's fields as the reader takes them.
   for (const auto& s : rec.sensors) {
     if (!s.range_rate_interval_mps) continue;
     if (const auto problem = interval_problem(*s.range_rate_interval_mps)) {
@@ -345,62 +339,87 @@ void write_recording(const fs::path& dir, const Recording& rec, const std::map<s
           fmt::format("object '{}': attributes{}{}: {}", o.id, member.empty() ? "" : ".", member, *problem));
     }
   }
+}
+
+std::string ego_csv(const Recording& rec) {
+  std::string ego = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
+  for (const auto& e : rec.ego) {
+    fmt::format_to(std::back_inserter(ego), "{:.6f},{:.4f},{:.4f},{:.6f},{:.4f},{:.6f}\n", e.t_s, e.x_m, e.y_m,
+                   e.yaw_rad, e.speed_mps, e.yaw_rate_radps);
+  }
+  return ego;
+}
+
+std::string objects_csv(const Recording& rec) {
+  // Rows in time order, objects in recording order within one time.
+  std::vector<std::pair<std::size_t, const AnnotatedBox*>> rows;
+  for (std::size_t i = 0; i < rec.boxes.size(); ++i) {
+    for (const auto& b : rec.boxes[i]) rows.emplace_back(i, &b);
+  }
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second->t_s < b.second->t_s; });
+  std::string objects = "t_s,object,x_m,y_m,yaw_rad,speed_mps\n";
+  for (const auto& [i, b] : rows) {
+    fmt::format_to(std::back_inserter(objects), "{:.6f},{},{:.4f},{:.4f},{:.6f},{:.4f}\n", b->t_s,
+                   csv_field(rec.objects[i].id), b->x_m, b->y_m, b->yaw_rad, b->speed_mps);
+  }
+  return objects;
+}
+
+std::string targets_csv(const Recording& rec) {
+  // The id column only when the sensors report track ids (raw detections have none).
+  const bool ids = std::any_of(rec.targets.begin(), rec.targets.end(), [](const RecordedTarget& t) { return t.id >= 0; });
+  // The optional columns only where some target has the value.
+  const auto any = [&](double RecordedTarget::*field) {
+    return std::any_of(rec.targets.begin(), rec.targets.end(), [&](const RecordedTarget& t) { return std::isfinite(t.*field); });
+  };
+  const bool rcs = any(&RecordedTarget::rcs_dbsm), snr = any(&RecordedTarget::snr_db),
+             elevation = any(&RecordedTarget::elevation_rad);
+  // A column holds a number in every row (the reader refuses empty fields and nan).
+  for (const auto& t : rec.targets) {
+    if ((rcs && !std::isfinite(t.rcs_dbsm)) || (snr && !std::isfinite(t.snr_db)) ||
+        (elevation && !std::isfinite(t.elevation_rad))) {
+      throw std::invalid_argument("targets.csv: an optional column (rcs_dbsm, snr_db, elevation_rad) is given for "
+                                  "some targets only");
+    }
+  }
+  std::string targets = ids ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db"
+                            : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db";
+  targets += std::string(rcs ? ",rcs_dbsm" : "") + (snr ? ",snr_db" : "") + (elevation ? ",elevation_rad" : "") + "\n";
+  for (const auto& t : rec.targets) {
+    fmt::format_to(std::back_inserter(targets), "{:.6f},{},{},", t.t_s, t.cycle, csv_field(rec.sensors[t.sensor].id));
+    if (ids) fmt::format_to(std::back_inserter(targets), "{},", t.id);
+    fmt::format_to(std::back_inserter(targets), "{:.4f},{:.6f},{:.4f},{:.3f}", t.range_m, t.azimuth_rad,
+                   t.range_rate_mps, t.amplitude_db);
+    if (rcs) fmt::format_to(std::back_inserter(targets), ",{:.3f}", t.rcs_dbsm);
+    if (snr) fmt::format_to(std::back_inserter(targets), ",{:.3f}", t.snr_db);
+    if (elevation) fmt::format_to(std::back_inserter(targets), ",{:.6f}", t.elevation_rad);
+    targets += '\n';
+  }
+  return targets;
+}
+
+}  // namespace
+
+void write_recording(const fs::path& dir, const Recording& rec, const std::map<std::string, std::string>& extra_files) {
+  const fs::path target = fs::absolute(dir).lexically_normal();
+  const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
+  const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
+  // The parent is made as `mkdir -p` would: `import ... -o out/rec` in a fresh clone just works.
+  std::error_code error;
+  fs::create_directories(parent, error);
+  if (!fs::is_directory(parent)) {
+    throw InputError(dir.string(), "", fmt::format("cannot make the parent directory: {}", error ? error.message() : "not a directory"));
+  }
+  check_output_directory(target, "recording.json");
+  check_writable(rec);
   const fs::path temp = parent / fmt::format(".{}.tmp.{}", name.string(), ::getpid());
   fs::remove_all(temp);
   fs::create_directory(temp);
   try {
     write_file(temp / "recording.json", header_text(rec));
-
-    std::string ego = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
-    for (const auto& e : rec.ego) {
-      fmt::format_to(std::back_inserter(ego), "{:.6f},{:.4f},{:.4f},{:.6f},{:.4f},{:.6f}\n", e.t_s, e.x_m, e.y_m,
-                     e.yaw_rad, e.speed_mps, e.yaw_rate_radps);
-    }
-    write_file(temp / "ego.csv", ego);
-
-    // Rows in time order, objects in recording order within one time.
-    std::vector<std::pair<std::size_t, const AnnotatedBox*>> rows;
-    for (std::size_t i = 0; i < rec.boxes.size(); ++i) {
-      for (const auto& b : rec.boxes[i]) rows.emplace_back(i, &b);
-    }
-    std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second->t_s < b.second->t_s; });
-    std::string objects = "t_s,object,x_m,y_m,yaw_rad,speed_mps\n";
-    for (const auto& [i, b] : rows) {
-      fmt::format_to(std::back_inserter(objects), "{:.6f},{},{:.4f},{:.4f},{:.6f},{:.4f}\n", b->t_s,
-                     csv_field(rec.objects[i].id), b->x_m, b->y_m, b->yaw_rad, b->speed_mps);
-    }
-    write_file(temp / "objects.csv", objects);
-
-    // The id column only when the sensors report track ids (raw detections have none).
-    const bool ids = std::any_of(rec.targets.begin(), rec.targets.end(), [](const RecordedTarget& t) { return t.id >= 0; });
-    // The optional columns only where some target has the value.
-    const auto any = [&](double RecordedTarget::*field) {
-      return std::any_of(rec.targets.begin(), rec.targets.end(), [&](const RecordedTarget& t) { return std::isfinite(t.*field); });
-    };
-    const bool rcs = any(&RecordedTarget::rcs_dbsm), snr = any(&RecordedTarget::snr_db),
-               elevation = any(&RecordedTarget::elevation_rad);
-    // A column holds a number in every row (the reader refuses empty fields and nan).
-    for (const auto& t : rec.targets) {
-      if ((rcs && !std::isfinite(t.rcs_dbsm)) || (snr && !std::isfinite(t.snr_db)) ||
-          (elevation && !std::isfinite(t.elevation_rad))) {
-        throw std::invalid_argument("targets.csv: an optional column (rcs_dbsm, snr_db, elevation_rad) is given for "
-                                    "some targets only");
-      }
-    }
-    std::string targets = ids ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db"
-                              : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db";
-    targets += std::string(rcs ? ",rcs_dbsm" : "") + (snr ? ",snr_db" : "") + (elevation ? ",elevation_rad" : "") + "\n";
-    for (const auto& t : rec.targets) {
-      fmt::format_to(std::back_inserter(targets), "{:.6f},{},{},", t.t_s, t.cycle, csv_field(rec.sensors[t.sensor].id));
-      if (ids) fmt::format_to(std::back_inserter(targets), "{},", t.id);
-      fmt::format_to(std::back_inserter(targets), "{:.4f},{:.6f},{:.4f},{:.3f}", t.range_m, t.azimuth_rad,
-                     t.range_rate_mps, t.amplitude_db);
-      if (rcs) fmt::format_to(std::back_inserter(targets), ",{:.3f}", t.rcs_dbsm);
-      if (snr) fmt::format_to(std::back_inserter(targets), ",{:.3f}", t.snr_db);
-      if (elevation) fmt::format_to(std::back_inserter(targets), ",{:.6f}", t.elevation_rad);
-      targets += '\n';
-    }
-    write_file(temp / "targets.csv", targets);
+    write_file(temp / "ego.csv", ego_csv(rec));
+    write_file(temp / "objects.csv", objects_csv(rec));
+    write_file(temp / "targets.csv", targets_csv(rec));
     for (const auto& [file, content] : extra_files) write_file(temp / fs::path(file).filename(), content);
 
     // A directory cannot be renamed over a non-empty one: move the old one aside first.
