@@ -139,7 +139,7 @@ class RowWriter {
   long long rows_ = 0;
 };
 
-long long export_rows(SQLite::Database& db, const ExportArgs& args, std::ostream& out) {
+long long export_rows(replay::ReportDatabase& db, const ExportArgs& args, std::ostream& out) {
   RowWriter writer(out, args.format == "csv");
   const std::int64_t run = args.run_id;
   if (args.table == "cycles") {

@@ -182,7 +182,7 @@ void replay_and_store(ReplayArgs& args);
 void run_replay(ReplayArgs& args) {
   try {
     replay_and_store(args);
-  } catch (const SQLite::Exception& e) {
+  } catch (const replay::StoreError& e) {
     // A full disk or a failing file system while the run was stored: it was rolled back, the runs
     // stored before are intact. Named, with SQLite's reason.
     throw std::runtime_error(fmt::format("{}: cannot store the run: {}; the report keeps the runs stored before it",
@@ -220,7 +220,7 @@ std::string verdict_word(const replay::campaign::RunVerdict* verdict) {
 
 // A run of this identity stored already (the same recording, seed, sensors and parameters give
 // the same figures): said, with its verdict, and nothing stored.
-bool print_if_stored(SQLite::Database& db, const ReplayArgs& args, const Recording& recording,
+bool print_if_stored(replay::ReportDatabase& db, const ReplayArgs& args, const Recording& recording,
                      const replay::ReplayOptions& options) {
   const replay::RunIdentity planned = replay::planned_run_identity(
       recording_checksum(args.recording_dir),
@@ -246,7 +246,7 @@ bool print_if_stored(SQLite::Database& db, const ReplayArgs& args, const Recordi
   return false;
 }
 
-void store_and_print(SQLite::Database& db, ReplayArgs& args, const Recording& recording,
+void store_and_print(replay::ReportDatabase& db, ReplayArgs& args, const Recording& recording,
                      const replay::ReplayOptions& options);
 
 // Reads the criteria and the recording's header, opens the report, and stores the run unless one
@@ -277,7 +277,7 @@ void replay_and_store(ReplayArgs& args) {
 }
 
 // The replay stored as one run, judged, and printed verdict first.
-void store_and_print(SQLite::Database& db, ReplayArgs& args, const Recording& recording,
+void store_and_print(replay::ReportDatabase& db, ReplayArgs& args, const Recording& recording,
                      const replay::ReplayOptions& options) {
   replay::ReportWriter writer(db, replay::store_level_from_name(args.store));
   std::unique_ptr<replay::ReplaySink> wrapper;

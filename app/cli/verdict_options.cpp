@@ -62,7 +62,7 @@ void read_verdict_criteria(VerdictArgs& args) {
   if (!args.junit_path.empty()) check_output_file(args.junit_path);
 }
 
-std::optional<Verdicts> judge_runs(SQLite::Database& db, const VerdictArgs& args, std::optional<std::int64_t> only_run,
+std::optional<Verdicts> judge_runs(replay::ReportDatabase& db, const VerdictArgs& args, std::optional<std::int64_t> only_run,
                                    const std::string& suite, bool default_tolerances) {
   std::vector<Criterion> criteria;
   CriteriaSource source = CriteriaSource::report;

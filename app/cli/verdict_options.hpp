@@ -3,7 +3,6 @@
 // (replay/campaign/criteria.hpp), the failures printed (or given as JSON), JUnit written, and
 // the exit status 3 when anything failed (README, "Exit status").
 #include <CLI/CLI.hpp>
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "replay/campaign/criteria.hpp"
+#include "replay/store/report_database.hpp"
 
 namespace rcsim::cli {
 
@@ -45,7 +45,7 @@ void read_verdict_criteria(VerdictArgs& args);
 // (replacing its criteria, so that rcsim report shows them); a campaign's report keeps its
 // manifest's, and FILE judges this once. The default tolerances set the exit status only when
 // asked for (--criteria defaults). Nothing to judge and no JUnit: nullopt.
-std::optional<replay::campaign::Verdicts> judge_runs(SQLite::Database& db, const VerdictArgs& args,
+std::optional<replay::campaign::Verdicts> judge_runs(replay::ReportDatabase& db, const VerdictArgs& args,
                                                      std::optional<std::int64_t> only_run, const std::string& suite,
                                                      bool default_tolerances = false);
 

@@ -151,9 +151,9 @@ std::vector<Criterion> criteria_from_rows(const std::vector<CriterionRow>& rows)
   return out;
 }
 
-std::vector<Criterion> stored_criteria(SQLite::Database& db) { return criteria_from_rows(read_criterion_rows(db)); }
+std::vector<Criterion> stored_criteria(ReportDatabase& db) { return criteria_from_rows(read_criterion_rows(db)); }
 
-void store_criteria(SQLite::Database& db, const std::vector<Criterion>& criteria) {
+void store_criteria(ReportDatabase& db, const std::vector<Criterion>& criteria) {
   replace_criterion_rows(db, criterion_rows(criteria));
 }
 
@@ -161,7 +161,7 @@ bool Verdicts::passed() const {
   return runs_failed == 0 && std::all_of(campaign.begin(), campaign.end(), [](const auto& r) { return r.passed; });
 }
 
-Verdicts judge(SQLite::Database& db, const std::vector<Criterion>& criteria, std::optional<std::int64_t> only_run) {
+Verdicts judge(ReportDatabase& db, const std::vector<Criterion>& criteria, std::optional<std::int64_t> only_run) {
   Verdicts out;
   out.criteria = criteria;
   std::vector<std::string> figures;

@@ -5,7 +5,6 @@
 // a run lacks fails its criterion unless the criterion says `"if_missing": "pass"`. Criteria live
 // in a campaign manifest or an `rcsim-criteria` document, and in the report database (table
 // `criteria`), from which every verdict is computed when it is needed.
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -16,6 +15,7 @@
 #include "common/json_reader.hpp"
 #include "replay/campaign/run_figures.hpp"
 #include "replay/store/campaign_store.hpp"
+#include "replay/store/report_database.hpp"
 
 namespace rcsim::replay::campaign {
 
@@ -47,8 +47,8 @@ std::vector<Criterion> parse_criteria(const JsonField& document);
 std::vector<Criterion> read_criteria_file(const std::filesystem::path& path);
 
 // The criteria stored in a report database (in order), and replacing them.
-std::vector<Criterion> stored_criteria(SQLite::Database& db);
-void store_criteria(SQLite::Database& db, const std::vector<Criterion>& criteria);
+std::vector<Criterion> stored_criteria(ReportDatabase& db);
+void store_criteria(ReportDatabase& db, const std::vector<Criterion>& criteria);
 
 // The criteria as the table criteria holds them (replay/store/campaign_store.hpp), and back.
 std::vector<CriterionRow> criterion_rows(const std::vector<Criterion>& criteria);
@@ -89,7 +89,7 @@ struct Verdicts {
 // Judges the runs of the database by the criteria: all of them, with the campaign criteria over
 // all; or the one run given (rcsim replay), by the per-recording criteria alone. A criterion of
 // a kind judges the runs of that kind only.
-Verdicts judge(SQLite::Database& db, const std::vector<Criterion>& criteria,
+Verdicts judge(ReportDatabase& db, const std::vector<Criterion>& criteria,
                std::optional<std::int64_t> only_run = std::nullopt);
 
 // The results of one run grouped by figure, in the criteria's order: a figure bounded from

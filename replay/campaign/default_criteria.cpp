@@ -62,7 +62,7 @@ const std::vector<Criterion>& default_criteria() {
   return criteria;
 }
 
-Verdicts judge_report(SQLite::Database& db, std::optional<std::int64_t> only_run) {
+Verdicts judge_report(ReportDatabase& db, std::optional<std::int64_t> only_run) {
   std::vector<Criterion> criteria = stored_criteria(db);
   const bool own = !criteria.empty();
   Verdicts verdicts = judge(db, own ? criteria : default_criteria(), only_run);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "replay/campaign/criteria.hpp"
+#include "replay/store/report_database.hpp"
 
 namespace rcsim::replay::campaign {
 
@@ -19,6 +20,6 @@ const std::vector<Criterion>& default_criteria();
 
 // The runs judged as rcsim report shows them (all, or the one given): by the report's own criteria
 // (a campaign's, or a stored --criteria file's), else by the default tolerances of each run's kind.
-Verdicts judge_report(SQLite::Database& db, std::optional<std::int64_t> only_run = std::nullopt);
+Verdicts judge_report(ReportDatabase& db, std::optional<std::int64_t> only_run = std::nullopt);
 
 }  // namespace rcsim::replay::campaign

@@ -124,7 +124,7 @@ std::string figure_names() {
   return out + ", wasserstein1.QUANTITY, kolmogorov_smirnov.QUANTITY (QUANTITY: " + quantities + ")";
 }
 
-std::vector<RunFigureRow> read_run_figures(SQLite::Database& db, const std::vector<std::string>& figures) {
+std::vector<RunFigureRow> read_run_figures(ReportDatabase& db, const std::vector<std::string>& figures) {
   // What each figure asked for is computed from: a catalogue entry, or a distance of a quantity.
   std::vector<const CatalogueEntry*> entries(figures.size(), nullptr);
   std::map<std::string, std::vector<std::size_t>> distances;  // quantity -> figure indices

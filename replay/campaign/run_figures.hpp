@@ -5,7 +5,6 @@
 // (replay/store/campaign_store.hpp). A figure is missing (nullopt) where the run has nothing to
 // compute it from: no latency pair, no object in view, nothing recorded, a run stored before the
 // figure existed.
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
 #include <optional>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "replay/run/run_kind.hpp"
+#include "replay/store/report_database.hpp"
 
 namespace rcsim::replay::campaign {
 
@@ -48,6 +48,6 @@ struct RunFigureRow {
 
 // The figures asked for (names as find_figure accepts; unknown ones throw std::invalid_argument)
 // of every run, by run id.
-std::vector<RunFigureRow> read_run_figures(SQLite::Database& db, const std::vector<std::string>& figures);
+std::vector<RunFigureRow> read_run_figures(ReportDatabase& db, const std::vector<std::string>& figures);
 
 }  // namespace rcsim::replay::campaign

@@ -14,7 +14,7 @@
 
 namespace rcsim::replay::campaign {
 
-void claim_report_for_campaign(SQLite::Database& db, const std::string& db_path, const CampaignManifest& manifest) {
+void claim_report_for_campaign(ReportDatabase& db, const std::string& db_path, const CampaignManifest& manifest) {
   const auto stored = claim_campaign(db, manifest.name, manifest.document.dump(), criterion_rows(manifest.criteria));
   if (!stored) return;  // claimed now
   if (stored->name != manifest.name) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "replay/campaign/plan.hpp"
+#include "replay/store/report_database.hpp"
 
 namespace rcsim::replay::campaign {
 
@@ -25,6 +26,6 @@ ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log);
 
 // Writes the campaign's name, manifest and criteria into a report that has none; refuses one of
 // another campaign (the shards of two campaigns never mix), naming the file.
-void claim_report_for_campaign(SQLite::Database& db, const std::string& db_path, const CampaignManifest& manifest);
+void claim_report_for_campaign(ReportDatabase& db, const std::string& db_path, const CampaignManifest& manifest);
 
 }  // namespace rcsim::replay::campaign

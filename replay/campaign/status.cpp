@@ -1,6 +1,5 @@
 #include "replay/campaign/status.hpp"
 
-#include <SQLiteCpp/SQLiteCpp.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"
 
 namespace rcsim::replay::campaign {
@@ -18,9 +18,8 @@ namespace {
 std::set<std::string> stored_dirs(const fs::path& report) {
   std::set<std::string> out;
   if (!fs::exists(report)) return out;
-  SQLite::Database db(report.string(), SQLite::OPEN_READONLY);
-  db.setBusyTimeout(5000);
-  for (const std::string& dir : stored_recording_dirs(db)) out.insert(fs::path(dir).lexically_normal().string());  // absolute
+  const auto db = open_report_database_read_only(report.string());
+  for (const std::string& dir : stored_recording_dirs(*db)) out.insert(fs::path(dir).lexically_normal().string());  // absolute
   return out;
 }
 

@@ -24,11 +24,11 @@ std::optional<std::size_t> CampaignData::figure_index(const std::string& figure)
   return std::nullopt;
 }
 
-bool is_campaign_database(SQLite::Database& db) {
+bool is_campaign_database(ReportDatabase& db) {
   return !read_campaign_name(db).value_or("").empty() || count_criterion_rows(db) > 0;
 }
 
-CampaignData read_campaign_data(SQLite::Database& db) {
+CampaignData read_campaign_data(ReportDatabase& db) {
   CampaignData data;
   data.name = read_campaign_name(db).value_or("");
   const std::vector<campaign::Criterion> criteria = campaign::stored_criteria(db);

@@ -5,7 +5,6 @@
 // (replay/store/campaign_store.hpp), and the figures the overview ranks and plots: those of the
 // catalogue and the distribution distances that some run has, and every criterion's figure. Text
 // fields are as stored (unescaped).
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
 #include <optional>
@@ -15,6 +14,7 @@
 #include "common/quantile.hpp"
 #include "replay/campaign/criteria.hpp"
 #include "replay/campaign/run_figures.hpp"
+#include "replay/store/report_database.hpp"
 
 namespace rcsim::replay::report {
 
@@ -34,8 +34,8 @@ struct CampaignData {
 
 // Whether the database belongs to a campaign or holds criteria: cheap, for deciding whether the
 // page starts with the campaign overview.
-bool is_campaign_database(SQLite::Database& db);
+bool is_campaign_database(ReportDatabase& db);
 
-CampaignData read_campaign_data(SQLite::Database& db);
+CampaignData read_campaign_data(ReportDatabase& db);
 
 }  // namespace rcsim::replay::report

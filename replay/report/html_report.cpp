@@ -74,7 +74,7 @@ ul.campaign-nav { columns: 1; }
 )CSS";
 
 // The chosen cycles, each with the cycles before it faded.
-void write_birdseye_pictures(std::ostream& out, SQLite::Database& db, const report::RunData& run,
+void write_birdseye_pictures(std::ostream& out, ReportDatabase& db, const report::RunData& run,
                              const HtmlReportOptions& options) {
   out << R"(<div class="figs">)";
   const auto chosen_cycles = report::choose_cycles(report::read_cycle_highlights(db, run.info.run_id), run,
@@ -98,7 +98,7 @@ struct RunVerdicts {
   }
 };
 
-void write_run_section(std::ostream& out, SQLite::Database& db, const report::RunData& run,
+void write_run_section(std::ostream& out, ReportDatabase& db, const report::RunData& run,
                        const HtmlReportOptions& options, int max_points, const RunVerdicts& judged) {
   const report::RunInfo& i = run.info;
   const campaign::RunVerdict* verdict = judged.of(i.run_id);
@@ -169,7 +169,7 @@ struct PageSelection {
   bool overview = false;
 };
 
-PageSelection select_page(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options) {
+PageSelection select_page(ReportDatabase& db, const std::string& db_label, const HtmlReportOptions& options) {
   PageSelection s;
   const bool only = options.campaign == CampaignOverview::only;
   s.bench_id = only ? std::nullopt : report::select_bench(db, db_label, options.bench_id);
@@ -210,7 +210,7 @@ report::CampaignOverviewOptions overview_options(const HtmlReportOptions& option
   return o;
 }
 
-void write_page(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
+void write_page(ReportDatabase& db, const std::string& db_label, const HtmlReportOptions& options,
                 const PageSelection& selection, const PageContext& context, std::ostream& out) {
   const std::optional<report::BenchData> bench =
       selection.bench_id ? std::optional<report::BenchData>(report::load_bench(db, *selection.bench_id)) : std::nullopt;
@@ -319,7 +319,7 @@ std::string relative_href(const std::filesystem::path& to, const std::filesystem
 
 }  // namespace
 
-void write_html_report(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
+void write_html_report(ReportDatabase& db, const std::string& db_label, const HtmlReportOptions& options,
                        std::ostream& out) {
   const PageSelection selection = select_page(db, db_label, options);
   std::optional<report::CampaignData> campaign;

@@ -8,13 +8,13 @@
 // campaign overview: verdicts, the worst runs by each figure, the figures' distributions, links
 // into each run's detail (campaign_section.hpp). Every text that came from a recording is
 // HTML-escaped.
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
+#include "replay/store/report_database.hpp"
 
 namespace rcsim::replay {
 
@@ -53,7 +53,7 @@ inline constexpr std::size_t kCampaignOverviewRuns = 20;
 
 // Writes the page for the runs and the bench selected by `options` (unknown ids: InputError
 // naming `db_label`). A database with a bench but no runs gives the bench section alone.
-void write_html_report(SQLite::Database& db, const std::string& db_label, const HtmlReportOptions& options,
+void write_html_report(ReportDatabase& db, const std::string& db_label, const HtmlReportOptions& options,
                        std::ostream& out);
 
 // Opens the report database at `db_path` (refusing other files), writes the page to `html_path`

@@ -186,7 +186,7 @@ std::string detection_rate_plot(const RunData& run) {
 }
 
 // The objects with the most recorded targets, each in its own frame.
-std::string object_frame_pictures(SQLite::Database& db, const RunData& run, int max_pictures) {
+std::string object_frame_pictures(ReportDatabase& db, const RunData& run, int max_pictures) {
   std::map<int, std::pair<std::int64_t, std::int64_t>> totals;  // object -> (recorded, simulated)
   for (const ObjectFigures& f : run.object_figures) {
     totals[f.object].first += f.targets_recorded;
@@ -243,7 +243,7 @@ std::string background_plot(const BackgroundHistogram& h, const std::string& tit
 
 }  // namespace
 
-std::string object_section(SQLite::Database& db, const RunData& run, int max_pictures) {
+std::string object_section(ReportDatabase& db, const RunData& run, int max_pictures) {
   if (!run.summary || !run.summary->classes) {
     return "<p>This run was stored before report schema v3: it has no per-object figures. Replay it again.</p>";
   }
@@ -264,7 +264,7 @@ std::string object_section(SQLite::Database& db, const RunData& run, int max_pic
   return out;
 }
 
-std::string background_section(SQLite::Database& db, const RunData& run) {
+std::string background_section(ReportDatabase& db, const RunData& run) {
   if (!run.summary || !run.summary->classes) {
     return "<p>This run was stored before report schema v3: it has no background figures. Replay it again.</p>";
   }

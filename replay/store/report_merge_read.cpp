@@ -192,10 +192,10 @@ void check_intact(SQLite::Database& db, const std::string& path) {
 
 }  // namespace
 
-std::unique_ptr<SQLite::Database> open_input(const std::string& path, Header& header) {
+std::unique_ptr<ReportDatabase> open_input(const std::string& path, Header& header) {
   check_regular_file(path);
   try {
-    auto db = std::make_unique<SQLite::Database>(merge_files::read_only_uri(path),
+    auto db = std::make_unique<ReportDatabase>(merge_files::read_only_uri(path),
                                                  SQLite::OPEN_READONLY | SQLite::OPEN_URI);
     db->setBusyTimeout(5000);
     header = check_header(*db, path);

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "replay/store/report_database.hpp"
+
 namespace rcsim::replay::merge_read {
 
 // An SQL identifier, quoted.
@@ -37,7 +39,7 @@ Header check_header(SQLite::Database& db, const std::string& path);
 void check_regular_file(const std::string& path);
 
 // An input opened read-only (merge_files::read_only_uri: never written), its header checked.
-std::unique_ptr<SQLite::Database> open_input(const std::string& path, Header& header);
+std::unique_ptr<ReportDatabase> open_input(const std::string& path, Header& header);
 
 // The campaign a database belongs to and its criteria (schema v5), as stored.
 struct CampaignRows {

@@ -242,7 +242,7 @@ SchemaState read_schema_state_once(SQLite::Database& db, const std::string& path
 
 }  // namespace
 
-std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create) {
+std::unique_ptr<ReportDatabase> open_report_database(const std::string& path, bool create) {
   const bool existed = std::filesystem::exists(path);
   if (!create && !existed) throw InputError(path, "", "no such report database");
   if (const auto parent = std::filesystem::path(path).parent_path(); !existed && !parent.empty() &&
@@ -250,9 +250,9 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
     throw InputError(path, "", "cannot create the report database: no directory " + parent.string());
   }
   check_database_file(path);
-  std::unique_ptr<SQLite::Database> db;
+  std::unique_ptr<ReportDatabase> db;
   try {
-    db = std::make_unique<SQLite::Database>(path, create ? SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE
+    db = std::make_unique<ReportDatabase>(path, create ? SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE
                                                          : SQLite::OPEN_READWRITE);
     db->setBusyTimeout(kBusyTimeout_ms);
     if (const SchemaState state = read_schema_state_once(*db, path); state != SchemaState::current) {
@@ -299,7 +299,7 @@ std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, 
   return db;
 }
 
-void discard_if_unused(std::unique_ptr<SQLite::Database>& db, const std::string& path) {
+void discard_if_unused(std::unique_ptr<ReportDatabase>& db, const std::string& path) {
   if (db == nullptr) return;
   try {
     const auto rows = [&](const char* table) {
@@ -314,15 +314,21 @@ void discard_if_unused(std::unique_ptr<SQLite::Database>& db, const std::string&
   for (const char* suffix : {"", "-journal", "-wal", "-shm"}) std::filesystem::remove(path + suffix, ignored);
 }
 
-std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::string& path) {
+std::unique_ptr<ReportDatabase> open_report_database_read_only(const std::string& path) {
+  auto db = std::make_unique<ReportDatabase>(path, SQLite::OPEN_READONLY);
+  db->setBusyTimeout(5000);
+  return db;
+}
+
+std::unique_ptr<ReportDatabase> open_report_database_for_reading(const std::string& path) {
   if (!std::filesystem::exists(path)) throw InputError(path, "", "no such report database");
   check_database_file(path);
   // A file this process may write is opened as a writer would (an old schema is migrated).
   if (::access(path.c_str(), W_OK) == 0) return open_report_database(path, false);
-  std::unique_ptr<SQLite::Database> db;
+  std::unique_ptr<ReportDatabase> db;
   try {
     // Without write access SQLite cannot make the WAL's -shm beside it: read the file as immutable.
-    db = std::make_unique<SQLite::Database>(merge_files::read_only_uri(path), SQLite::OPEN_READONLY | SQLite::OPEN_URI);
+    db = std::make_unique<ReportDatabase>(merge_files::read_only_uri(path), SQLite::OPEN_READONLY | SQLite::OPEN_URI);
     db->setBusyTimeout(kBusyTimeout_ms);
     const SchemaState state = read_schema_state_once(*db, path);
     if (state == SchemaState::empty) throw InputError(path, "", "the database is empty: no replay has been stored in it");

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "replay/run/replay_run.hpp"
+#include "replay/store/report_database.hpp"
 #include "replay/store/run_rows.hpp"
 
 namespace rcsim::replay {
@@ -28,16 +29,20 @@ inline constexpr int kReportSchemaVersion = 6;
 // in one transaction: tables and columns are added (the runs' new columns NULL, their store
 // `full`), and (from 1 to 3) the rows of `cycles`, `targets` and `object_states` are converted
 // into blocks.
-std::unique_ptr<SQLite::Database> open_report_database(const std::string& path, bool create);
+std::unique_ptr<ReportDatabase> open_report_database(const std::string& path, bool create);
 
 // Closes `db` and removes the report database at `path` with its -wal and -shm, if it holds no
 // run, bench or campaign: what a command that created it and was then refused calls, so that it
 // leaves no file behind. Call it only for a database this process created.
-void discard_if_unused(std::unique_ptr<SQLite::Database>& db, const std::string& path);
+void discard_if_unused(std::unique_ptr<ReportDatabase>& db, const std::string& path);
 
 // Opens a report database to read it: as open_report_database(path, false) when this process may
 // write the file, else read-only (a read-only copy of an older schema is refused, saying why).
-std::unique_ptr<SQLite::Database> open_report_database_for_reading(const std::string& path);
+std::unique_ptr<ReportDatabase> open_report_database_for_reading(const std::string& path);
+
+// Opens a report database read-only as it stands, waiting up to 5 s for a writer's lock (a
+// shard's report while its runs go on); no schema check, no migration.
+std::unique_ptr<ReportDatabase> open_report_database_read_only(const std::string& path);
 
 // What an open database holds: nothing yet, a report of an older schema (1 to 5, migrated on
 // opening for writing), or one of this version. Refuses, naming the file, anything else (another

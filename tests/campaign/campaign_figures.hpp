@@ -20,7 +20,7 @@ inline std::map<std::string, std::vector<std::optional<double>>> figures_by_reco
   }
   names.push_back("wasserstein1.background_range");
   names.push_back("kolmogorov_smirnov.background_azimuth");
-  SQLite::Database db(db_path.string());
+  replay::ReportDatabase db(db_path.string());
   std::map<std::string, std::vector<std::optional<double>>> out;
   for (auto& row : replay::campaign::read_run_figures(db, names)) out[row.recording_dir] = row.values;
   return out;

@@ -30,7 +30,7 @@ class CriteriaTest : public rcsim::testing::ScratchDirTest {
     const nlohmann::json doc = nlohmann::json::parse(text);
     return parse_criteria(JsonField(doc, "criteria.json", ""));
   }
-  std::unique_ptr<SQLite::Database> db_;
+  std::unique_ptr<replay::ReportDatabase> db_;
   std::vector<double> gospa_;  // per run, by run id
 };
 

@@ -218,7 +218,7 @@ class HtmlReportBench : public ::testing::Test {
   }
 
   fs::path dir_;
-  std::unique_ptr<SQLite::Database> db_;
+  std::unique_ptr<replay::ReportDatabase> db_;
 };
 
 TEST_F(HtmlReportBench, LevelTableShowsTheHandComputedAggregates) {

@@ -115,7 +115,7 @@ class CampaignReport : public rcsim::testing::ScratchDirTest {
   }
 
   std::string db_path_;
-  std::unique_ptr<SQLite::Database> db_;
+  std::unique_ptr<replay::ReportDatabase> db_;
   std::vector<std::int64_t> ids_;
   std::vector<double> gospa_;  // by run
   std::vector<Criterion> criteria_;

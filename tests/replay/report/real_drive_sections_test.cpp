@@ -37,7 +37,7 @@ RunData sixty_object_run() {
 }
 
 std::string section_of(const RunData& run) {
-  SQLite::Database db(":memory:");
+  replay::ReportDatabase db(":memory:");
   return object_section(db, run, 4);
 }
 

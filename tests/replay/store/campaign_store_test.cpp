@@ -20,7 +20,7 @@ class CampaignStore : public rcsim::testing::ScratchDirTest {
     ScratchDirTest::SetUp();
     db_ = open_report_database((dir_ / "report.sqlite").string(), true);
   }
-  std::unique_ptr<SQLite::Database> db_;
+  std::unique_ptr<replay::ReportDatabase> db_;
 };
 
 const std::vector<CriterionRow> kRows = {{"gospa_mean_m", "recording", "value", "max", 1.5, "fail"},

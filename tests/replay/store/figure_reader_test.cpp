@@ -79,7 +79,7 @@ class FigureReader : public rcsim::testing::ScratchDirTest {
     rows.finish();
     db_->exec("INSERT INTO merge_pairs VALUES (1, 3, 0, 0, 1)");
   }
-  std::unique_ptr<SQLite::Database> db_;
+  std::unique_ptr<replay::ReportDatabase> db_;
 };
 
 TEST_F(FigureReader, HighlightsNameTheCyclesByHand) {

@@ -44,7 +44,7 @@ class ReportReader : public rcsim::testing::ScratchDirTest {
     cycles_ = std::move(sink.cycles);
   }
   Recording recording_;
-  std::unique_ptr<SQLite::Database> db_;
+  std::unique_ptr<replay::ReportDatabase> db_;
   ReplaySummary summary_;
   std::int64_t run_id_ = 0;
   std::vector<CycleComparison> cycles_;

@@ -167,7 +167,7 @@ class RunRows : public testing::ScratchDirTest {
     ScratchDirTest::SetUp();
     db_ = open_report_database((dir_ / "r.sqlite").string(), true);
   }
-  std::unique_ptr<SQLite::Database> db_;
+  std::unique_ptr<replay::ReportDatabase> db_;
 };
 
 // Cycles, targets and boxes come back in (cycle, sensor) order, whatever the writing order, over
