@@ -1,7 +1,7 @@
 // Writes a generated campaign report database for the campaign report's benchmark
 // (scripts/bench-report.sh, docs/report.md "Campaign report"): one real replay of a bundled
 // recording stored with --store summary, copied RUNS - 1 times with varied figures, plus a
-// campaign row and a few criteria (replay/campaign/criteria.hpp), so that `rcsim report` has
+// campaign row and a few criteria (replay/verdict/criteria.hpp), so that `rcsim report` has
 // thousands of runs to judge, rank and plot. Not committed: regenerate it.
 //
 // Each copy is drive_NNNNN with its own seed. Its quality q is log-normal (sigma 0.35) with 3 %
@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 #include "tool_arguments.hpp"
 #include "replay/run/replay_run.hpp"
 #include "replay/store/campaign_store.hpp"
@@ -34,11 +34,11 @@ namespace {
 using namespace rcsim;
 using namespace rcsim::replay;
 
-std::vector<campaign::Criterion> campaign_criteria() {
-  using campaign::Bound;
-  using campaign::Criterion;
-  using campaign::Scope;
-  using campaign::Statistic;
+std::vector<verdict::Criterion> campaign_criteria() {
+  using verdict::Bound;
+  using verdict::Criterion;
+  using verdict::Scope;
+  using verdict::Statistic;
   std::vector<Criterion> c;
   c.push_back({"gospa_mean_m", Scope::recording, Statistic::value, Bound::max, 0.0, false});  // threshold set below
   c.push_back({"object_detection_rate_simulated", Scope::recording, Statistic::value, Bound::min, 0.0, false});
@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
     copier.commit();
 
     // Thresholds from the source run, so that about a third of the runs fail a criterion.
-    std::vector<campaign::Criterion> criteria = campaign_criteria();
+    std::vector<verdict::Criterion> criteria = campaign_criteria();
     criteria[0].threshold = std::round(figures.gospa_mean_m * 1.3 * 1000.0) / 1000.0;
     criteria[1].threshold = std::round(figures.object_detection_rate_simulated * 0.85 * 1000.0) / 1000.0;
     criteria[4].threshold = std::round(figures.gospa_mean_m * 2.5 * 1000.0) / 1000.0;
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
                    fmt::format(R"({{"format": "rcsim-campaign", "version": 1, "name": "generated-campaign", )"
                                R"("recordings": ["drives/*"], "generated_from": "{}"}})",
                                recording.string()),
-                   campaign::criterion_rows(criteria));
+                   verdict::criterion_rows(criteria));
     std::cout << "wrote " << out << ": " << *runs << " runs copied from " << recording.string() << ", "
               << criteria.size() << " criteria\n";
   } catch (const std::exception& e) {

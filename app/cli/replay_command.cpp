@@ -204,7 +204,7 @@ void print_figures(const Recording& recording, const replay::ReplaySummary& summ
 }
 
 // The verdict of one run among `verdicts`, if it was judged.
-const replay::campaign::RunVerdict* verdict_of(const std::optional<replay::campaign::Verdicts>& verdicts,
+const replay::verdict::RunVerdict* verdict_of(const std::optional<replay::verdict::Verdicts>& verdicts,
                                                std::int64_t run_id) {
   if (!verdicts) return nullptr;
   for (const auto& r : verdicts->runs) {
@@ -214,7 +214,7 @@ const replay::campaign::RunVerdict* verdict_of(const std::optional<replay::campa
 }
 
 // The run's first line says its verdict where it has one.
-std::string verdict_word(const replay::campaign::RunVerdict* verdict) {
+std::string verdict_word(const replay::verdict::RunVerdict* verdict) {
   return verdict == nullptr ? "stored" : (verdict->passed ? "PASS" : "FAIL");
 }
 

@@ -4,15 +4,15 @@
 #include <fmt/format.h>
 
 #include "common/atomic_file.hpp"
-#include "replay/campaign/default_criteria.hpp"
-#include "replay/campaign/junit.hpp"
+#include "replay/verdict/default_criteria.hpp"
+#include "replay/verdict/junit.hpp"
 #include "replay/store/campaign_store.hpp"
 
 namespace rcsim::cli {
 
 namespace {
 
-using namespace replay::campaign;
+using namespace replay::verdict;
 
 constexpr std::size_t kMaxPrintedFailures = 50;
 

@@ -1,6 +1,6 @@
 #pragma once
 // --criteria FILE and --junit FILE (rcsim replay, rcsim merge): the runs judged by the criteria
-// (replay/campaign/criteria.hpp), the failures printed (or given as JSON), JUnit written, and
+// (replay/verdict/criteria.hpp), the failures printed (or given as JSON), JUnit written, and
 // the exit status 3 when anything failed (README, "Exit status").
 #include <CLI/CLI.hpp>
 
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 #include "replay/store/report_database.hpp"
 
 namespace rcsim::cli {
@@ -30,7 +30,7 @@ inline constexpr std::string_view kDefaultCriteriaArg = "defaults";
 struct VerdictArgs {
   std::string criteria_file;  // a file, or kDefaultCriteriaArg
   std::string junit_path;
-  std::optional<std::vector<replay::campaign::Criterion>> file_criteria;  // read by read_verdict_criteria
+  std::optional<std::vector<replay::verdict::Criterion>> file_criteria;  // read by read_verdict_criteria
 };
 
 void add_verdict_options(CLI::App& cmd, VerdictArgs& args);
@@ -45,20 +45,20 @@ void read_verdict_criteria(VerdictArgs& args);
 // (replacing its criteria, so that rcsim report shows them); a campaign's report keeps its
 // manifest's, and FILE judges this once. The default tolerances set the exit status only when
 // asked for (--criteria defaults). Nothing to judge and no JUnit: nullopt.
-std::optional<replay::campaign::Verdicts> judge_runs(replay::ReportDatabase& db, const VerdictArgs& args,
+std::optional<replay::verdict::Verdicts> judge_runs(replay::ReportDatabase& db, const VerdictArgs& args,
                                                      std::optional<std::int64_t> only_run, const std::string& suite,
                                                      bool default_tolerances = false);
 
 // One run's verdict, the first thing rcsim replay prints: "verdict: PASS, 5 of 5 ..." and a line
 // per figure with its value, its tolerance and pass or FAIL.
-void print_run_verdict(std::ostream& out, const replay::campaign::Verdicts& verdicts,
-                       const replay::campaign::RunVerdict& run);
+void print_run_verdict(std::ostream& out, const replay::verdict::Verdicts& verdicts,
+                       const replay::verdict::RunVerdict& run);
 
 // The verdicts as text (failed runs, at most 50, and every campaign criterion) and as JSON.
-void print_verdicts(std::ostream& out, const replay::campaign::Verdicts& verdicts);
-nlohmann::ordered_json verdicts_json(const std::optional<replay::campaign::Verdicts>& verdicts);
+void print_verdicts(std::ostream& out, const replay::verdict::Verdicts& verdicts);
+nlohmann::ordered_json verdicts_json(const std::optional<replay::verdict::Verdicts>& verdicts);
 
 // Throws VerdictsFailed if a run or a campaign criterion failed, where the verdicts are a gate.
-void throw_if_failed(const std::optional<replay::campaign::Verdicts>& verdicts);
+void throw_if_failed(const std::optional<replay::verdict::Verdicts>& verdicts);
 
 }  // namespace rcsim::cli

@@ -142,7 +142,7 @@ CampaignManifest read_manifest(const std::filesystem::path& path) {
   std::sort(m.recordings.begin(), m.recordings.end());
   m.recordings.erase(std::unique(m.recordings.begin(), m.recordings.end()), m.recordings.end());
   if (root.has("replay")) m.replay = parse_campaign_replay(root.member("replay"), base_dir);
-  if (root.has("criteria")) m.criteria = parse_criteria(root);
+  if (root.has("criteria")) m.criteria = verdict::parse_criteria(root);
   if (root.has("slurm")) {
     const JsonField s = root.member("slurm");
     s.expect_only({"partition", "account", "time_limit", "memory", "extra"});

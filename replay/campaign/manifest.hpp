@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 #include "replay/run/replay_run.hpp"
 #include "replay/store/run_rows.hpp"
 
@@ -35,7 +35,7 @@ struct CampaignManifest {
   std::string name;
   std::vector<std::filesystem::path> recordings;  // absolute, normalised, sorted, each once
   CampaignReplay replay;
-  std::vector<Criterion> criteria;
+  std::vector<verdict::Criterion> criteria;
   SlurmRequest slurm;
   nlohmann::json document;  // as read
 };

@@ -177,7 +177,7 @@ CampaignPlan read_plan(const std::filesystem::path& dir) {
   m.name = root.string("name");
   if (!is_plain_name(m.name)) root.fail("name", "expected a plain name, as the manifest's (rcsim campaign plan checks it)");
   if (manifest.has("replay")) m.replay = parse_campaign_replay(manifest.member("replay"), m.file.parent_path());
-  if (manifest.has("criteria")) m.criteria = parse_criteria(manifest);
+  if (manifest.has("criteria")) m.criteria = verdict::parse_criteria(manifest);
   plan.rcsim = root.string("rcsim");
   for (const JsonField& s : root.array("shards")) {
     Shard shard;

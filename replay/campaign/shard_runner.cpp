@@ -15,13 +15,13 @@
 namespace rcsim::replay::campaign {
 
 void claim_report_for_campaign(ReportDatabase& db, const std::string& db_path, const CampaignManifest& manifest) {
-  const auto stored = claim_campaign(db, manifest.name, manifest.document.dump(), criterion_rows(manifest.criteria));
+  const auto stored = claim_campaign(db, manifest.name, manifest.document.dump(), verdict::criterion_rows(manifest.criteria));
   if (!stored) return;  // claimed now
   if (stored->name != manifest.name) {
     throw InputError(db_path, "campaign", fmt::format("holds the runs of campaign '{}', not '{}'", stored->name,
                                                       manifest.name));
   }
-  if (criteria_from_rows(stored->criteria) != manifest.criteria) {
+  if (verdict::criteria_from_rows(stored->criteria) != manifest.criteria) {
     throw InputError(db_path, "criteria", "holds other criteria than the campaign's manifest; plan into a new directory");
   }
 }

@@ -31,13 +31,13 @@ bool is_campaign_database(ReportDatabase& db) {
 CampaignData read_campaign_data(ReportDatabase& db) {
   CampaignData data;
   data.name = read_campaign_name(db).value_or("");
-  const std::vector<campaign::Criterion> criteria = campaign::stored_criteria(db);
+  const std::vector<verdict::Criterion> criteria = verdict::stored_criteria(db);
 
   // Every candidate figure, then those some run has or a criterion names.
-  std::vector<campaign::FigureInfo> candidates = campaign::figure_catalogue();
+  std::vector<verdict::FigureInfo> candidates = verdict::figure_catalogue();
   for (const auto& [quantity, unit] : read_distance_quantities(db)) {
     for (const char* prefix : {"wasserstein1.", "kolmogorov_smirnov."}) {
-      auto info = campaign::find_figure(prefix + quantity);
+      auto info = verdict::find_figure(prefix + quantity);
       if (!info) continue;
       if (info->name.starts_with("wasserstein1.")) info->unit = unit;
       candidates.push_back(*info);
@@ -46,12 +46,12 @@ CampaignData read_campaign_data(ReportDatabase& db) {
   for (const auto& c : criteria) {
     const bool listed = std::any_of(candidates.begin(), candidates.end(), [&](const auto& f) { return f.name == c.figure; });
     if (!listed) {
-      if (auto info = campaign::find_figure(c.figure)) candidates.push_back(*info);
+      if (auto info = verdict::find_figure(c.figure)) candidates.push_back(*info);
     }
   }
   std::vector<std::string> names;
   for (const auto& f : candidates) names.push_back(f.name);
-  std::vector<campaign::RunFigureRow> rows = campaign::read_run_figures(db, names);
+  std::vector<verdict::RunFigureRow> rows = verdict::read_run_figures(db, names);
 
   // The judged figures first, in the order of the criteria; then the others some run has.
   std::vector<std::size_t> kept;
@@ -71,7 +71,7 @@ CampaignData read_campaign_data(ReportDatabase& db) {
     row.values = std::move(values);
   }
   data.runs = std::move(rows);
-  data.verdicts = campaign::judge(db, criteria);
+  data.verdicts = verdict::judge(db, criteria);
   return data;
 }
 

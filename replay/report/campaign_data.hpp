@@ -1,7 +1,7 @@
 #pragma once
 // What the campaign overview of `rcsim report` reads (docs/report.md, "Campaign report"): every
-// run's figures (replay/campaign/run_figures.hpp: a few queries, whatever the number of runs), the
-// verdicts of the stored criteria (replay/campaign/criteria.hpp), the campaign's name
+// run's figures (replay/verdict/run_figures.hpp: a few queries, whatever the number of runs), the
+// verdicts of the stored criteria (replay/verdict/criteria.hpp), the campaign's name
 // (replay/store/campaign_store.hpp), and the figures the overview ranks and plots: those of the
 // catalogue and the distribution distances that some run has, and every criterion's figure. Text
 // fields are as stored (unescaped).
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "common/quantile.hpp"
-#include "replay/campaign/criteria.hpp"
-#include "replay/campaign/run_figures.hpp"
+#include "replay/verdict/criteria.hpp"
+#include "replay/verdict/run_figures.hpp"
 #include "replay/store/report_database.hpp"
 
 namespace rcsim::replay::report {
@@ -22,9 +22,9 @@ struct CampaignData {
   std::string name;  // the campaign's name (table campaign); empty if the database has none
   // The criteria's figures first (in the criteria's order), then the catalogue's and the
   // distribution distances' that some run has.
-  std::vector<campaign::FigureInfo> figures;
-  std::vector<campaign::RunFigureRow> runs;   // by run id; values[i] is figures[i]
-  campaign::Verdicts verdicts;                // by the stored criteria; no criteria: every run passed
+  std::vector<verdict::FigureInfo> figures;
+  std::vector<verdict::RunFigureRow> runs;   // by run id; values[i] is figures[i]
+  verdict::Verdicts verdicts;                // by the stored criteria; no criteria: every run passed
 
   // The values of figure i that runs have, ascending.
   std::vector<double> sorted_values(std::size_t figure) const;

@@ -13,9 +13,9 @@ namespace rcsim::replay::report {
 
 namespace {
 
-using campaign::Bound;
-using campaign::Criterion;
-using campaign::Scope;
+using verdict::Bound;
+using verdict::Criterion;
+using verdict::Scope;
 using svg::escape;
 
 constexpr const char* kStatisticNames[] = {"value", "mean", "median", "p95", "min", "max"};
@@ -35,14 +35,14 @@ std::string threshold_text(const Criterion& c) {
   return fmt::format("{} {}", kStatisticNames[static_cast<int>(c.statistic)], bound);
 }
 
-std::string x_label(const campaign::FigureInfo& info) {
+std::string x_label(const verdict::FigureInfo& info) {
   return info.unit.empty() || info.unit == "1" ? info.name : info.name + " / " + info.unit;
 }
 
 // The histogram of one figure's values (ascending). The axis covers the values, or, when a few lie
 // far out, the 1st to 99th percentiles widened by half their span (the rest counted in the end
 // bins), and every threshold.
-svg::HistogramSpec figure_histogram(const campaign::FigureInfo& info, const std::vector<double>& sorted,
+svg::HistogramSpec figure_histogram(const verdict::FigureInfo& info, const std::vector<double>& sorted,
                                     std::size_t missing, const std::vector<const Criterion*>& criteria, int max_bins) {
   svg::HistogramSpec spec;
   spec.title = info.name;
@@ -108,7 +108,7 @@ std::string campaign_distributions(const CampaignData& data, int histogram_bins)
                       header_row({"figure", "unit", "runs", "without it", "min", "median", "p95", "max", "mean", "criteria"});
   std::string pictures = R"(<div class="figs">)";
   for (std::size_t f = 0; f < data.figures.size(); ++f) {
-    const campaign::FigureInfo& info = data.figures[f];
+    const verdict::FigureInfo& info = data.figures[f];
     const std::vector<double> sorted = data.sorted_values(f);
     const std::vector<const Criterion*> criteria = criteria_on(data, info.name);
     double sum = 0.0;

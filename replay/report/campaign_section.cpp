@@ -12,10 +12,10 @@ namespace rcsim::replay::report {
 
 namespace {
 
-using campaign::Criterion;
-using campaign::CriterionResult;
-using campaign::Scope;
-using campaign::Worse;
+using verdict::Criterion;
+using verdict::CriterionResult;
+using verdict::Scope;
+using verdict::Worse;
 using svg::escape;
 
 // How bad a value is by the figure's direction: larger is worse.
@@ -44,16 +44,16 @@ std::string recording_cell(const std::string& name, std::size_t max_chars = 40) 
   return fmt::format(R"(<span class="rec" title="{}">{}</span>)", escape(name), escape(svg::shorten(name, max_chars)));
 }
 
-std::string failures_text(const campaign::Verdicts& v, const campaign::RunVerdict& run) {
+std::string failures_text(const verdict::Verdicts& v, const verdict::RunVerdict& run) {
   std::string out;
   for (const CriterionResult& r : run.results) {
     if (r.passed) continue;
-    out += (out.empty() ? "" : "; ") + campaign::describe_failure(v.criteria[r.criterion], r);
+    out += (out.empty() ? "" : "; ") + verdict::describe_failure(v.criteria[r.criterion], r);
   }
   return out;
 }
 
-std::string failed_run_row(const campaign::Verdicts& v, const campaign::RunVerdict& run, const RunLinks& links,
+std::string failed_run_row(const verdict::Verdicts& v, const verdict::RunVerdict& run, const RunLinks& links,
                            bool with_hint) {
   return fmt::format(R"(<tr class="fail"><td>{}</td><td>{}</td><td class="num">{}</td><td>{}</td></tr>)",
                      links.link(run.run_id, with_hint), recording_cell(run.recording_name), run.seed,
@@ -62,7 +62,7 @@ std::string failed_run_row(const campaign::Verdicts& v, const campaign::RunVerdi
 
 // Runs passed and failed, the campaign criteria, the verdict.
 std::string verdict_counts(const CampaignData& data) {
-  const campaign::Verdicts& v = data.verdicts;
+  const verdict::Verdicts& v = data.verdicts;
   std::set<std::string> recordings;
   double duration_s = 0.0;
   for (const auto& run : data.runs) {
@@ -99,7 +99,7 @@ std::string verdict_counts(const CampaignData& data) {
 
 // One row per criterion: what it says, and how the runs or the campaign fared.
 std::string criteria_table(const CampaignData& data) {
-  const campaign::Verdicts& v = data.verdicts;
+  const verdict::Verdicts& v = data.verdicts;
   std::vector<std::size_t> failed(v.criteria.size(), 0), missing(v.criteria.size(), 0);
   for (const auto& run : v.runs) {
     for (const CriterionResult& r : run.results) {
@@ -135,7 +135,7 @@ std::string criteria_table(const CampaignData& data) {
 
 // The failed runs in run order: the first `rows` in a table, the others folded below it.
 std::string failed_runs(const CampaignData& data, const RunLinks& links, int rows) {
-  const campaign::Verdicts& v = data.verdicts;
+  const verdict::Verdicts& v = data.verdicts;
   if (v.runs_failed == 0) return R"(<p class="hint">No run failed a per-recording criterion.</p>)";
   const std::string header = header_row({"run", "recording", "seed", "failed criteria (value against threshold)"});
   std::string out = R"(<div class="scroll"><table class="failed-runs">)" + header;
@@ -166,7 +166,7 @@ std::string worst_table(const CampaignData& data, const RunLinks& links, int n) 
   for (int k = 1; k <= n; ++k) out += fmt::format("<th>{}.</th>", k);
   out += "</tr>";
   for (std::size_t f = 0; f < data.figures.size(); ++f) {
-    const campaign::FigureInfo& info = data.figures[f];
+    const verdict::FigureInfo& info = data.figures[f];
     out += fmt::format(R"(<tr data-figure="{0}"><th title="{1}">{0}</th><td>{2}</td><td>{3}</td>)", escape(info.name),
                        escape(info.meaning), escape(info.unit), worse_text(info.worse));
     const std::vector<std::size_t> worst = worst_runs(data, f, n);
@@ -247,7 +247,7 @@ std::vector<std::int64_t> overview_linked_runs(const CampaignData& data, const C
 }
 
 std::string campaign_overview(const CampaignData& data, const RunLinks& links, const CampaignOverviewOptions& options) {
-  const campaign::Verdicts& v = data.verdicts;
+  const verdict::Verdicts& v = data.verdicts;
   std::string out = R"(<section class="campaign" id="campaign">)";
   // A report of no campaign (many replays into one database) gets the same overview, not called a campaign.
   out += data.name.empty() ? std::string("<h2>Verdicts of all runs</h2>")

@@ -7,7 +7,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
-#include "replay/campaign/default_criteria.hpp"
+#include "replay/verdict/default_criteria.hpp"
 #include "replay/report/campaign_section.hpp"
 #include "replay/report/verdict_section.hpp"
 #include "replay/report/bench_section.hpp"
@@ -89,11 +89,11 @@ void write_birdseye_pictures(std::ostream& out, ReportDatabase& db, const report
 
 // What the run sections open with: every run's verdict and label.
 struct RunVerdicts {
-  campaign::Verdicts verdicts;
+  verdict::Verdicts verdicts;
   std::map<std::int64_t, RunLabel> labels;
-  const campaign::RunVerdict* of(std::int64_t run_id) const {
+  const verdict::RunVerdict* of(std::int64_t run_id) const {
     const auto it = std::find_if(verdicts.runs.begin(), verdicts.runs.end(),
-                                 [&](const campaign::RunVerdict& r) { return r.run_id == run_id; });
+                                 [&](const verdict::RunVerdict& r) { return r.run_id == run_id; });
     return it == verdicts.runs.end() ? nullptr : &*it;
   }
 };
@@ -101,7 +101,7 @@ struct RunVerdicts {
 void write_run_section(std::ostream& out, ReportDatabase& db, const report::RunData& run,
                        const HtmlReportOptions& options, int max_points, const RunVerdicts& judged) {
   const report::RunInfo& i = run.info;
-  const campaign::RunVerdict* verdict = judged.of(i.run_id);
+  const verdict::RunVerdict* verdict = judged.of(i.run_id);
   out << fmt::format(R"(<section class="run" id="run-{}"><h2>Run {}: {}{}</h2>)", i.run_id, i.run_id,
                      escape(i.recording_name), verdict == nullptr ? "" : " " + report::verdict_mark(verdict->passed));
   if (verdict != nullptr && judged.labels.count(i.run_id) != 0) {
@@ -218,7 +218,7 @@ void write_page(ReportDatabase& db, const std::string& db_label, const HtmlRepor
   for (const std::int64_t id : selection.ids) runs.push_back(report::load_run(db, id));
   RunVerdicts judged;
   if (!runs.empty()) {
-    judged.verdicts = campaign::judge_report(db);
+    judged.verdicts = verdict::judge_report(db);
     judged.labels = read_run_labels(db);
   }
   const int n = static_cast<int>(runs.size());
@@ -268,7 +268,7 @@ void write_page(ReportDatabase& db, const std::string& db_label, const HtmlRepor
                                          campaign->verdicts.passed() ? "PASS" : "FAIL"));
   }
   for (const auto& r : runs) {
-    const campaign::RunVerdict* verdict = judged.of(r.info.run_id);
+    const verdict::RunVerdict* verdict = judged.of(r.info.run_id);
     const auto label = judged.labels.find(r.info.run_id);
     out << fmt::format(R"(<li>{}<a href="#run-{}">Run {}</a>: {}{}</li>)",
                        verdict == nullptr ? "" : report::verdict_mark(verdict->passed) + " ", r.info.run_id,

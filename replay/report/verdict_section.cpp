@@ -10,12 +10,12 @@ namespace rcsim::replay::report {
 
 namespace {
 
-std::string what_judged(const campaign::Verdicts& v, RunKind kind) {
+std::string what_judged(const verdict::Verdicts& v, RunKind kind) {
   switch (v.source) {
-    case campaign::CriteriaSource::defaults:
+    case verdict::CriteriaSource::defaults:
       return fmt::format("the default tolerances for {} (docs/verdicts.md)", run_kind_name(kind));
-    case campaign::CriteriaSource::file: return "the criteria of --criteria";
-    case campaign::CriteriaSource::report: return "the criteria stored in this report";
+    case verdict::CriteriaSource::file: return "the criteria of --criteria";
+    case verdict::CriteriaSource::report: return "the criteria stored in this report";
   }
   return "";
 }
@@ -41,16 +41,16 @@ std::string verdict_mark(bool passed) {
   return fmt::format(R"(<span class="mark {}">{}</span>)", passed ? "pass" : "fail", passed ? "PASS" : "FAIL");
 }
 
-std::string run_verdict_block(const RunData& run, const campaign::Verdicts& verdicts, const campaign::RunVerdict& rv,
+std::string run_verdict_block(const RunData& run, const verdict::Verdicts& verdicts, const verdict::RunVerdict& rv,
                               const RunLabel& label) {
-  const std::vector<campaign::FigureVerdict> figures = campaign::figure_verdicts(verdicts, rv);
+  const std::vector<verdict::FigureVerdict> figures = verdict::figure_verdicts(verdicts, rv);
   const auto met = std::count_if(figures.begin(), figures.end(), [](const auto& f) { return f.passed; });
   std::string out = fmt::format(R"(<div class="verdict {}" data-key="run-verdict">)", rv.passed ? "pass" : "fail");
   out += fmt::format(R"(<p class="verdict-line">{} {} of {} figures within {}.</p>)", verdict_mark(rv.passed), met,
                      figures.size(), svg::escape(what_judged(verdicts, rv.kind)));
   out += R"(<table class="verdict"><tr><th>figure</th><th>meaning</th><th>value</th><th>tolerance</th><th></th></tr>)";
-  for (const campaign::FigureVerdict& f : figures) {
-    const auto info = campaign::find_figure(f.figure);
+  for (const verdict::FigureVerdict& f : figures) {
+    const auto info = verdict::find_figure(f.figure);
     out += fmt::format(R"(<tr class="{}"><td class="text">{}</td><td class="text">{}</td>)", f.passed ? "pass" : "fail",
                        svg::escape(f.figure), svg::escape(info ? info->meaning : std::string()));
     out += cell_num(value_text(f.value)) + cell_num(f.tolerance());

@@ -4,14 +4,14 @@
 // then what tells the run from the others (profiles, fidelity, effects, calibration, seed).
 #include <string>
 
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 #include "replay/store/report_reader.hpp"
 #include "replay/store/run_identity.hpp"
 
 namespace rcsim::replay::report {
 
-// The verdict block of one run; `verdicts` judged it (campaign::judge_report), `run` is its entry.
-std::string run_verdict_block(const RunData& run, const campaign::Verdicts& verdicts, const campaign::RunVerdict& run_verdict,
+// The verdict block of one run; `verdicts` judged it (verdict::judge_report), `run` is its entry.
+std::string run_verdict_block(const RunData& run, const verdict::Verdicts& verdicts, const verdict::RunVerdict& run_verdict,
                               const RunLabel& label);
 
 // "PASS" or "FAIL" with its colour, for titles and lists.

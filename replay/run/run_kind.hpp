@@ -1,7 +1,7 @@
 #pragma once
 // What a run compares, by what its recording reports (schemas/report-database.md, runs.level):
 // confirmed tracks, or raw detections. It chooses a run's default tolerances
-// (replay/campaign/default_criteria.hpp, docs/verdicts.md) and what the report calls its targets.
+// (replay/verdict/default_criteria.hpp, docs/verdicts.md) and what the report calls its targets.
 #include <string>
 #include <string_view>
 

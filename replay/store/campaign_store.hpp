@@ -1,7 +1,7 @@
 #pragma once
 // What campaigns read and write in a report database (schemas/report-database.md, schema v5):
 // the tables `campaign` and `criteria` as stored, and the sources of every run's figures
-// (replay/campaign/run_figures.hpp) in a few queries, whatever the number of runs. Plain rows
+// (replay/verdict/run_figures.hpp) in a few queries, whatever the number of runs. Plain rows
 // out: the campaign layer parses, judges and ranks them.
 #include <SQLiteCpp/SQLiteCpp.h>
 

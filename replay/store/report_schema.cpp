@@ -272,7 +272,7 @@ CREATE TABLE IF NOT EXISTS object_state_blocks (
 )SQL";
 
 // Added in version 5 (issue 20): campaigns. The campaign the runs belong to (at most one row) and
-// its pass/fail criteria (replay/campaign/criteria.hpp, schemas/campaign.md); the verdicts are
+// its pass/fail criteria (replay/verdict/criteria.hpp, schemas/campaign.md); the verdicts are
 // computed from these and the stored figures whenever they are needed, never stored.
 extern const char* const kCampaignSchemaSql;
 const char* const kCampaignSchemaSql = R"SQL(

@@ -25,7 +25,7 @@ const std::map<std::string, std::string> kLayerOfDir{
     {"src/traffic", "traffic"}, {"replay/import", "replay_import"},
     {"replay/run", "replay_run"}, {"replay/evaluate", "replay_evaluate"},
     {"replay/calibrate", "replay_calibrate"}, {"replay/profile", "replay_profile"},
-    {"replay/store", "replay_store"},
+    {"replay/store", "replay_store"},       {"replay/verdict", "replay_verdict"},
     {"replay/campaign", "replay_campaign"}, {"replay/report", "replay_report"},
     {"app/stream", "stream"},
     {"app/cli", "cli"}};
@@ -36,7 +36,8 @@ const std::map<std::string, std::string> kLayerOfInclude{
     {"traffic", "traffic"}, {"replay/import", "replay_import"},       {"replay/run", "replay_run"},
     {"replay/evaluate", "replay_evaluate"},     {"replay/calibrate", "replay_calibrate"},
     {"replay/profile", "replay_profile"},
-    {"replay/store", "replay_store"},           {"replay/campaign", "replay_campaign"},
+    {"replay/store", "replay_store"},           {"replay/verdict", "replay_verdict"},
+    {"replay/campaign", "replay_campaign"},
     {"replay/report", "replay_report"},
     {"stream", "stream"},   {"cli", "cli"}};
 
@@ -57,16 +58,19 @@ const std::map<std::string, std::set<std::string>> kMayUse{
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_calibrate"}},
     {"replay_store",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate"}},
-    {"replay_campaign",
+    {"replay_verdict",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
       "replay_store"}},
+    {"replay_campaign",
+     {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
+      "replay_store", "replay_verdict"}},
     {"replay_report",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
-      "replay_calibrate", "replay_profile", "replay_store", "replay_campaign"}},
+      "replay_calibrate", "replay_profile", "replay_store", "replay_verdict", "replay_campaign"}},
     {"stream", {"common", "io", "world", "sim", "replay_import"}},
     {"cli",
      {"common", "io", "world", "metrics", "sim", "synth", "traffic", "replay_import", "replay_run", "replay_evaluate",
-      "replay_calibrate", "replay_profile", "replay_store", "replay_campaign", "replay_report", "stream"}}};
+      "replay_calibrate", "replay_profile", "replay_store", "replay_verdict", "replay_campaign", "replay_report", "stream"}}};
 
 std::string layer_of_include(const std::string& path) {
   // The longest prefix wins: "replay/run/x.hpp" before "replay".

@@ -12,7 +12,7 @@
 
 #include "campaign/campaign_figures.hpp"
 #include "app/cli/run_rcsim.hpp"
-#include "replay/campaign/run_figures.hpp"
+#include "replay/verdict/run_figures.hpp"
 #include "replay/store/report_store.hpp"
 #include "replay/store/run_identity.hpp"
 #include "scratch_dir.hpp"

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <sys/wait.h>
 
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 #include "replay/replay_fixtures.hpp"
 #include "replay/report/html_report.hpp"
 #include "replay/store/report_store.hpp"
@@ -21,10 +21,10 @@ namespace rcsim::replay {
 namespace {
 
 namespace fs = std::filesystem;
-using campaign::Bound;
-using campaign::Criterion;
-using campaign::Scope;
-using campaign::Statistic;
+using verdict::Bound;
+using verdict::Criterion;
+using verdict::Scope;
+using verdict::Statistic;
 using rcsim::testing::count_occurrences;
 using rcsim::testing::read_file;
 
@@ -84,7 +84,7 @@ class CampaignReport : public rcsim::testing::ScratchDirTest {
       ReportWriter writer(*db_, StoreLevel::summary);
       replay_recording_dir(fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / name, ReplayOptions{}, writer);
     }
-    for (const auto& row : campaign::read_run_figures(*db_, {"gospa_mean_m"})) {
+    for (const auto& row : verdict::read_run_figures(*db_, {"gospa_mean_m"})) {
       ids_.push_back(row.run_id);
       gospa_.push_back(*row.values[0]);
     }
@@ -104,7 +104,7 @@ class CampaignReport : public rcsim::testing::ScratchDirTest {
         {"gospa_mean_m", Scope::campaign, Statistic::mean, Bound::max, sorted[2] * 1.2, false},
         {"gospa_mean_m", Scope::campaign, Statistic::max, Bound::max, sorted[1], false},
     };
-    campaign::store_criteria(*db_, criteria_);
+    verdict::store_criteria(*db_, criteria_);
   }
 
   std::string write(HtmlReportOptions options = {}, const std::string& name = "campaign.html") {
@@ -197,7 +197,7 @@ TEST_F(CampaignReport, EscapesTheRecordingAndCampaignNames) {
     ReportWriter writer(*db_, StoreLevel::summary);
     replay_recording(rec, options, writer);
   }
-  campaign::store_criteria(*db_, {{"gospa_mean_m", Scope::recording, Statistic::value, Bound::max, -1.0, false}});
+  verdict::store_criteria(*db_, {{"gospa_mean_m", Scope::recording, Statistic::value, Bound::max, -1.0, false}});
   db_->exec("INSERT INTO campaign VALUES ('<b>bold</b> campaign', '{}')");
   const std::string html = write();
   EXPECT_EQ(html.find("<script"), std::string::npos);
@@ -223,7 +223,7 @@ TEST_F(CampaignReport, OneRunJudgedByItsCriteriaHasNoOverview) {
     ReportWriter writer(*db_, StoreLevel::summary);
     replay_recording(rec, options, writer);
   }
-  campaign::store_criteria(*db_, {{"gospa_mean_m", Scope::recording, Statistic::value, Bound::max, 1.0, false}});
+  verdict::store_criteria(*db_, {{"gospa_mean_m", Scope::recording, Statistic::value, Bound::max, 1.0, false}});
   std::string html = write();
   EXPECT_EQ(html.find("id=\"campaign\""), std::string::npos);
   EXPECT_NE(html.find("id=\"run-1\""), std::string::npos);
@@ -278,7 +278,7 @@ TEST_F(CampaignReport, ManyRunsGetTheOverviewAndOnlyTheLastRunsInDetail) {
 TEST_F(CampaignReport, CapsTheFailedRunsAndFoldsTheRest) {
   replay_bundled();
   copy_run(*db_, ids_[0], 7);  // 10 runs
-  campaign::store_criteria(*db_, {{"gospa_mean_m", Scope::recording, Statistic::value, Bound::max, -1.0, false},
+  verdict::store_criteria(*db_, {{"gospa_mean_m", Scope::recording, Statistic::value, Bound::max, -1.0, false},
                                   {"replay_wall_s", Scope::recording, Statistic::value, Bound::max, 3600.0, false}});
   HtmlReportOptions options;
   options.campaign_failed_rows = 4;
@@ -324,13 +324,13 @@ TEST_F(CampaignReport, RunsDirHoldsThePagesOfTheListedRunsLinkedBothWays) {
 
 TEST(CampaignWorstRuns, ByEachDirection) {
   report::CampaignData data;
-  data.figures = {{"higher", "1", "", campaign::Worse::higher},
-                  {"lower", "1", "", campaign::Worse::lower},
-                  {"zero", "1", "", campaign::Worse::away_from_zero},
-                  {"one", "1", "", campaign::Worse::away_from_one}};
+  data.figures = {{"higher", "1", "", verdict::Worse::higher},
+                  {"lower", "1", "", verdict::Worse::lower},
+                  {"zero", "1", "", verdict::Worse::away_from_zero},
+                  {"one", "1", "", verdict::Worse::away_from_one}};
   const std::vector<double> values = {0.5, 2.0, -3.0, 1.0, 0.9};
   for (std::size_t i = 0; i < values.size(); ++i) {
-    campaign::RunFigureRow row;
+    verdict::RunFigureRow row;
     row.run_id = static_cast<std::int64_t>(i + 1);
     row.values.assign(4, values[i]);
     if (i == 3) row.values[0].reset();  // missing: never ranked

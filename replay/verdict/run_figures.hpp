@@ -15,7 +15,7 @@
 #include "replay/run/run_kind.hpp"
 #include "replay/store/report_database.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 
 // Which way a figure gets worse (for "the worst recordings by each figure").
 enum class Worse { higher, lower, away_from_zero, away_from_one };
@@ -50,4 +50,4 @@ struct RunFigureRow {
 // of every run, by run id.
 std::vector<RunFigureRow> read_run_figures(ReportDatabase& db, const std::vector<std::string>& figures);
 
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

@@ -1,4 +1,4 @@
-#include "replay/campaign/run_figures.hpp"
+#include "replay/verdict/run_figures.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "replay/run/run_accumulators.hpp"
 #include "replay/store/campaign_store.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 
 namespace {
 
@@ -171,4 +171,4 @@ std::vector<RunFigureRow> read_run_figures(ReportDatabase& db, const std::vector
   return rows;
 }
 
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

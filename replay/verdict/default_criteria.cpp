@@ -1,8 +1,8 @@
-#include "replay/campaign/default_criteria.hpp"
+#include "replay/verdict/default_criteria.hpp"
 
 #include "common/json_reader.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 
 namespace {
 
@@ -71,4 +71,4 @@ Verdicts judge_report(ReportDatabase& db, std::optional<std::int64_t> only_run) 
   return verdicts;
 }
 
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

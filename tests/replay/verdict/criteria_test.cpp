@@ -1,15 +1,15 @@
-// Criteria and verdicts (replay/campaign/criteria.hpp, schemas/campaign.md): a pass, a fail, a
+// Criteria and verdicts (replay/verdict/criteria.hpp, schemas/campaign.md): a pass, a fail, a
 // missing figure, the campaign statistics computed by hand, and the errors of a bad document.
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "replay/campaign/junit.hpp"
+#include "replay/verdict/junit.hpp"
 #include "replay/store/report_store.hpp"
 #include "scratch_dir.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 namespace {
 
 class CriteriaTest : public rcsim::testing::ScratchDirTest {
@@ -171,4 +171,4 @@ TEST_F(CriteriaTest, JunitValidatesAgainstTheSchemaCiToolsRead) {
 }
 
 }  // namespace
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

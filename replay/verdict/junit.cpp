@@ -1,4 +1,4 @@
-#include "replay/campaign/junit.hpp"
+#include "replay/verdict/junit.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include "common/atomic_file.hpp"
 #include "common/xml_escape.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 
 std::string junit_xml(const Verdicts& v, const std::string& suite) {
   const std::size_t campaign_failed =
@@ -72,4 +72,4 @@ void write_junit(const std::string& path, const Verdicts& verdicts, const std::s
   out.commit();
 }
 
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

@@ -7,10 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 #include "replay/store/report_database.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 
 // The rcsim-criteria document of the default tolerances of one kind, as docs/verdicts.md shows it.
 std::string_view default_criteria_document(RunKind kind);
@@ -22,4 +22,4 @@ const std::vector<Criterion>& default_criteria();
 // (a campaign's, or a stored --criteria file's), else by the default tolerances of each run's kind.
 Verdicts judge_report(ReportDatabase& db, std::optional<std::int64_t> only_run = std::nullopt);
 
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

@@ -1,7 +1,7 @@
-// The default tolerances (replay/campaign/default_criteria.hpp, docs/verdicts.md): the documented
+// The default tolerances (replay/verdict/default_criteria.hpp, docs/verdicts.md): the documented
 // blocks are the built-in ones, each criterion judges the runs of its kind only, and a
 // track-level run's verdict computed by hand from its stored figures.
-#include "replay/campaign/default_criteria.hpp"
+#include "replay/verdict/default_criteria.hpp"
 
 #include <fstream>
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include "replay/store/report_store.hpp"
 #include "scratch_dir.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 namespace {
 
 // The ```json blocks of docs/verdicts.md, in order.
@@ -96,4 +96,4 @@ TEST_F(DefaultVerdict, ATrackRunIsJudgedByTheTrackTolerancesAlone) {
 }
 
 }  // namespace
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

@@ -5,9 +5,9 @@
 // which follows the schema Jenkins' xUnit plugin reads (junit-10.xsd).
 #include <string>
 
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 
 // The XML text; `suite` names the test suite (the campaign, or the report's file name).
 std::string junit_xml(const Verdicts& verdicts, const std::string& suite);
@@ -15,4 +15,4 @@ std::string junit_xml(const Verdicts& verdicts, const std::string& suite);
 // Writes it atomically.
 void write_junit(const std::string& path, const Verdicts& verdicts, const std::string& suite);
 
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "common/json_reader.hpp"
-#include "replay/campaign/run_figures.hpp"
+#include "replay/verdict/run_figures.hpp"
 #include "replay/store/campaign_store.hpp"
 #include "replay/store/report_database.hpp"
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 
 enum class Scope { recording, campaign };
 enum class Statistic { value, mean, median, p95, min, max };  // value: per recording
@@ -106,4 +106,4 @@ std::vector<FigureVerdict> figure_verdicts(const Verdicts& verdicts, const RunVe
 // "gospa_mean_m = 1.73 > 1.5" or "latency_difference_mean_s missing".
 std::string describe_failure(const Criterion& criterion, const CriterionResult& result);
 
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict

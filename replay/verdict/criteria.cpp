@@ -1,11 +1,11 @@
 #include "common/quantile.hpp"
-#include "replay/campaign/criteria.hpp"
+#include "replay/verdict/criteria.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
-namespace rcsim::replay::campaign {
+namespace rcsim::replay::verdict {
 
 namespace {
 
@@ -229,4 +229,4 @@ std::string describe_failure(const Criterion& c, const CriterionResult& r) {
                      r.passed ? (c.bound == Bound::max ? "<=" : ">=") : (c.bound == Bound::max ? ">" : "<"), c.threshold);
 }
 
-}  // namespace rcsim::replay::campaign
+}  // namespace rcsim::replay::verdict
