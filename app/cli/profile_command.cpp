@@ -22,15 +22,10 @@ struct DeriveArgs {
   bool json = false;
 };
 
-std::string value_text(const nlohmann::json& value) {
-  if (value.is_number_float()) return fmt::format("{:g}", value.get<double>());
-  return value.is_string() ? value.get<std::string>() : value.dump();
-}
-
 void print_derivation(const replay::profile::ProfileDerivation& d, const std::string& output) {
   std::cout << fmt::format("rcsim profile derive: {} detections in {} sensor cycles; base {}\n\n", d.detections, d.sensor_cycles, d.base);
   for (const auto& v : d.values) {
-    std::cout << fmt::format("{:<52} {:>16}  {:<9} {}{}\n", v.field, value_text(v.value), replay::profile::value_source_name(v.source),
+    std::cout << fmt::format("{:<52} {:>16}  {:<9} {}{}\n", v.field, replay::profile::value_text(v.value), replay::profile::value_source_name(v.source),
                              v.evidence, v.support > 0 ? fmt::format(" [{}]", v.support) : "");
   }
   std::cout << fmt::format("\n{0}: written. Fit what the data cannot show (the base's values) with rcsim calibrate RECORDING "

@@ -13,6 +13,9 @@ enum class ValueSource {
 };
 const char* value_source_name(ValueSource source);
 
+// A value as printed and in the report: a number in %g, a string as it is, anything else as JSON.
+std::string value_text(const nlohmann::json& value);
+
 struct DerivedValue {
   std::string field;  // the rcsim-sensor field, dotted: "field_of_view.azimuth_half_deg"
   nlohmann::json value;

@@ -25,6 +25,11 @@ const char* value_source_name(ValueSource source) {
   return "derived";
 }
 
+std::string value_text(const nlohmann::json& value) {
+  if (value.is_number_float()) return fmt::format("{:g}", value.get<double>());
+  return value.is_string() ? value.get<std::string>() : value.dump();
+}
+
 namespace {
 
 using Json = nlohmann::ordered_json;

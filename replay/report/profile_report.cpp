@@ -9,11 +9,6 @@
 namespace rcsim::replay {
 namespace {
 
-std::string value_text(const nlohmann::json& value) {
-  if (value.is_number_float()) return fmt::format("{:g}", value.get<double>());
-  return value.is_string() ? value.get<std::string>() : value.dump();
-}
-
 std::string figure_svg(const profile::DerivationFigure& f) {
   if (f.bin_width > 0.0) {
     svg::HistogramSpec h;
@@ -46,7 +41,7 @@ void write_profile_report(std::ostream& out, const profile::ProfileDerivation& d
          "<th>support</th></tr>\n";
   for (const auto& v : d.values) {
     out << fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td class=\"num\">{}</td></tr>\n",
-                       xml_escape(v.field), xml_escape(value_text(v.value)), profile::value_source_name(v.source),
+                       xml_escape(v.field), xml_escape(profile::value_text(v.value)), profile::value_source_name(v.source),
                        xml_escape(v.evidence), v.support > 0 ? std::to_string(v.support) : "");
   }
   out << "</table></div>\n<h2>The fits</h2>\n<div class=\"figs\">\n";

@@ -8,10 +8,12 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
+#include "test_support.hpp"
 
 namespace rcsim {
 namespace {
@@ -148,6 +150,36 @@ TEST_F(CalibrateCli, RecordingsThatCannotInformAFitAreRefusedBeforeAnythingIsWri
       EXPECT_FALSE(fs::exists(out)) << c.name << mode;
     }
   }
+}
+
+}  // namespace
+}  // namespace rcsim
+
+namespace rcsim {
+namespace {
+
+// Ctrl-C during `calibrate --real-drive` (issue 30): the best fit so far is written, marked
+// partial, and the exit status is 130. SIGINT is sent every 0.1 s from the start until the
+// process ends (a background job ignores it until the fit's handler is in place), well before the
+// search (about a second) converges.
+TEST_F(CalibrateCli, AnInterruptLeavesTheBestFitSoFarMarkedPartial) {
+  if (!fs::is_directory(testing::kAimotiveRaw)) {
+    GTEST_SKIP() << "real data absent (" << testing::kAimotiveRaw.string() << "): the interrupted fit is not checked";
+  }
+  const fs::path rec = dir_ / "aimotive", out = dir_ / "fit", log = dir_ / "fit.log", rc = dir_ / "rc";
+  ASSERT_EQ(run_rcsim("import --from aimotive " + testing::kAimotiveRaw.string() + " -o " + rec.string()).exit_code, 0);
+  const std::string script = fmt::format(
+      "{} calibrate {} --real-drive --max-evaluations 10000 -o {} > {} 2>&1 & pid=$!; "
+      "for i in $(seq 1 1200); do sleep 0.1; kill -INT $pid 2>/dev/null || break; done; wait $pid; echo $? > {}",
+      RCSIM_BINARY, rec.string(), out.string(), log.string(), rc.string());
+  ASSERT_EQ(std::system(("sh -c '" + script + "'").c_str()), 0);
+  const std::string output = testing::read_file(log);
+  EXPECT_EQ(testing::read_file(rc), "130\n") << output;
+  EXPECT_NE(output.find("interrupted: the best so far (partial)"), std::string::npos) << output;
+  const nlohmann::json index = nlohmann::json::parse(testing::read_file(out / "calibration.json"));
+  EXPECT_TRUE(index.at("fit").at("partial").get<bool>());
+  EXPECT_LT(index.at("fit").at("evaluations").get<int>(), 10000);
+  EXPECT_TRUE(fs::exists(out / index.at("sensors").begin().value().get<std::string>()));
 }
 
 }  // namespace
