@@ -126,7 +126,7 @@ void write_run_section(std::ostream& out, ReportDatabase& db, const report::RunD
   }
 
   out << fmt::format(R"(<h3 id="run-{}-series">Time series</h3>)", i.run_id);
-  if (!i.has_targets()) out << report::needs_full_store("The plots of the nearest target's range and lateral position");
+  if (!i.has_targets()) out << report::needs_full_store("The plots of the nearest object target's range and lateral position");
   out << R"(<div class="figs">)";
   const int stride = report::series_stride(run, max_points);
   const auto nearest = i.has_targets() ? report::read_nearest_targets(db, i.run_id, stride)

@@ -185,9 +185,9 @@ std::vector<svg::PlotSpec> time_series(const RunData& run, int stride, const std
       return std::vector<svg::PlotSeries>{std::move(s[0]), std::move(s[1])};
     };
     if (run.info.has_targets()) {  // a summary run has no targets (html_report.cpp says so)
-      plots.push_back({"Nearest target range, sensor " + name, "t / s", "range / m", dots_note, 600, 250, false,
+      plots.push_back({"Nearest object target range, sensor " + name, "t / s", "range / m", dots_note, 600, 250, false,
                        pair(p.range, true)});
-      plots.push_back({"Nearest target lateral position, sensor " + name, "t / s", "y / m (vehicle frame)",
+      plots.push_back({"Nearest object target lateral position, sensor " + name, "t / s", "y / m (vehicle frame)",
                        dots_note, 600, 250, false, pair(p.lateral, true)});
     }
     plots.push_back({"Targets per cycle, sensor " + name, "t / s", "targets", mean_note, 600, 250, true,

@@ -29,7 +29,7 @@ svg::BirdsEyeSpec birdseye_of_cycle(const RunData& run, const ChosenCycle& chose
 // Every how many cycles the time series take a point, for at most `max_points` points.
 int series_stride(const RunData& run, int max_points);
 
-// Per sensor: nearest target's range and lateral position (recorded and simulated, like paper
+// Per sensor: nearest object target's range and lateral position (recorded and simulated, like paper
 // Fig. 5), targets per cycle, and GOSPA over time.
 std::vector<svg::PlotSpec> time_series(const RunData& run, int stride, const std::vector<NearestTargetRow>& nearest,
                                        const std::vector<CycleBucketRow>& buckets);

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <array>
-
-#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -112,7 +110,10 @@ std::vector<NearestTargetRow> read_nearest_targets(SQLite::Database& db, std::in
     for (const auto* side : {&list.recorded, &list.simulated}) {
       const StoredTarget* nearest = nullptr;
       for (const StoredTarget& t : *side) {
-        if (nearest == nullptr || t.range_m < nearest->range_m) nearest = &t;
+        // A target of an annotated object: the stationary background and other targets nearer
+        // would hide the object the series follows (runs stored before classes: every target).
+        const bool of_object = !t.target_class || *t.target_class == metrics::TargetClass::object;
+        if (of_object && (nearest == nullptr || t.range_m < nearest->range_m)) nearest = &t;
       }
       if (nearest != nullptr) {
         rows.push_back({list.sensor, nearest->simulated, time->second, nearest->range_m, nearest->p_ST_S()});

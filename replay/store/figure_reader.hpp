@@ -66,7 +66,8 @@ struct CycleWindow {
 };
 CycleWindow read_cycle_window(SQLite::Database& db, std::int64_t run_id, int first_cycle, int cycle);
 
-// The nearest target of one origin in one cycle and sensor.
+// The nearest target of an annotated object (class `object`) of one origin in one cycle and
+// sensor; of any class in runs stored before target classes (schema v3).
 struct NearestTargetRow {
   int sensor = 0;
   bool simulated = false;

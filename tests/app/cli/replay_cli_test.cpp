@@ -274,7 +274,7 @@ TEST_F(ReplayCli, SummaryStoreKeepsTheFiguresAndNoTargets) {
   EXPECT_NE(page.find("The residual histograms need the targets"), std::string::npos);
   EXPECT_NE(page.find("Targets per cycle, sensor"), std::string::npos);  // from the cycles: still drawn
   EXPECT_NE(page.find("GOSPA, sensor"), std::string::npos);
-  EXPECT_EQ(page.find("Nearest target range"), std::string::npos);
+  EXPECT_EQ(page.find("Nearest object target range"), std::string::npos);
   EXPECT_EQ(page.find("class=\"birdseye\""), std::string::npos);
 }
 
