@@ -15,6 +15,10 @@
 //              digits, the targets' reals at the float32 precision they are stored at; the
 //              columns that name the machine or the moment (times, directories, version) are
 //              left out.
+// Beside the hashes, the replay's figures (golden_figures.txt) are compared within stated
+// tolerances: another compiler or other flags round differently and change the hashes (the hash
+// comparison is skipped, saying so, where the compiler is not the one the hashes were made with),
+// but must not move what a user reads beyond these.
 #include <gtest/gtest.h>
 
 #include <SQLiteCpp/SQLiteCpp.h>
@@ -31,6 +35,8 @@
 
 #include "app/cli/run_rcsim.hpp"
 #include "io/recording.hpp"
+#include <nlohmann/json.hpp>
+
 #include "replay/store/run_rows.hpp"
 #include "scratch_dir.hpp"
 
@@ -43,6 +49,32 @@ using testing::run_rcsim;
 constexpr int kGoldenSeed = 7;
 const fs::path kSourceDir = RCSIM_SOURCE_DIR;
 const fs::path kHashFile = kSourceDir / "tests" / "golden" / "golden_hashes.txt";
+const fs::path kFiguresFile = kSourceDir / "tests" / "golden" / "golden_figures.txt";
+
+// The compiler this build was made with, as the hash file names the one its hashes come from.
+#ifdef __clang__
+const std::string kCompiler = std::string("clang ") + __clang_version__;
+#else
+const std::string kCompiler = std::string("gcc ") + __VERSION__;
+#endif
+
+// A replay's figures as `rcsim replay --json` prints them, and how far another compiler may move
+// them: |actual - golden| <= max(absolute, relative * |golden|).
+struct FigureTolerance {
+  const char* figure;
+  double relative, absolute;
+};
+const std::vector<FigureTolerance> kFigureTolerances{
+    {"cycles", 0.0, 0.0},  // the recording's: exact
+    {"targets_recorded", 0.0, 0.0},
+    {"targets_simulated", 0.03, 2.0},
+    {"targets_matched", 0.05, 2.0},
+    {"gospa_mean", 0.05, 0.02},
+    {"ospa_mean", 0.05, 0.02},
+    {"object_cycles_detected_simulated", 0.05, 2.0},
+    {"merge_artefacts_simulated", 0.05, 2.0},
+    {"residual_range_rms_m", 0.10, 0.01},
+};
 
 struct GoldenCase {
   std::string kind;  // simulate | synth | replay
@@ -89,6 +121,50 @@ std::map<std::string, std::string> expected_hashes() {
   return hashes;
 }
 
+std::string real(double value) { return fmt::format("{:.17g}", value); }
+
+// The compiler the hash file's hashes were made with ("# compiler: ..."); empty where it says none.
+std::string hashes_compiler() {
+  std::ifstream in(kHashFile);
+  std::string line;
+  const std::string tag = "# compiler: ";
+  while (std::getline(in, line)) {
+    if (line.rfind(tag, 0) == 0) return line.substr(tag.size());
+  }
+  return "";
+}
+
+// golden_figures.txt: per replay case "replay PATH FIGURE VALUE" lines.
+std::map<std::string, std::map<std::string, double>> expected_figures() {
+  std::map<std::string, std::map<std::string, double>> figures;
+  std::ifstream in(kFiguresFile);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto value_at = line.rfind(' '), figure_at = line.rfind(' ', value_at - 1);
+    figures[line.substr(0, figure_at)][line.substr(figure_at + 1, value_at - figure_at - 1)] = std::stod(line.substr(value_at + 1));
+  }
+  return figures;
+}
+
+// Compares a replay's --json figures with the golden ones within their tolerances.
+void expect_figures_within_tolerances(const GoldenCase& c, const nlohmann::json& summary) {
+  if (const char* out = std::getenv("RCSIM_GOLDEN_FIGURES_OUT")) {
+    std::ofstream file(out, std::ios::app);
+    for (const auto& t : kFigureTolerances) file << c.key() << ' ' << t.figure << ' ' << real(summary.at(t.figure).get<double>()) << '\n';
+  }
+  const auto all = expected_figures();
+  const auto it = all.find(c.key());
+  ASSERT_NE(it, all.end()) << "no golden figures for '" << c.key() << "' in " << kFiguresFile.string();
+  for (const auto& t : kFigureTolerances) {
+    const auto golden = it->second.find(t.figure);
+    ASSERT_NE(golden, it->second.end()) << c.key() << ": " << t.figure;
+    const double actual = summary.at(t.figure).get<double>();
+    EXPECT_LE(std::abs(actual - golden->second), std::max(t.absolute, t.relative * std::abs(golden->second)))
+        << c.key() << ": " << t.figure << " " << actual << " against the golden " << golden->second;
+  }
+}
+
 std::string hex(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
 
 // Columns whose values depend on the machine, the moment or the checkout, not on the figures.
@@ -105,7 +181,6 @@ const std::vector<std::string> kRunTables{"run_sensors", "run_objects", "merge_p
 // the storage).
 constexpr const char* kRunColumns = "run_id, recording_name, recording_checksum, recording_source, cycle_time_s, cycles, seed, level";
 
-std::string real(double value) { return fmt::format("{:.17g}", value); }
 std::string real32(double value) { return real(static_cast<double>(static_cast<float>(value))); }
 std::string optional_real(double value) { return std::isnan(value) ? "NULL" : real32(value); }
 
@@ -212,16 +287,23 @@ TEST_P(GoldenRun, OutputHashIsUnchanged) {
   } else {
     const fs::path dir = testing::fresh_scratch_dir("golden");
     const fs::path db = dir / "report.sqlite";
-    const auto r = run_rcsim(fmt::format("replay {} --db {} --seed {}", (kSourceDir / c.path).string(), db.string(),
+    const auto r = run_rcsim(fmt::format("replay {} --db {} --seed {} --json", (kSourceDir / c.path).string(), db.string(),
                                          kGoldenSeed), false);
     ASSERT_EQ(r.exit_code, 0) << c.key();
+    expect_figures_within_tolerances(c, nlohmann::json::parse(r.output));
     output = dump_report(db);
     fs::remove_all(dir);
   }
   ASSERT_FALSE(output.empty()) << c.key();
   const std::string actual = hex(fnv1a64(output));
   // scripts/update-golden.sh collects these lines into the hash file.
-  if (const char* out = std::getenv("RCSIM_GOLDEN_OUT")) std::ofstream(out, std::ios::app) << c.key() << ' ' << actual << '\n';
+  if (const char* out = std::getenv("RCSIM_GOLDEN_OUT")) {
+    std::ofstream(out, std::ios::app) << "# compiler: " << kCompiler << '\n' << c.key() << ' ' << actual << '\n';
+  }
+  if (const std::string made_with = hashes_compiler(); made_with != kCompiler) {
+    GTEST_SKIP() << c.key() << ": the hashes were made with " << made_with << ", this build with " << kCompiler
+                 << ": only the figures are compared (within their tolerances)";
+  }
   const auto expected = expected_hashes();
   const auto it = expected.find(c.key());
   ASSERT_NE(it, expected.end()) << "no golden hash for '" << c.key() << "' in " << kHashFile.string()
