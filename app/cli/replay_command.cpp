@@ -192,11 +192,11 @@ void run_replay(ReplayArgs& args) {
 
 // The figures under the verdict: all targets, then the classes (print_class_figures).
 void print_figures(const Recording& recording, const replay::ReplaySummary& summary,
-                   replay::RunKind kind) {
+                   ListLevel kind) {
   std::cout << fmt::format(
       "  all targets: {} recorded / {} simulated, GOSPA mean {:.3f} m{}; merge artefacts {} / {}; latency {} / {}\n",
       summary.targets_recorded, summary.targets_simulated, summary.gospa_mean_m,
-      kind == replay::RunKind::detections ? " (not judged: the background is drawn from a density, docs/verdicts.md)" : "",
+      kind == ListLevel::detections ? " (not judged: the background is drawn from a density, docs/verdicts.md)" : "",
       summary.merge_artefacts_recorded, summary.merge_artefacts_simulated,
       summary.latency_recorded_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_recorded_s),
       summary.latency_simulated_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_simulated_s));
@@ -299,7 +299,7 @@ void store_and_print(replay::ReportDatabase& db, ReplayArgs& args, const Recordi
                            recording.sensors.size() == 1 ? "" : "s", label.level,
                              label.text());
     if (verdict != nullptr) print_run_verdict(std::cout, *verdicts, *verdict);
-    print_figures(recording, summary, replay::run_kind(label.level, label.fidelity));
+    print_figures(recording, summary, replay::compared_level(label.level, label.fidelity));
   }
   throw_if_failed(verdicts);
 }

@@ -91,7 +91,7 @@ void print_run_verdict(std::ostream& out, const Verdicts& v, const RunVerdict& r
   const std::vector<FigureVerdict> figures = figure_verdicts(v, run);
   const auto met = std::count_if(figures.begin(), figures.end(), [](const FigureVerdict& f) { return f.passed; });
   const std::string what = v.source == CriteriaSource::defaults
-                               ? fmt::format("the default tolerances for {} (docs/verdicts.md){}", replay::run_kind_name(run.kind),
+                               ? fmt::format("the default tolerances for {} (docs/verdicts.md){}", list_level_name(run.kind),
                                              v.gate ? "" : "; --criteria defaults makes them a gate")
                                : (v.source == CriteriaSource::file ? "the criteria of --criteria" : "the report's criteria");
   out << fmt::format("verdict: {}, {} of {} figures within {}\n", run.passed ? "PASS" : "FAIL", met, figures.size(), what);

@@ -10,10 +10,10 @@ namespace rcsim::replay::report {
 
 namespace {
 
-std::string what_judged(const verdict::Verdicts& v, RunKind kind) {
+std::string what_judged(const verdict::Verdicts& v, ListLevel kind) {
   switch (v.source) {
     case verdict::CriteriaSource::defaults:
-      return fmt::format("the default tolerances for {} (docs/verdicts.md)", run_kind_name(kind));
+      return fmt::format("the default tolerances for {} (docs/verdicts.md)", list_level_name(kind));
     case verdict::CriteriaSource::file: return "the criteria of --criteria";
     case verdict::CriteriaSource::report: return "the criteria stored in this report";
   }
@@ -58,7 +58,7 @@ std::string run_verdict_block(const RunData& run, const verdict::Verdicts& verdi
   }
   out += "</table>";
   out += fmt::format(R"(<p class="meta run-label">{}; {}</p>)", svg::escape(label.level), svg::escape(label.text()));
-  if (rv.kind == RunKind::detections) out += all_target_note(run);
+  if (rv.kind == ListLevel::detections) out += all_target_note(run);
   return out + "</div>";
 }
 

@@ -9,11 +9,9 @@ std::string run_level_of(const Recording& recording) {
   return "mixed";
 }
 
-RunKind run_kind(std::string_view level, std::string_view fidelity_level) {
-  if (level == "detections" || level == "mixed") return RunKind::detections;
-  return fidelity_level == "no_tracking" ? RunKind::detections : RunKind::tracks;
+ListLevel compared_level(std::string_view level, std::string_view fidelity_level) {
+  if (level == "detections" || level == "mixed") return ListLevel::detections;
+  return fidelity_level == "no_tracking" ? ListLevel::detections : ListLevel::tracks;
 }
-
-std::string_view run_kind_name(RunKind kind) { return kind == RunKind::detections ? "detections" : "tracks"; }
 
 }  // namespace rcsim::replay

@@ -9,18 +9,14 @@
 
 namespace rcsim::replay {
 
-enum class RunKind { tracks, detections };
-
 // runs.level of a recording: "detections" where every sensor reports detections, "tracks" where
 // every sensor reports tracks, "mixed" otherwise.
 std::string run_level_of(const Recording& recording);
 
-// A stored run's kind: detections for the levels "detections" and "mixed" (a recording with any
-// sensor of raw detections has a background drawn from a density). Runs stored before the level
-// was written (always "tracks" then) are detections where they were simulated without a tracker.
-RunKind run_kind(std::string_view level, std::string_view fidelity_level);
-
-// "tracks" or "detections".
-std::string_view run_kind_name(RunKind kind);
+// What a stored run compares (tracks or detections, never ideal): detections for the levels
+// "detections" and "mixed" (a recording with any sensor of raw detections has a background drawn
+// from a density). Runs stored before the level was written (always "tracks" then) are
+// detections where they were simulated without a tracker.
+ListLevel compared_level(std::string_view level, std::string_view fidelity_level);
 
 }  // namespace rcsim::replay

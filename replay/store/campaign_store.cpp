@@ -141,7 +141,7 @@ std::vector<RunFigureSources> read_run_figure_sources(SQLite::Database& db) {
     run.recording_dir = query.getColumn(2).getString();
     run.seed = query.getColumn(3).getInt64();
     run.duration_s = query.getColumn(4).getDouble() * query.getColumn(5).getDouble();
-    run.kind = run_kind(query.getColumn(6).getString(), query.getColumn(7).isNull() ? "" : query.getColumn(7).getString());
+    run.kind = compared_level(query.getColumn(6).getString(), query.getColumn(7).isNull() ? "" : query.getColumn(7).getString());
     int c = kFirstFigureColumn;
     for (const auto field : kFigureColumns) run.*field = optional_double(query.getColumn(c++)).value_or(std::nan(""));
     out.push_back(std::move(run));

@@ -55,7 +55,7 @@ struct RunFigureSources {
   std::string recording_name, recording_dir;
   std::int64_t seed = 0;
   double duration_s = 0.0;  // cycles x cycle time
-  RunKind kind = RunKind::tracks;  // what the recording reports (run_kind)
+  ListLevel kind = ListLevel::tracks;  // what the run compares (compared_level): tracks or detections
   // summaries
   double gospa_mean = 0.0, ospa_mean = 0.0, gospa_object_mean = 0.0, ospa_object_mean = 0.0;
   double targets_recorded = 0.0, targets_simulated = 0.0, targets_matched = 0.0;

@@ -32,7 +32,7 @@ struct Criterion {
   bool pass_if_missing = false;
   // The kind of run it judges (the default tolerances, default_criteria.hpp); nullopt: every run.
   // Files cannot set it: one --criteria file judges the runs it is given.
-  std::optional<RunKind> kind = std::nullopt;
+  std::optional<ListLevel> kind = std::nullopt;
 
   // "gospa_mean_m <= 1.5" or "mean gospa_mean_m over the campaign <= 1.2".
   std::string text() const;
@@ -63,7 +63,7 @@ struct CriterionResult {
 struct RunVerdict {
   std::int64_t run_id = 0;
   std::string recording_name, recording_dir;
-  RunKind kind = RunKind::tracks;
+  ListLevel kind = ListLevel::tracks;
   std::int64_t seed = 0;
   double duration_s = 0.0;
   double wall_s = 0.0;

@@ -39,8 +39,8 @@ constexpr std::string_view kDetectionTolerances = R"({
 }
 )";
 
-std::vector<Criterion> parse_defaults(RunKind kind) {
-  const std::string name = "default tolerances (" + std::string(run_kind_name(kind)) + ")";
+std::vector<Criterion> parse_defaults(ListLevel kind) {
+  const std::string name = "default tolerances (" + std::string(list_level_name(kind)) + ")";
   const nlohmann::json doc = parse_json_text(std::string(default_criteria_document(kind)), name);
   std::vector<Criterion> out = parse_criteria(JsonField(doc, name, ""));
   for (Criterion& c : out) c.kind = kind;
@@ -49,14 +49,14 @@ std::vector<Criterion> parse_defaults(RunKind kind) {
 
 }  // namespace
 
-std::string_view default_criteria_document(RunKind kind) {
-  return kind == RunKind::detections ? kDetectionTolerances : kTrackTolerances;
+std::string_view default_criteria_document(ListLevel kind) {
+  return kind == ListLevel::detections ? kDetectionTolerances : kTrackTolerances;
 }
 
 const std::vector<Criterion>& default_criteria() {
   static const std::vector<Criterion> criteria = [] {
-    std::vector<Criterion> out = parse_defaults(RunKind::tracks);
-    for (Criterion& c : parse_defaults(RunKind::detections)) out.push_back(std::move(c));
+    std::vector<Criterion> out = parse_defaults(ListLevel::tracks);
+    for (Criterion& c : parse_defaults(ListLevel::detections)) out.push_back(std::move(c));
     return out;
   }();
   return criteria;

@@ -13,7 +13,7 @@
 namespace rcsim::replay::verdict {
 
 // The rcsim-criteria document of the default tolerances of one kind, as docs/verdicts.md shows it.
-std::string_view default_criteria_document(RunKind kind);
+std::string_view default_criteria_document(ListLevel kind);
 
 // The default tolerances of both kinds, each criterion tagged with its kind: tracks first.
 const std::vector<Criterion>& default_criteria();

@@ -42,7 +42,7 @@ struct RunFigureRow {
   std::string recording_name, recording_dir;
   std::int64_t seed = 0;
   double duration_s = 0.0;  // cycles x cycle time
-  RunKind kind = RunKind::tracks;
+  ListLevel kind = ListLevel::tracks;
   std::vector<std::optional<double>> values;  // one per figure asked for, in that order
 };
 

@@ -36,17 +36,17 @@ std::vector<nlohmann::json> documented_blocks() {
 TEST(DefaultCriteria, TheDocumentedBlocksAreTheBuiltInOnes) {
   const auto blocks = documented_blocks();
   ASSERT_EQ(blocks.size(), 2u);
-  EXPECT_EQ(blocks[0], nlohmann::json::parse(default_criteria_document(RunKind::tracks)));
-  EXPECT_EQ(blocks[1], nlohmann::json::parse(default_criteria_document(RunKind::detections)));
+  EXPECT_EQ(blocks[0], nlohmann::json::parse(default_criteria_document(ListLevel::tracks)));
+  EXPECT_EQ(blocks[1], nlohmann::json::parse(default_criteria_document(ListLevel::detections)));
 }
 
 TEST(DefaultCriteria, TaggedByKindTracksFirstHeadlineFigureFirst) {
   const auto& criteria = default_criteria();
   ASSERT_FALSE(criteria.empty());
   EXPECT_EQ(criteria.front().figure, "gospa_mean_m");
-  EXPECT_EQ(criteria.front().kind, RunKind::tracks);
+  EXPECT_EQ(criteria.front().kind, ListLevel::tracks);
   const auto first_detection = std::find_if(criteria.begin(), criteria.end(),
-                                            [](const Criterion& c) { return c.kind == RunKind::detections; });
+                                            [](const Criterion& c) { return c.kind == ListLevel::detections; });
   ASSERT_NE(first_detection, criteria.end());
   EXPECT_EQ(first_detection->figure, "gospa_object_mean_m");  // not all-target GOSPA: the background is a density
   for (const Criterion& c : criteria) {
@@ -55,11 +55,11 @@ TEST(DefaultCriteria, TaggedByKindTracksFirstHeadlineFigureFirst) {
   }
 }
 
-TEST(RunKind, FromTheLevelAndForOldRunsFromTheFidelity) {
-  EXPECT_EQ(run_kind("tracks", "full"), RunKind::tracks);
-  EXPECT_EQ(run_kind("detections", "full"), RunKind::detections);
-  EXPECT_EQ(run_kind("mixed", "full"), RunKind::detections);
-  EXPECT_EQ(run_kind("tracks", "no_tracking"), RunKind::detections);  // stored before runs.level was written
+TEST(ListLevel, FromTheLevelAndForOldRunsFromTheFidelity) {
+  EXPECT_EQ(compared_level("tracks", "full"), ListLevel::tracks);
+  EXPECT_EQ(compared_level("detections", "full"), ListLevel::detections);
+  EXPECT_EQ(compared_level("mixed", "full"), ListLevel::detections);
+  EXPECT_EQ(compared_level("tracks", "no_tracking"), ListLevel::detections);  // stored before runs.level was written
 }
 
 class DefaultVerdict : public rcsim::testing::ScratchDirTest {
