@@ -153,7 +153,7 @@ void run_listen(const ListenArgs& args) {
 
 void add_listen_command(CLI::App& app) {
   auto args = std::make_shared<ListenArgs>();
-  auto* cmd = app.add_subcommand("listen", "Receive an rcsim stream and print its target lists as rcsim simulate does");
+  auto* cmd = app.add_subcommand("listen", "receive an rcsim stream and print its target lists as rcsim simulate does");
   cmd->add_option("--port", args->port, "UDP port to receive on (0: any free port, printed at start)")->capture_default_str();
   cmd->add_option("--bind", args->bind, "Local address (default 127.0.0.1; 0.0.0.0 with --group)");
   cmd->add_option("--group", args->group, "Multicast group to join (IPv4)");

@@ -140,7 +140,7 @@ void add_models_command(CLI::App& app) {
   auto sensors = std::make_shared<bool>(false);
   auto export_name = std::make_shared<std::string>();
   auto output = std::make_shared<std::string>();
-  auto* cmd = app.add_subcommand("models", "List the built-in object models (--sensors: the sensor profiles)");
+  auto* cmd = app.add_subcommand("models", "list the built-in object models (--sensors: the sensor profiles)");
   cmd->add_flag("--json", *json, "Machine-readable output with every reflector (or every profile's main values)");
   cmd->add_flag("--sensors", *sensors, "List the built-in sensor profiles instead");
   cmd->add_option("--export", *export_name, "With --sensors: write this built-in profile as an editable rcsim-sensor file");

@@ -65,10 +65,10 @@ void run_derive(const DeriveArgs& args) {
 }  // namespace
 
 void add_profile_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("profile", "Sensor profiles from real recordings (derive)");
+  auto* cmd = app.add_subcommand("profile", "sensor profiles from real recordings (derive)");
   cmd->require_subcommand(1);
   auto args = std::make_shared<DeriveArgs>();
-  auto* derive = cmd->add_subcommand("derive", "Derive a sensor profile (rcsim-sensor) from recordings of raw detections");
+  auto* derive = cmd->add_subcommand("derive", "derive a sensor profile (rcsim-sensor) from recordings of raw detections");
   derive->add_option("recordings", args->recordings, "Recording directories of one kind of radar")->required();
   derive->add_option("-o,--output", args->output, "The profile to write (atomically)")->required();
   derive->add_option("--base", args->base,

@@ -308,7 +308,7 @@ void store_and_print(replay::ReportDatabase& db, ReplayArgs& args, const Recordi
 
 void add_replay_command(CLI::App& app) {
   auto args = std::make_shared<ReplayArgs>();
-  auto* cmd = app.add_subcommand("replay", "import a recording, re-simulate it, compare per cycle, store the report");
+  auto* cmd = app.add_subcommand("replay", "re-simulate a recording, compare it cycle by cycle, store the report");
   cmd->add_option("RECORDING_DIR", args->recording_dir, "recording directory (rcsim-recording)")->required();
   cmd->add_option("--db", args->db_path, "report database (rcsim-report, SQLite); created if missing")->required();
   add_seed_option(*cmd, args->seed, "seed of the simulation's random draws");

@@ -58,7 +58,7 @@ void run_simulate(const SimulateArgs& args) {
 
 void add_simulate_command(CLI::App& app) {
   auto args = std::make_shared<SimulateArgs>();
-  auto* cmd = app.add_subcommand("simulate", "Simulate the target lists of every sensor and cycle of a scene");
+  auto* cmd = app.add_subcommand("simulate", "simulate the target lists of every sensor and cycle of a scene");
   cmd->add_option("scene", args->scene_path, "Scene file (rcsim-scene, JSON)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--level", args->level, "ideal | detections | tracks")
       ->check(CLI::IsMember({"ideal", "detections", "tracks"}))

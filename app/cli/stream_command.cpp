@@ -119,7 +119,7 @@ void run_stream(const StreamArgs& args) {
 
 void add_stream_command(CLI::App& app) {
   auto args = std::make_shared<StreamArgs>();
-  auto* cmd = app.add_subcommand("stream", "Play a scene or a recording live over UDP, paced against a steady clock");
+  auto* cmd = app.add_subcommand("stream", "play a scene or a recording live over UDP, paced against a steady clock");
   cmd->add_option("input", args->input, "Scene file (rcsim-scene) or recording directory (rcsim-recording)")
       ->required()
       ->check(CLI::ExistingPath);

@@ -87,7 +87,7 @@ void run_synth(const SynthArgs& args) {
 
 void add_synth_command(CLI::App& app) {
   auto args = std::make_shared<SynthArgs>();
-  auto* cmd = app.add_subcommand("synth", "Signal-level reference simulation of a scene into a recording");
+  auto* cmd = app.add_subcommand("synth", "signal-level reference simulation of a scene into a recording");
   cmd->add_option("scene", args->scene_path, "Scene file (rcsim-scene, JSON)")->required();
   cmd->add_option("-o,--output", args->output, "Recording directory to write (atomically)")->required();
   add_seed_option(*cmd, args->seed, "Seed of every random draw (receiver noise, clutter, annotation)");

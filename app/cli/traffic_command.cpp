@@ -99,7 +99,7 @@ void run_traffic(const TrafficArgs& a) {
 
 void add_traffic_command(CLI::App& app) {
   auto a = std::make_shared<TrafficArgs>();
-  auto* cmd = app.add_subcommand("traffic", "Floating traffic from a microscopic traffic model (IDM + MOBIL) as a scene");
+  auto* cmd = app.add_subcommand("traffic", "floating traffic from a microscopic traffic model (IDM + MOBIL) as a scene");
   cmd->add_option("-o,--output", a->output, "Scene file to write (rcsim-scene, written atomically)")->required();
   cmd->add_option("--layout", a->layout, "highway | ring | intersection")->capture_default_str();
   cmd->add_option("--lanes", a->lanes, "Lanes in the direction of travel (highway, ring: 3; intersection: 1)");
