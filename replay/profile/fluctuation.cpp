@@ -54,14 +54,14 @@ struct Fit {
 };
 
 Fit fit(const Model& m, const std::vector<Bin>& bins) {
-  double rp = 0.0, pp = 0.0, total = 0.0;
+  double rp = 0.0, pp = 0.0;
   for (const Bin& b : bins) {
     const double p = m.redetection(b.margin_db);
     rp += static_cast<double>(b.n) * b.rate * p, pp += static_cast<double>(b.n) * p * p;
   }
   Fit f;
   f.plateau = std::min(1.0, rp / pp);
-  double sum = 0.0;
+  double sum = 0.0, total = 0.0;
   for (const Bin& b : bins) {
     sum += static_cast<double>(b.n) * std::pow(b.rate - f.plateau * m.redetection(b.margin_db), 2);
     total += static_cast<double>(b.n);

@@ -87,16 +87,13 @@ RunCopier::RunCopier(ReportDatabase& db, std::int64_t source_run) : impl_(std::m
 RunCopier::~RunCopier() = default;
 
 void RunCopier::copy(std::int64_t id) {
-  for (SQLite::Statement* s : {&impl_->copy_run}) {
-    s->bind(1, id);
-    s->bind(2, impl_->source_run);
-    run(*s);
-  }
-  for (auto& c : impl_->copies) {
-    c->bind(1, id);
-    c->bind(2, impl_->source_run);
-    run(*c);
-  }
+  const auto copy_rows = [&](SQLite::Statement& s) {
+    s.bind(1, id);
+    s.bind(2, impl_->source_run);
+    run(s);
+  };
+  copy_rows(impl_->copy_run);
+  for (auto& c : impl_->copies) copy_rows(*c);
 }
 
 void RunCopier::rename(std::int64_t id, const std::string& recording_name, const std::string& recording_dir, std::int64_t seed,
