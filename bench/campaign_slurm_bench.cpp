@@ -1,6 +1,6 @@
 // The campaign goal of issue 20 (docs/campaigns.md): a campaign of generated drives replayed
 // serially (one shard) and as a Slurm job array of N shards on a one-node cluster started here
-// (tests/campaign/slurm_cluster.hpp), then merged. Prints the serial time, the ideal (serial / N),
+// (tests/end_to_end/slurm_cluster.hpp), then merged. Prints the serial time, the ideal (serial / N),
 // the array's wall time from sbatch to the last task's end and its ratio to the ideal, the merge
 // time, and whether the merged report equals the serial one figure for figure.
 //   usage: rcsim_bench_campaign WORK_DIR [DRIVES=200] [DURATION_S=600] [SHARDS=2]
@@ -10,8 +10,8 @@
 #include <fstream>
 #include <iostream>
 
-#include "campaign/campaign_figures.hpp"
-#include "campaign/slurm_cluster.hpp"
+#include "end_to_end/campaign_figures.hpp"
+#include "end_to_end/slurm_cluster.hpp"
 #include "tool_arguments.hpp"
 
 namespace {

@@ -8,7 +8,7 @@ build_dir=${1:-build}
 shift || true
 
 # slurm-wlm and munge: the campaign tests start a one-node Slurm cluster on loopback
-# (tests/campaign/slurm_cluster.hpp); libxml2-utils: xmllint validates the JUnit output.
+# (tests/end_to_end/slurm_cluster.hpp); libxml2-utils: xmllint validates the JUnit output.
 # shellcheck disable=SC2046
 scripts/install-packages.sh $(cat scripts/build-packages.txt) chromium fonts-dejavu-core tshark slurm-wlm munge libxml2-utils
 

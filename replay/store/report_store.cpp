@@ -218,7 +218,7 @@ void check_database_file(const std::string& path) {
 }
 
 // PRAGMA journal_mode = WAL, retried every 10 ms while another connection holds the file, for up
-// to kBusyTimeout_ms (tests/app/cli/damaged_report_test.cpp: eight replays into one new database).
+// to kBusyTimeout_ms (tests/end_to_end/damaged_report_test.cpp: eight replays into one new database).
 void set_wal_waiting(SQLite::Database& db) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kBusyTimeout_ms);
   for (;;) {

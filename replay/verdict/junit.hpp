@@ -1,7 +1,7 @@
 #pragma once
 // Verdicts as JUnit XML, the test report CI systems display (Jenkins, GitLab, GitHub actions):
 // one <testcase> per run, failed with one <failure> listing its failed criteria, and one per
-// campaign criterion (schemas/campaign.md, "JUnit"). Validated against tests/campaign/junit.xsd,
+// campaign criterion (schemas/campaign.md, "JUnit"). Validated against tests/end_to_end/junit.xsd,
 // which follows the schema Jenkins' xUnit plugin reads (junit-10.xsd).
 #include <string>
 

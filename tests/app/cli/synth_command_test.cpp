@@ -14,7 +14,7 @@
 #include "app/cli/run_rcsim.hpp"
 #include "io/recording.hpp"
 
-namespace {
+namespace synth_command_test {
 
 namespace fs = std::filesystem;
 
@@ -191,4 +191,4 @@ TEST_F(SynthCli, RefusesASensorItCannotSynthesiseNamingIt) {
   EXPECT_EQ(entries(), (std::vector<std::string>{"fast.json", "fast_srr.json"}));
 }
 
-}  // namespace
+}  // namespace synth_command_test

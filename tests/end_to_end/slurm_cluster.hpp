@@ -341,7 +341,7 @@ class SlurmCluster {
       conf = root / "slurm.conf";
       const auto r = root.string();
       std::ofstream out(conf);
-      out << "# A one-node test cluster on loopback, written by tests/campaign/slurm_cluster.hpp;\n"
+      out << "# A one-node test cluster on loopback, written by tests/end_to_end/slurm_cluster.hpp;\n"
           << "# docs/slurm-testing.md says why each line.\n"
           << "ClusterName=rcsimtest\n"
           << "SlurmctldHost=localhost(127.0.0.1)\n"

@@ -1,7 +1,7 @@
 // The test Slurm cluster itself: an array runs, a cancelled task is redone by resubmitting its
 // index, two clusters run side by side (CTest -j2 starts tests in parallel), and no daemon
 // outlives the fixture. Skipped, with the reason, where Slurm cannot run (not root, no packages).
-#include "campaign/slurm_cluster.hpp"
+#include "end_to_end/slurm_cluster.hpp"
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 #include <set>
 #include <csignal>
 
-#include "campaign/campaign_figures.hpp"
+#include "end_to_end/campaign_figures.hpp"
 #include "app/cli/run_rcsim.hpp"
 #include "replay/verdict/run_figures.hpp"
 #include "replay/store/report_store.hpp"

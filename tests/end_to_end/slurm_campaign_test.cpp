@@ -1,4 +1,4 @@
-// A campaign through a real Slurm (tests/campaign/slurm_cluster.hpp): `rcsim campaign submit`
+// A campaign through a real Slurm (tests/end_to_end/slurm_cluster.hpp): `rcsim campaign submit`
 // of the array over bundled recordings, the merged shards equal to a serial replay figure for
 // figure; tasks SIGKILLed mid-run, resubmitted by index, redo only what they had not stored.
 // Skipped, with the reason, where Slurm cannot run (not root, packages missing).
@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 #include <fstream>
 
-#include "campaign/campaign_figures.hpp"
-#include "campaign/slurm_cluster.hpp"
+#include "end_to_end/campaign_figures.hpp"
+#include "end_to_end/slurm_cluster.hpp"
 #include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"

@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "../stream/stream_test_support.hpp"
+#include "app/stream/stream_test_support.hpp"
 #include "app/cli/run_rcsim.hpp"
 #include "replay/store/report_merge.hpp"
 #include "replay/store/report_store.hpp"

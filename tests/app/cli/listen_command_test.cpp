@@ -9,9 +9,11 @@
 #include <thread>
 
 #include "app/stream/stream_test_support.hpp"
+#include "app/cli/run_rcsim.hpp"
+#include "scratch_dir.hpp"
 
 namespace rcsim::stream {
-namespace {
+namespace listen_command_test {
 
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
@@ -130,5 +132,51 @@ TEST_F(ListenCli, AnErrorKeepsTheCaptureReceivedBeforeIt) {
   EXPECT_GT(rows, 20) << capture;  // header and the rows of the cycles streamed before the kill
 }
 
-}  // namespace
+}  // namespace listen_command_test
 }  // namespace rcsim::stream
+
+namespace rcsim::listen_command_usage_test {
+
+namespace fs = std::filesystem;
+using rcsim::testing::CommandResult;
+
+const std::string kUsageScene = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/front_approach.json";
+
+// `rcsim ARGS` with stderr joined, ended after 60 s should it wait for something (a socket).
+CommandResult run_usage(const std::string& args) {
+  return rcsim::testing::run_shell_command("timeout 60 " + std::string(RCSIM_BINARY) + " " + args);
+}
+
+bool output_has(const CommandResult& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
+
+class CliUsage : public rcsim::testing::ScratchDirTest {
+ protected:
+  CliUsage() : ScratchDirTest("listen_cli_usage") {}
+};
+
+TEST_F(CliUsage, ListenSaysWhyTheTruthOutputHoldsOnlyItsHeader) {
+  const fs::path truth = dir_ / "truth.csv";
+  const auto idle = run_usage("listen --port 0 --idle-timeout-s 0.2 --truth-output " + truth.string());
+  EXPECT_EQ(idle.exit_code, 0) << idle.output;
+  EXPECT_TRUE(output_has(idle, "no ground truth arrived, so " + truth.string() + " holds the header only")) << idle.output;
+  EXPECT_TRUE(output_has(idle, "--messages simulated,truth")) << idle.output;
+  const std::string header = rcsim::testing::read_file(truth);
+  EXPECT_EQ(std::count(header.begin(), header.end(), '\n'), 1) << header;
+
+  // With the truth streamed, no hint. The listener's port is read from its log.
+  const std::string bin = RCSIM_BINARY, dir = dir_.string();
+  const std::string script =
+      "cd " + dir + " && (timeout 60 " + bin + " listen --port 0 --idle-timeout-s 10 -o out.csv --truth-output truth.csv "
+      "> listen.out 2> listen.err &) && for i in $(seq 200); do grep -q 'listening on' listen.err && break; sleep 0.05; done && "
+      "port=$(sed -n 's/.*listening on 127.0.0.1:\\([0-9]*\\).*/\\1/p' listen.err) && timeout 60 " + bin + " stream " +
+      kUsageScene + " --to 127.0.0.1:$port --messages simulated,truth --speed 10 2> stream.err && "
+      "for i in $(seq 200); do grep -q 'rcsim listen: .*datagrams' listen.err && break; sleep 0.05; done";
+  const auto streamed = rcsim::testing::run_shell_command(script);
+  ASSERT_EQ(streamed.exit_code, 0) << streamed.output << rcsim::testing::read_file(dir_ / "stream.err");
+  const std::string log = rcsim::testing::read_file(dir_ / "listen.err");
+  EXPECT_FALSE(log.find("no ground truth arrived") != std::string::npos) << log;
+  const std::string rows = rcsim::testing::read_file(truth);
+  EXPECT_GT(std::count(rows.begin(), rows.end(), '\n'), 50) << log;
+}
+
+}  // namespace rcsim::listen_command_usage_test

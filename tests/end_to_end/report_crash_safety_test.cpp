@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "../stream/stream_test_support.hpp"
+#include "app/stream/stream_test_support.hpp"
 #include "sanitizers.hpp"
 #include "scratch_dir.hpp"
 
