@@ -37,10 +37,11 @@ double fade(int age, int trace_cycles) {
   return 0.12 + 0.45 * (1.0 - static_cast<double>(age) / (trace_cycles + 1));
 }
 
-// The picture's geometry: the view in metres (square, equal scale) and where it sits on screen.
+// The picture's geometry: the view in metres (equal scale on both axes) and where it sits on screen.
 struct View {
-  double x_lo = 0.0, x_hi = 0.0, y_lo = 0.0, y_hi = 0.0, span = 0.0;  // metres, vehicle frame
-  double left = 0.0, top = 0.0, size = 0.0, right = 0.0, bottom = 0.0;  // pixels
+  double x_lo = 0.0, x_hi = 0.0, y_lo = 0.0, y_hi = 0.0;  // metres, vehicle frame
+  double m_per_px = 0.0;
+  double left = 0.0, top = 0.0, width = 0.0, height = 0.0, right = 0.0, bottom = 0.0;  // pixels: the plot area
   int width_px = 0, height_px = 0;
   // Screen: x (forward) up, y (left) to the left.
   LinearScale sx, sy;
@@ -49,9 +50,13 @@ struct View {
 
 // How far from the ego a target of no annotated object still widens the view.
 constexpr double kNearFieldM = 40.0;
+// A view much longer than wide (a road ahead and behind) gets a plot up to this many times taller
+// than wide, at the scale that fits its length: on a real drive, boxes 200 m apart on a 30 m wide
+// road were drawn 2 px wide in a square.
+constexpr double kMaxPlotAspect = 2.0;
 
-// Everything worth seeing (targets, sensors, the vehicle origin, boxes near the sensors), padded,
-// made square at equal scale.
+// Everything worth seeing (targets, sensors, the vehicle origin, boxes near the sensors), padded;
+// the plot as wide as spec.size_px and as tall as the view's length needs, up to kMaxPlotAspect.
 View make_view(const BirdsEyeSpec& spec) {
   double reach_m = 0.0;
   for (const auto& s : spec.sensors) reach_m = std::max(reach_m, s.max_range_m);
@@ -73,11 +78,15 @@ View make_view(const BirdsEyeSpec& spec) {
   widen(bounds.y_lo, bounds.y_hi, 10.0, 0.0);
   bounds.x_lo -= 2.0, bounds.x_hi += 2.0, bounds.y_lo -= 2.0, bounds.y_hi += 2.0;
   View v;
-  v.span = std::max(bounds.x_hi - bounds.x_lo, bounds.y_hi - bounds.y_lo);
+  const double length_m = bounds.x_hi - bounds.x_lo, width_m = bounds.y_hi - bounds.y_lo;
+  const double aspect = std::clamp(length_m / width_m, 1.0, kMaxPlotAspect);
+  v.width = spec.size_px, v.height = std::round(spec.size_px * aspect);
+  v.m_per_px = std::max(length_m / v.height, width_m / v.width);
+  const double half_length_m = 0.5 * v.m_per_px * v.height, half_width_m = 0.5 * v.m_per_px * v.width;
   const double cx = 0.5 * (bounds.x_lo + bounds.x_hi), cy = 0.5 * (bounds.y_lo + bounds.y_hi);
-  v.x_lo = cx - 0.5 * v.span, v.x_hi = cx + 0.5 * v.span, v.y_lo = cy - 0.5 * v.span, v.y_hi = cy + 0.5 * v.span;
-  v.left = 58.0, v.top = 30.0 + 14.0 * static_cast<double>(spec.notes.size()), v.size = spec.size_px;
-  v.right = v.left + v.size, v.bottom = v.top + v.size;
+  v.x_lo = cx - half_length_m, v.x_hi = cx + half_length_m, v.y_lo = cy - half_width_m, v.y_hi = cy + half_width_m;
+  v.left = 58.0, v.top = 30.0 + 14.0 * static_cast<double>(spec.notes.size());
+  v.right = v.left + v.width, v.bottom = v.top + v.height;
   v.width_px = static_cast<int>(v.right + 16.0), v.height_px = static_cast<int>(v.bottom + (spec.class_legend ? 122.0 : 104.0));
   v.sx = LinearScale{v.y_hi, v.y_lo, v.left, v.right};
   v.sy = LinearScale{v.x_lo, v.x_hi, v.bottom, v.top};
@@ -103,7 +112,8 @@ void draw_header(const BirdsEyeSpec& spec, const View& v, std::string& out) {
 // Axes with a metre grid.
 void draw_axes(const View& v, std::string& out) {
   const auto& [sx, sy] = std::tie(v.sx, v.sy);
-  const Ticks tx = nice_ticks(v.x_lo, v.x_hi, 8), ty = nice_ticks(v.y_lo, v.y_hi, 8);
+  const Ticks tx = nice_ticks(v.x_lo, v.x_hi, static_cast<int>(std::lround(8.0 * v.height / v.width))),
+              ty = nice_ticks(v.y_lo, v.y_hi, 8);
   out += R"(<g class="grid" stroke="#e6e6e6" stroke-width="1">)";
   for (const double tick : ty.values) {
     out += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{0}" y2="{2}"/>)", coord(sx(tick)), coord(v.top), coord(v.bottom));
@@ -145,20 +155,43 @@ void draw_fields_of_view(const BirdsEyeSpec& spec, const View& v, std::string& o
   out += "</g>";
 }
 
+// A label's place on screen, its width guessed from its characters (10 px text).
+struct LabelRect {
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+  bool overlaps(const LabelRect& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// Beside the box (right of it on screen), moved up or down a line at a time, nearest first, until
+// it overlaps no label placed before it; after 8 lines either way it stays where it is.
+LabelRect place_label(double x_px, double y_px, std::size_t characters, const std::vector<LabelRect>& placed) {
+  constexpr double kLineHeightPx = 11.0, kCharWidthPx = 5.6;
+  const double width_px = kCharWidthPx * static_cast<double>(characters);
+  const auto at = [&](double dy) { return LabelRect{x_px, y_px + dy - 8.0, x_px + width_px, y_px + dy + 2.0}; };
+  for (int step = 0; step <= 16; ++step) {
+    const double dy = (step % 2 == 1 ? -1.0 : 1.0) * kLineHeightPx * ((step + 1) / 2);
+    const LabelRect candidate = at(dy);
+    if (std::none_of(placed.begin(), placed.end(), [&](const LabelRect& r) { return r.overlaps(candidate); })) return candidate;
+  }
+  return at(0.0);
+}
+
 void draw_boxes(const BirdsEyeSpec& spec, const View& v, std::string& out) {
-  const auto& [sx, sy] = std::tie(v.sx, v.sy);
   out += R"(<g class="boxes">)";
+  std::vector<LabelRect> labels;
   for (const auto& box : spec.boxes) {
     std::string points;
+    double right_px = -1e9, centre_y_px = 0.0;
     for (const Vec2& c : box_corners_V(box)) {
       if (!points.empty()) points += ' ';
       points += v.px(c);
+      right_px = std::max(right_px, v.sx(c.y()));
     }
+    centre_y_px = v.sy(box.X_VO.translation().x());
     out += fmt::format(R"(<polygon class="box" points="{}" fill="#868e96" fill-opacity="0.18" stroke="{}" stroke-width="{}"/>)",
                        points, box.in_merge_pair ? "#862e9c" : "#495057", box.in_merge_pair ? "2" : "1.2");
-    const Vec2 c = box.X_VO.translation();
-    out += fmt::format(R"(<text class="box-label" x="{}" y="{}" text-anchor="middle">{}</text>)", coord(sx(c.y())),
-                       coord(sy(c.x()) + 3), escape(box.label));
+    labels.push_back(place_label(right_px + 3.0, centre_y_px + 3.0, box.label.size(), labels));
+    out += fmt::format(R"(<text class="box-label" x="{}" y="{}">{}</text>)", coord(labels.back().x0),
+                       coord(labels.back().y1 - 2.0), escape(box.label));
   }
   out += "</g>";
 }
@@ -169,7 +202,7 @@ void draw_ego_sensors_and_links(const BirdsEyeSpec& spec, const View& v, std::st
   out += fmt::format(R"(<g class="ego" stroke="#111" stroke-width="1.5"><line x1="{0}" y1="{1}" x2="{0}" y2="{2}"/><line x1="{3}" y1="{4}" x2="{5}" y2="{4}"/></g>)",
                      coord(sx(0.0)), coord(sy(-0.8)), coord(sy(0.8)), coord(sx(0.8)), coord(sy(0.0)), coord(sx(-0.8)));
   for (const auto& s : spec.sensors) {
-    const double k = v.span / v.size;  // metres per pixel: a marker of fixed pixel size
+    const double k = v.m_per_px;  // a marker of fixed pixel size
     const Vec2 tip = transform_point(s.X_VS, {9.0 * k, 0.0}), l = transform_point(s.X_VS, {-4.0 * k, 5.0 * k}),
                r = transform_point(s.X_VS, {-4.0 * k, -5.0 * k});
     out += fmt::format(R"(<polygon class="sensor" points="{} {} {}" fill="#2b8a3e" stroke="#111" stroke-width="0.8"><title>{}</title></polygon>)",
@@ -260,15 +293,15 @@ std::string birdseye_svg(const BirdsEyeSpec& spec) {
   draw_header(spec, v, out);
   draw_axes(v, out);
   // The drawing, clipped to the plot area by a nested viewport.
-  out += fmt::format(R"(<svg x="{0}" y="{1}" width="{2}" height="{2}" viewBox="{0} {1} {2} {2}" overflow="hidden">)",
-                     coord(v.left), coord(v.top), coord(v.size));
+  out += fmt::format(R"(<svg x="{0}" y="{1}" width="{2}" height="{3}" viewBox="{0} {1} {2} {3}" overflow="hidden">)",
+                     coord(v.left), coord(v.top), coord(v.width), coord(v.height));
   draw_fields_of_view(spec, v, out);
   draw_boxes(spec, v, out);
   draw_ego_sensors_and_links(spec, v, out);
   draw_targets(spec, v, out);
   out += "</svg>";
   out += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#555"/>)", coord(v.left),
-                     coord(v.top), coord(v.size), coord(v.size));
+                     coord(v.top), coord(v.width), coord(v.height));
   draw_legend(spec, v, out);
   out += "</svg>";
   return out;

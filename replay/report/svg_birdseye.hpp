@@ -43,7 +43,7 @@ struct BirdsEyeSpec {
   std::string title;
   std::vector<std::string> notes;  // lines under the title
   int trace_cycles = 0;  // how many earlier cycles the traces cover
-  int size_px = 500;     // width of the square plot area
+  int size_px = 500;     // width of the plot area (its height: as the view's length needs, up to 2 x)
   std::vector<BirdsEyeBox> boxes;
   std::vector<BirdsEyeSensor> sensors;
   std::vector<BirdsEyeTarget> targets;

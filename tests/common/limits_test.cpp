@@ -147,28 +147,6 @@ TEST(InputLimits, ARecordingWithAnglesInDegreesIsRefusedByFieldAndLine) {
 namespace rcsim {
 namespace {
 
-TEST(InputLimits, JsonNestedBeyondTheLimitIsRefusedBeforeItIsParsed) {
-  const auto nested = [](int depth, std::string_view open = "[", std::string_view close = "]") {
-    std::string text;
-    for (int i = 0; i < depth; ++i) text += open;
-    for (int i = 0; i < depth; ++i) text += close;
-    return text;
-  };
-  EXPECT_NO_THROW(parse_json_text(nested(kMaxJsonDepth), "ok.json"));
-  EXPECT_EQ(refusal_of([&] { parse_json_text(nested(kMaxJsonDepth + 1), "deep.json"); }),
-            "deep.json: line 1, column 65: arrays and objects nest deeper than 64 levels; no rcsim format needs that many");
-  // 10^7 deep: refused at the 65th bracket, nothing allocated for the rest.
-  EXPECT_NE(refusal_of([&] { parse_json_text(nested(10'000'000), "huge.json"); }).find("huge.json: line 1, column 65"),
-            std::string::npos);
-  // Brackets inside strings, escaped quotes included, do not count.
-  const std::string quoted = "{\"a\": \"" + nested(100) + "\\\"" + nested(100) + "\"}";
-  EXPECT_NO_THROW(parse_json_text(quoted, "quoted.json"));
-  EXPECT_EQ(json_too_deep_at(nested(3, "{\"k\":", "}"), 2), std::size_t{10});
-  // Stored JSON (a report's manifest, parameters) nested too deep is not JSON to the reader.
-  EXPECT_TRUE(parse_stored_json(nested(100'000)).is_discarded());
-  EXPECT_FALSE(parse_stored_json(nested(10)).is_discarded());
-}
-
 TEST(InputLimits, ACsvWithAByteOrderMarkOrCarriageReturnsAloneSaysSo) {
   const fs::path dir = testing::fresh_scratch_dir("csv_line_ends");
   for (const auto& [name, text, expected] :

@@ -1,13 +1,10 @@
 // The fitted stationary background (paper VI): drawn as its density says, each target a stationary
-// reflector; the section read strictly and written back unchanged.
+// reflector.
 #include "sim/background.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "common/input_error.hpp"
-#include "common/json_reader.hpp"
 
 namespace rcsim {
 namespace {
@@ -69,45 +66,6 @@ TEST(StationaryBackground, EmptyDrawsNothing) {
   add_stationary_background(StationaryBackground{}, moving_sensor(), rng, d);
   EXPECT_TRUE(d.empty());
   EXPECT_EQ(rng.next_u64(), untouched.next_u64());
-}
-
-std::string parse_error(const nlohmann::ordered_json& doc) {
-  const nlohmann::json plain = nlohmann::json::parse(doc.dump());
-  try {
-    parse_stationary_background(JsonField(plain, "s.json", "background"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-TEST(StationaryBackground, SectionRoundTripsAndBadFieldsAreNamed) {
-  const StationaryBackground b = hand_background();
-  const nlohmann::ordered_json doc = stationary_background_to_json(b);
-  const nlohmann::json plain = nlohmann::json::parse(doc.dump());
-  const StationaryBackground back = parse_stationary_background(JsonField(plain, "s.json", "background"));
-  EXPECT_EQ(back.targets_per_cycle, 20.0);
-  EXPECT_EQ(back.range_edges_m, b.range_edges_m);
-  ASSERT_EQ(back.azimuth_edges_rad.size(), 3u);
-  EXPECT_NEAR(back.azimuth_edges_rad[2], 0.1, 1e-12);  // written in degrees, read back in radians
-  EXPECT_EQ(back.weights, b.weights);
-  EXPECT_EQ(back.amplitude_deciles_db, b.amplitude_deciles_db);
-
-  auto bad = doc;
-  bad["weights"][0][1] = -1.0;
-  EXPECT_NE(parse_error(bad).find("background.weights"), std::string::npos) << parse_error(bad);
-  bad = doc;
-  bad["range_edges_m"] = {20.0, 10.0};
-  EXPECT_NE(parse_error(bad).find("background.range_edges_m"), std::string::npos) << parse_error(bad);
-  bad = doc;
-  bad["amplitude_deciles_db"][0][3] = 0.0;  // falls below the decile before it
-  EXPECT_NE(parse_error(bad).find("background.amplitude_deciles_db"), std::string::npos) << parse_error(bad);
-  bad = doc;
-  bad["weights"].push_back({0.5, 0.5});  // a row more than range bins
-  EXPECT_NE(parse_error(bad).find("background.weights"), std::string::npos) << parse_error(bad);
-  bad = doc;
-  bad["targets_per_cycle"] = 1e9;
-  EXPECT_NE(parse_error(bad).find("background.targets_per_cycle"), std::string::npos) << parse_error(bad);
 }
 
 }  // namespace

@@ -170,50 +170,6 @@ TEST(Culling, ArcReachByHand) {
   }
 }
 
-// The scene's broad phase: a car beyond every sensor's reach is neither evaluated nor visited,
-// one in reach is, absent ones never are; outside the cycle times every present object is.
-TEST(Culling, SceneCullingSelectsObjectsInReach) {
-  Scene scene = testing::single_sensor_scene(2.0);
-  testing::add_object(scene, "near", "passenger_car", {testing::sample(0, 20, 0, kPi, 0)});
-  testing::add_object(scene, "far", "passenger_car", {testing::sample(0, 500, 0, kPi, 0)});
-  testing::add_object(scene, "arriving", "passenger_car",
-                      {testing::sample(0, 80, 0, kPi, 20), testing::sample(2, 40, 0, kPi, 20)});
-  testing::add_object(scene, "gone", "passenger_car", {testing::sample(0, 10, 1, 0, 0)});
-  scene.objects.back().presence = {{0.0, 0.5}};
-  std::vector<double> radius_m;
-  for (const auto& o : scene.objects) radius_m.push_back(reflection_radius_m(o.model));
-  const SceneCulling culling(scene, radius_m);
-  ASSERT_TRUE(culling.enabled());
-  EXPECT_EQ(culling.slice_count(), 4u);  // 1.95 s of cycles in 0.5-s slices
-  const std::vector<Vec2> sensor = {Vec2(0.0, 0.0)};
-  std::vector<std::uint32_t> selected;
-  culling.select(0.0, sensor, scene.objects, selected);
-  // "arriving" sweeps 80 -> 70 m in the first slice, beyond 40 m + its 2.5-m radius + 1 m.
-  EXPECT_EQ(selected, (std::vector<std::uint32_t>{0, 3}));
-  culling.select(1.9, sensor, scene.objects, selected);
-  EXPECT_EQ(selected, (std::vector<std::uint32_t>{0, 2}));
-  // Outside the scene's cycle times there are no slices: every present object.
-  culling.select(5.0, sensor, scene.objects, selected);
-  EXPECT_EQ(selected, (std::vector<std::uint32_t>{0, 1, 2}));
-  // Off: every present object.
-  SceneCulling().select(0.2, sensor, scene.objects, selected);
-  EXPECT_EQ(selected, (std::vector<std::uint32_t>{0, 1, 2, 3}));
-
-  // The simulation evaluates only what was selected, and still answers for every object.
-  SimulationOptions options;
-  Simulation simulation(scene, options);
-  simulation.run_at(0.0);
-  EXPECT_EQ(simulation.snapshot().visited_indices, (std::vector<std::uint32_t>{0, 3}));
-  EXPECT_EQ(simulation.snapshot().visited[1], 0);
-  EXPECT_DOUBLE_EQ(simulation.object_state(1).X_WB.x_m, 500.0);
-  EXPECT_DOUBLE_EQ(simulation.object_state(2).X_WB.x_m, 80.0);
-  options.culling = false;
-  Simulation unculled(scene, options);
-  unculled.run_at(0.0);
-  EXPECT_EQ(unculled.snapshot().visited_indices, (std::vector<std::uint32_t>{0, 1, 2, 3}));
-}
-
-
 // The bound with diffuse face pieces (sensor_config ExtendedObjects) by hand, srr24's eq. (1):
 // L0 26.5 dB, 0.75 dB/m, threshold 6 dB, no fluctuation: headroom = the 1-dB margin. One object:
 // a 4-m face (chord (-2, 1) .. (2, 1), 1 cm sagitta) of ERCS 1, no points; reflection radius

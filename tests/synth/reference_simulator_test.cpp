@@ -1,123 +1,22 @@
-// The reference simulator's objects, propagation, tracker and recordings: physics it models that
-// the reflection-center model does not, and its independence from that model.
+// The reference simulator's recordings: targets and imperfect annotations of a close car, its
+// independence from the reflection-center model, and the objects it refuses. (Its objects,
+// propagation and tracker alone: scatterers_test.cpp, propagation_test.cpp, synth_tracker_test.cpp.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
 
-#include "common/angles.hpp"
-#include "synth/propagation.hpp"
 #include "synth/reference_simulator.hpp"
-#include "synth/scatterers.hpp"
-#include "synth/synth_tracker.hpp"
 #include "test_support.hpp"
 
 namespace rcsim::synth {
 namespace {
 
 namespace fs = std::filesystem;
-
-TEST(SynthScatterers, CarOutlineTouchesItsBoxAndFacesOutwards) {
-  const ScattererBody car = make_body("passenger_car", 4.6, 1.8);
-  double max_x = 0.0, max_y = 0.0;
-  int facets = 0;
-  for (const auto& s : car.scatterers) {
-    EXPECT_LE(std::abs(s.p_O.x()), 2.3 + 1e-9);
-    EXPECT_LE(std::abs(s.p_O.y()), 0.9 + 1e-9);
-    if (s.kind != ScattererKind::facet) continue;
-    ++facets;
-    max_x = std::max(max_x, std::abs(s.p_O.x()));
-    max_y = std::max(max_y, std::abs(s.p_O.y()));
-    // The normal points away from the centre.
-    EXPECT_GT(s.p_O.dot(Vec2(std::cos(s.axis_rad), std::sin(s.axis_rad))), 0.0);
-  }
-  EXPECT_GT(facets, 100);  // dense along the contour
-  EXPECT_NEAR(max_x, 2.3, 0.01);
-  EXPECT_NEAR(max_y, 0.9, 0.01);
-}
-
-TEST(SynthScatterers, FacetIsSpecular) {
-  Scatterer f;
-  f.kind = ScattererKind::facet;
-  f.facet_length_m = 0.1;
-  f.strength = 0.1 * 0.2;
-  const double lambda = 0.0125;
-  // Physical optics at normal incidence: sqrt(4 pi) A / lambda.
-  EXPECT_NEAR(facet_sqrt_rcs_m(f, 0.0, lambda), std::sqrt(4.0 * kPi) * 0.02 / lambda, 1e-9);
-  // First null at sin(theta) = lambda / (2 ds); nothing from behind.
-  EXPECT_NEAR(facet_sqrt_rcs_m(f, std::asin(lambda / 0.2), lambda), 0.0, 1e-9);
-  EXPECT_EQ(facet_sqrt_rcs_m(f, 2.0, lambda), 0.0);
-}
-
-TEST(SynthPropagation, NearerBodyHidesTheOneBehind) {
-  const SynthConfig config;
-  const Propagator p(config);
-  const ScattererBody pole = make_body("pole", 0.1, 0.1);
-  const ScattererBody car = make_body("passenger_car", 4.6, 1.8);
-  SensorState sensor;  // at the origin, looking along +x
-  BodyState behind, wall;
-  behind.X_WB = {15.0, 0.0, 0.0};
-  wall.X_WB = {8.0, 0.0, kPi / 2};  // a car broadside across the line of sight
-  const auto alone = p.echoes(sensor, {PlacedBody{&pole, behind}}, {});
-  ASSERT_EQ(alone.size(), 1u);
-  const auto hidden = p.echoes(sensor, {PlacedBody{&pole, behind}, PlacedBody{&car, wall}}, {});
-  for (const auto& e : hidden) EXPECT_LT(e.range_m, 10.0);
-}
-
-TEST(SynthPropagation, BackAndForthEchoesAtShortRangeOnly) {
-  const SynthConfig config;
-  const Propagator p(config);
-  const ScattererBody car = make_body("passenger_car", 4.6, 1.8);
-  SensorState sensor;
-  BodyState near_car, far_car;
-  near_car.X_WB = {1.0 + 2.3, 0.0, kPi};  // front 1 m ahead, facing the sensor
-  far_car.X_WB = {6.0 + 2.3, 0.0, kPi};
-  const auto count_beyond = [](const std::vector<Echo>& echoes, double r_m) {
-    int n = 0;
-    for (const auto& e : echoes) n += e.range_m > r_m && std::abs(std::remainder(e.range_m, 1.0)) < 0.05 ? 1 : 0;
-    return n;
-  };
-  const auto near_echoes = p.echoes(sensor, {PlacedBody{&car, near_car}}, {});
-  double direct = 0.0, double_bounce = 0.0;
-  for (const auto& e : near_echoes) {
-    if (std::abs(e.range_m - 1.0) < 0.02) direct = std::max(direct, std::abs(e.sum));
-    if (std::abs(e.range_m - 2.0) < 0.04) double_bounce = std::max(double_bounce, std::abs(e.sum));
-  }
-  EXPECT_GT(direct, 0.0);
-  EXPECT_GT(double_bounce, 0.0);
-  EXPECT_GT(count_beyond(near_echoes, 1.9), 0);
-  for (const auto& e : p.echoes(sensor, {PlacedBody{&car, far_car}}, {})) EXPECT_LT(e.range_m, 11.0);
-}
-
-TEST(SynthTracker, ConfirmsAfterFourHitsAndDropsAfterMisses) {
-  TrackerConfig config;
-  SynthTracker tracker(config, 0.04);
-  Detection d;
-  d.range_m = 10.0;
-  d.range_rate_mps = -2.0;
-  d.azimuth_rad = 0.1;
-  d.amplitude_db = 15.0;
-  for (int k = 0; k < 3; ++k) {
-    EXPECT_TRUE(tracker.step({d}).empty()) << k;
-    d.range_m += d.range_rate_mps * 0.04;
-  }
-  const auto reported = tracker.step({d});
-  ASSERT_EQ(reported.size(), 1u);
-  EXPECT_NEAR(reported[0].range_m, d.range_m, 0.05);
-  EXPECT_NEAR(reported[0].range_rate_mps, -2.0, 0.1);
-  // Missed: not reported while coasting, deleted after max_misses_confirmed + 1 misses.
-  EXPECT_TRUE(tracker.step({}).empty());
-  EXPECT_EQ(tracker.tracks().size(), 1u);
-  for (int k = 0; k < config.max_misses_confirmed; ++k) tracker.step({});
-  EXPECT_TRUE(tracker.tracks().empty());
-  // A false detection that never repeats never reaches the target list.
-  SynthTracker other(config, 0.04);
-  d.range_m = 20.0;
-  EXPECT_TRUE(other.step({d}).empty());
-  for (int k = 0; k < 4; ++k) EXPECT_TRUE(other.step({}).empty());
-}
 
 TEST(SynthReference, CarCloseByGivesSeveralTargetsAndAnnotationsAreImperfect) {
   Scene scene = testing::single_sensor_scene(1.0);

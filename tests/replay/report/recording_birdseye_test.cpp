@@ -70,11 +70,13 @@ TEST(RecordingBirdseye, AScriptTagAsObjectIdOrTitleIsDrawnEscapedNeverRaw) {
 
 TEST(RecordingBirdseye, ABoxAheadOfTheEgoIsDrawnAboveItsSensor) {
   const std::string svg = recording_birdseye_svg(straight_drive("car1"), {});
-  std::smatch label, sensor;
-  ASSERT_TRUE(std::regex_search(svg, label, std::regex(R"re(class="box-label" x="([-0-9.]+)" y="([-0-9.]+)")re")));
+  std::smatch box, sensor;
+  // The box's four corners, on screen.
+  ASSERT_TRUE(std::regex_search(svg, box, std::regex(R"re(<polygon class="box" points="([-0-9.]+),([-0-9.]+) ([-0-9.]+),([-0-9.]+) ([-0-9.]+),([-0-9.]+) ([-0-9.]+),([-0-9.]+))re")));
   ASSERT_TRUE(std::regex_search(svg, sensor, std::regex(R"re(class="sensor" points="([-0-9.]+),([-0-9.]+))re")));
-  EXPECT_LT(std::stod(label[2]), std::stod(sensor[2]) - 50.0);  // 17 m ahead of the sensor's tip
-  EXPECT_NEAR(std::stod(label[1]), std::stod(sensor[1]), 1.0);  // straight ahead
+  EXPECT_LT(std::stod(box[2]), std::stod(sensor[2]) - 50.0);  // 17 m ahead of the sensor's tip
+  const double centre_x = (std::stod(box[1]) + std::stod(box[3]) + std::stod(box[5]) + std::stod(box[7])) / 4.0;
+  EXPECT_NEAR(centre_x, std::stod(sensor[1]), 1.0);  // straight ahead
 }
 
 TEST(RecordingBirdseye, AnEmptyRecordingGivesAnEmptyValidPicture) {

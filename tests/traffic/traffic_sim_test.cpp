@@ -1,22 +1,21 @@
-// The traffic model: IDM equilibrium, safety of the simulated traffic (no overlaps, bounded
-// accelerations and speeds, MOBIL-safe gaps, exclusive conflict area), determinism, and the
-// scene it writes as the loader reads it back.
+// The traffic simulation of traffic/traffic_sim.hpp on small highway and intersection runs: no
+// overlaps, accelerations and speeds within the IDM's bounds, lane changes only into gaps MOBIL
+// accepts, and the intersection's conflict area held by one road at a time.
+#include "traffic/traffic_sim.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
+#include <cstdint>
 
 #include "common/angles.hpp"
-#include "model/model_library.hpp"
-#include "scene/scene.hpp"
 #include "traffic/idm.hpp"
-#include "traffic/scene_writer.hpp"
-#include "traffic/traffic_sim.hpp"
 
-namespace rcsim::traffic {
-namespace {
+namespace rcsim::traffic_sim_test {
+
+using namespace rcsim::traffic;
 
 TrafficConfig small_highway(std::uint64_t seed) {
   TrafficConfig c;
@@ -82,19 +81,6 @@ void expect_no_overlaps(const TrafficSimulation& sim) {
     }
   }
   EXPECT_GT(pairs_checked, 100);  // the check saw close neighbours, side by side and in line
-}
-
-TEST(TrafficIdm, EquilibriumGapGivesZeroAcceleration) {
-  const IdmParameters p;  // Treiber 2000 Table I
-  for (const double v : {5.0, 15.0, 25.0, 30.0}) {
-    EXPECT_NEAR(idm_raw_acceleration_mps2(p, v, idm_equilibrium_gap_m(p, v), 0.0), 0.0, 1e-9) << v;
-    EXPECT_NEAR(idm_equilibrium_speed_mps(p, idm_equilibrium_gap_m(p, v)), v, 1e-6);
-  }
-  EXPECT_NEAR(idm_jam_density_vpkm(p, 5.0), 1000.0 / 7.0, 1e-9);
-  // Hand check of eq. (1) and (2): v = 20, s = 50, dv = 2: s* = 2 + 32 + 40/(2 sqrt(0.73 * 1.67)).
-  const double s_star = 2.0 + 32.0 + 40.0 / (2.0 * std::sqrt(0.73 * 1.67));
-  EXPECT_NEAR(idm_raw_acceleration_mps2(p, 20.0, 50.0, 2.0),
-              0.73 * (1.0 - std::pow(20.0 / 33.33, 4.0) - (s_star / 50.0) * (s_star / 50.0)), 1e-12);
 }
 
 TEST(TrafficHighway, NoOverlapBoundedAccelerationAndSpeed) {
@@ -164,57 +150,4 @@ TEST(TrafficIntersection, ConflictAreaHoldsOneRoadAtATimeAndNoOverlap) {
   expect_no_overlaps(sim);
 }
 
-TEST(TrafficScene, SameSeedSameTextOtherSeedDifferent) {
-  TrafficConfig c = small_highway(11);
-  c.record_steps = false;
-  c.duration_s = 10.0;
-  const auto text = [&](std::uint64_t seed) {
-    TrafficConfig cs = c;
-    cs.seed = seed;
-    Rng rng(seed);
-    TrafficSimulation sim(cs, rng);
-    sim.run(rng);
-    return scene_json(sim);
-  };
-  const std::string a = text(11);
-  EXPECT_EQ(a, text(11));
-  EXPECT_NE(a, text(12));
-}
-
-TEST(TrafficScene, LoaderInterpolationFollowsTheSimulatedMotion) {
-  // Samples every 0.5 s; the loader's cubic Hermite must reproduce the 0.1 s simulation steps,
-  // lane changes included, to within centimetres.
-  TrafficConfig c = small_highway(13);
-  c.sample_interval_s = 0.5;
-  Rng rng(c.seed);
-  TrafficSimulation sim(c, rng);
-  sim.run(rng);
-  const auto path = std::filesystem::temp_directory_path() / ("rcsim_traffic_" + std::to_string(::getpid()) + ".json");
-  write_scene(path.string(), sim);
-  const Scene scene = load_scene_file(path.string(), ModelLibrary::builtin());
-  std::filesystem::remove(path);
-  ASSERT_GT(scene.objects.size(), 50u);
-  double worst_m = 0.0, worst_yaw_rad = 0.0;
-  for (const StepSnapshot& step : sim.snapshots()) {
-    if (step.t_s < 0.0) continue;
-    for (const VehicleSnapshot& s : step.vehicles) {
-      const Vehicle& v = sim.vehicles()[s.vehicle];
-      const Trajectory* trajectory = &scene.ego;
-      if (!v.is_ego) {
-        const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) { return o.id == v.id; });
-        ASSERT_NE(it, scene.objects.end()) << v.id;
-        if (!it->present_at(step.t_s)) continue;
-        trajectory = &it->trajectory;
-      }
-      const BodyState b = trajectory->state_at(step.t_s);
-      worst_m = std::max(worst_m, std::hypot(b.X_WB.x_m - s.motion.x_m, b.X_WB.y_m - s.motion.y_m));
-      worst_yaw_rad = std::max(worst_yaw_rad, std::abs(angle_difference_rad(b.X_WB.yaw_rad, s.motion.yaw_rad)));
-    }
-  }
-  EXPECT_LT(worst_m, 0.05);
-  EXPECT_LT(worst_yaw_rad, 0.005);
-  EXPECT_GT(sim.lane_changes().size(), 0u);
-}
-
-}  // namespace
-}  // namespace rcsim::traffic
+}  // namespace rcsim::traffic_sim_test
