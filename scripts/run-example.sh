@@ -7,7 +7,7 @@
 # Runs accumulate in the database (rcsim never deletes a report); the HTML shows this batch.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-RCSIM_TARGETS=rcsim scripts/setup.sh build  # the executable only; scripts/test.sh builds the rest in build/ too
+RCSIM_TARGETS="rcsim rcsim_sqlite" scripts/setup.sh build  # the executable and the SQL extension only; scripts/test.sh builds the rest
 mkdir -p out
 runs=0
 for recording in recordings_synthetic/*/; do
@@ -19,4 +19,4 @@ if [ "${RCSIM_SKIP_BENCH:-0}" != 1 ]; then
   ./build/bin/rcsim bench --db out/report.sqlite --seed 1
 fi
 ./build/bin/rcsim report out/report.sqlite -o out/report.html --last "$runs"
-echo "== open out/report.html in a browser; a run's rows as CSV: build/bin/rcsim export out/report.sqlite --run 1 --table cycles"
+echo "== open out/report.html in a browser; a run's cycles in SQL: sqlite3 out/report.sqlite '.load build/lib/rcsim' 'SELECT cycle, sensor, gospa_m FROM cycles WHERE run_id = 1'"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 
@@ -24,6 +25,12 @@ class ScratchDirTest : public ::testing::Test {
   explicit ScratchDirTest(std::string tag) : tag_(std::move(tag)) {}
   void SetUp() override { dir_ = fresh_scratch_dir(tag_); }
   void TearDown() override { std::filesystem::remove_all(dir_); }
+  // `bytes` as the file dir_/name, exactly (binary, replacing any earlier one).
+  std::filesystem::path write_file(const std::string& name, const std::string& bytes) const {
+    const auto path = dir_ / name;
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    return path;
+  }
   std::filesystem::path dir_;
 
  private:

@@ -5,10 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "common/angles.hpp"
 #include "model/model_library.hpp"
 #include "scene/scene.hpp"
 #include "sim/target_list_writer.hpp"
 #include "sensor/sensor_config.hpp"
+#include "sensor/stationary_background.hpp"
 #include "sim/simulation.hpp"
 
 namespace rcsim::testing {
@@ -65,6 +67,32 @@ inline void add_object(Scene& scene, const std::string& id, const std::string& m
 }
 
 // What `rcsim simulate` writes for the scene: every cycle and sensor, one writer.
+// A car 20 m ahead, one 500 m ahead (beyond the srr24's 40 m + reach), one arriving from 80 m,
+// one present for the first 0.5 s only.
+inline Scene four_cars_scene() {
+  Scene scene = single_sensor_scene(2.0);
+  add_object(scene, "near", "passenger_car", {sample(0, 20, 0, kPi, 0)});
+  add_object(scene, "far", "passenger_car", {sample(0, 500, 0, kPi, 0)});
+  add_object(scene, "arriving", "passenger_car",
+                      {sample(0, 80, 0, kPi, 20), sample(2, 40, 0, kPi, 20)});
+  add_object(scene, "gone", "passenger_car", {sample(0, 10, 1, 0, 0)});
+  scene.objects.back().presence = {{0.0, 0.5}};
+  return scene;
+}
+
+// One range bin [10, 20) m, two azimuth bins [-0.1, 0) and [0, 0.1) rad weighted 1 : 3, 20 targets
+// per cycle, amplitudes 10 to 20 dB evenly (deciles 10, 11, ..., 20).
+inline StationaryBackground hand_background() {
+  StationaryBackground b;
+  b.targets_per_cycle = 20.0;
+  b.range_edges_m = {10.0, 20.0};
+  b.azimuth_edges_rad = {-0.1, 0.0, 0.1};
+  b.weights = {0.25, 0.75};
+  auto& q = b.amplitude_deciles_db.emplace_back();
+  for (int k = 0; k < kAmplitudeQuantiles; ++k) q[static_cast<std::size_t>(k)] = 10.0 + k;
+  return b;
+}
+
 inline std::string simulate_rows(const Scene& scene, const SimulationOptions& options,
                                  TargetListFormat format = TargetListFormat::Csv) {
   std::ostringstream out;

@@ -1,6 +1,7 @@
 #include "replay/campaign/shard_runner.hpp"
 
 #include <fmt/format.h>
+#include <filesystem>
 #include <ostream>
 #include <map>
 
@@ -34,8 +35,18 @@ ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log) {
   const std::string db_path = plan.shard_report(shard).string();
   const auto db = open_report_database(db_path, true);
   claim_report_for_campaign(*db, db_path, plan.manifest);
-  std::map<std::string, std::int64_t> stored_keys;  // identity key -> run id
-  for (const auto& [run_id, identity] : stored_run_identities(*db)) stored_keys.emplace(identity.key(), run_id);
+  // A planned recording is stored when a run of the same identity was made of the same directory:
+  // campaign status counts runs by directory, so a byte-identical copy elsewhere is a run of its own.
+  const auto place_key = [](const RunIdentity& identity, const std::string& dir) {
+    return identity.key() + "\n" + std::filesystem::absolute(dir).lexically_normal().string();
+  };
+  std::map<std::string, std::int64_t> stored_keys;  // identity and directory -> run id
+  const std::map<std::int64_t, RunIdentity> identities = stored_run_identities(*db);
+  const std::vector<std::string> dirs = stored_recording_dirs(*db);  // by run id, as the identities
+  std::size_t i = 0;
+  for (const auto& [run_id, identity] : identities) {
+    if (i < dirs.size()) stored_keys.emplace(place_key(identity, dirs[i++]), run_id);
+  }
 
   const ModelLibrary library = ModelLibrary::builtin();
   const CampaignReplay& replay = plan.manifest.replay;
@@ -47,7 +58,8 @@ ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log) {
       const RunIdentity identity = planned_run_identity(recording_checksum(r.dir),
                                                         import_header(header, 0.0, library, options.import), options,
                                                         replay.store);
-      if (const auto stored = stored_keys.find(identity.key()); stored != stored_keys.end()) {
+      const std::string key = place_key(identity, r.dir.string());
+      if (const auto stored = stored_keys.find(key); stored != stored_keys.end()) {
         ++outcome.skipped;
         log << fmt::format("shard {}: {}: stored already (run {}), skipped\n", shard, r.dir.string(), stored->second);
         continue;
@@ -55,7 +67,7 @@ ShardOutcome run_shard(const CampaignPlan& plan, int shard, std::ostream& log) {
       ReportWriter writer(*db, replay.store);
       std::unique_ptr<ReplaySink> wrapper;
       const ReplaySummary summary = replay_recording_dir(r.dir, options, wrapped_run_sink(writer, wrapper));
-      stored_keys.emplace(identity.key(), writer.run_id());
+      stored_keys.emplace(key, writer.run_id());
       ++outcome.stored;
       log << fmt::format("shard {}: {}: run {} stored ({} cycles, GOSPA mean {:.3f} m, {:.2f} s)\n", shard,
                          r.dir.string(), writer.run_id(), summary.cycles, summary.gospa_mean_m, summary.total_wall_s);

@@ -2,6 +2,8 @@
 // `cycles`, `targets` and `object_states` of every run are converted into the v4 blocks
 // (run_rows.hpp), inside the caller's transaction; the caller then drops those tables. The
 // cycles' figures and poses and the boxes come over bit for bit, the targets' reals at float32.
+#include "replay/store/report_migration.hpp"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -13,8 +15,6 @@
 #include "replay/store/run_rows.hpp"
 
 namespace rcsim::replay {
-
-void convert_row_tables_to_blocks(SQLite::Database& db);
 
 namespace {
 

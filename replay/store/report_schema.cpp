@@ -5,12 +5,11 @@
 // the campaign tables (v5) and the targets per range bin (v6). Opening a v1 to v5 database
 // applies the steps it lacks, so that a migrated database has exactly the tables and columns of a
 // new one.
-#include "replay/store/report_store.hpp"
+#include "replay/store/report_schema.hpp"
 
 namespace rcsim::replay {
 
 // Version 1; `cycles`, `targets` and `object_states` live on only until the v4 conversion.
-extern const char* const kReportSchemaSql;
 const char* const kReportSchemaSql = R"SQL(
 CREATE TABLE IF NOT EXISTS runs (
   run_id INTEGER PRIMARY KEY,
@@ -130,7 +129,6 @@ CREATE TABLE IF NOT EXISTS summaries (
 )SQL";
 
 // Added in version 2: `rcsim bench` (speed against error, replay/evaluate/bench.hpp).
-extern const char* const kBenchSchemaSql;
 const char* const kBenchSchemaSql = R"SQL(
 CREATE TABLE IF NOT EXISTS bench_runs (
   bench_id INTEGER PRIMARY KEY,
@@ -170,7 +168,6 @@ CREATE TABLE IF NOT EXISTS bench_rows (
 // the latency's paired difference and censored episodes (the latency and merge-artefact rules of
 // version 3 are those of docs/metrics.md).
 // Columns added to earlier tables are NULL in the runs stored before version 3.
-extern const char* const kRealDriveSchemaSql;
 const char* const kRealDriveSchemaSql = R"SQL(
 ALTER TABLE targets ADD COLUMN target_class TEXT CHECK (target_class IN ('object', 'background', 'other'));
 ALTER TABLE targets ADD COLUMN x_o_m REAL;          -- offset from the box centre, object frame (object not NULL)
@@ -223,7 +220,6 @@ CREATE TABLE IF NOT EXISTS object_ranges (
 // Added in version 4 (issue 19): the store level of a run, and the per-cycle rows packed into
 // blocks of consecutive cycles, one BLOB per column (replay/store/packed_columns.hpp: u, z varints,
 // f4 float32, x exact doubles against a prediction; a zero-length BLOB: every varint 0).
-extern const char* const kBlockSchemaSql;
 const char* const kBlockSchemaSql = R"SQL(
 ALTER TABLE runs ADD COLUMN store TEXT NOT NULL DEFAULT 'full' CHECK (store IN ('full', 'summary'));
 
@@ -274,7 +270,6 @@ CREATE TABLE IF NOT EXISTS object_state_blocks (
 // Added in version 5 (issue 20): campaigns. The campaign the runs belong to (at most one row) and
 // its pass/fail criteria (replay/verdict/criteria.hpp, schemas/campaign.md); the verdicts are
 // computed from these and the stored figures whenever they are needed, never stored.
-extern const char* const kCampaignSchemaSql;
 const char* const kCampaignSchemaSql = R"SQL(
 CREATE TABLE IF NOT EXISTS campaign (
   name TEXT NOT NULL,
@@ -294,14 +289,12 @@ CREATE TABLE IF NOT EXISTS criteria (
 
 // Added in version 6: the targets of class object per range bin, as object_figures has them per
 // object (ObjectRangeRow). NULL in the runs stored before: not known, never 0.
-extern const char* const kObjectRangeTargetsSql;
 const char* const kObjectRangeTargetsSql = R"SQL(
 ALTER TABLE object_ranges ADD COLUMN targets_recorded INTEGER;   -- object targets in those cycles; NULL before v6
 ALTER TABLE object_ranges ADD COLUMN targets_simulated INTEGER;
 )SQL";
 
 // After the conversion of their rows (report_migration.cpp).
-extern const char* const kDropRowTablesSql;
 const char* const kDropRowTablesSql = R"SQL(
 DROP TABLE targets;
 DROP TABLE object_states;

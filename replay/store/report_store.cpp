@@ -19,6 +19,8 @@
 #include "replay/import/calibration.hpp"
 #include "replay/run/run_kind.hpp"
 #include "replay/store/report_merge_files.hpp"
+#include "replay/store/report_migration.hpp"
+#include "replay/store/report_schema.hpp"
 
 namespace rcsim::replay {
 namespace {
@@ -30,14 +32,6 @@ nlohmann::ordered_json sensor_profile_checksum(const std::string& sensor_type_ov
 
 }  // namespace
 
-extern const char* const kReportSchemaSql;
-extern const char* const kBenchSchemaSql;
-extern const char* const kRealDriveSchemaSql;
-extern const char* const kBlockSchemaSql;
-extern const char* const kDropRowTablesSql;
-extern const char* const kCampaignSchemaSql;
-extern const char* const kObjectRangeTargetsSql;
-void convert_row_tables_to_blocks(SQLite::Database& db);  // report_migration.cpp
 
 namespace {
 

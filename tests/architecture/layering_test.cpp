@@ -26,6 +26,7 @@ const std::map<std::string, std::string> kLayerOfDir{
     {"replay/run", "replay_run"}, {"replay/evaluate", "replay_evaluate"},
     {"replay/calibrate", "replay_calibrate"}, {"replay/profile", "replay_profile"},
     {"replay/store", "replay_store"},       {"replay/verdict", "replay_verdict"},
+    {"replay/store/extension", "replay_store_extension"},
     {"replay/campaign", "replay_campaign"}, {"replay/report", "replay_report"},
     {"app/stream", "stream"},
     {"app/cli", "cli"}};
@@ -37,6 +38,7 @@ const std::map<std::string, std::string> kLayerOfInclude{
     {"replay/evaluate", "replay_evaluate"},     {"replay/calibrate", "replay_calibrate"},
     {"replay/profile", "replay_profile"},
     {"replay/store", "replay_store"},           {"replay/verdict", "replay_verdict"},
+    {"replay/store/extension", "replay_store_extension"},
     {"replay/campaign", "replay_campaign"},
     {"replay/report", "replay_report"},
     {"stream", "stream"},   {"cli", "cli"}};
@@ -58,6 +60,10 @@ const std::map<std::string, std::set<std::string>> kMayUse{
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_calibrate"}},
     {"replay_store",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate"}},
+    // The SQLite extension (build/lib/rcsim.so): the store's tables for SQL clients; nothing uses it.
+    {"replay_store_extension",
+     {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
+      "replay_store"}},
     {"replay_verdict",
      {"common", "io", "world", "metrics", "sim", "synth", "replay_import", "replay_run", "replay_evaluate",
       "replay_store"}},

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/input_error.hpp"
+#include "refusal.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::atomic_file_test {
@@ -25,15 +26,7 @@ std::string contents(const fs::path& path) {
   return text.str();
 }
 
-template <typename F>
-std::string refusal_of(F&& write) {
-  try {
-    write();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
+using testing::refusal_of;
 
 class AtomicFile : public testing::ScratchDirTest {
  protected:

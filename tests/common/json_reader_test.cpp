@@ -8,18 +8,11 @@
 #include <string_view>
 
 #include "common/input_error.hpp"
+#include "refusal.hpp"
 
 namespace rcsim::json_reader_test {
 
-template <typename F>
-std::string refusal_of(F&& read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
+using testing::refusal_of;
 
 TEST(JsonReader, SyntaxErrorsNameTheLineAndColumn) {
   // Line 2 is `  "b": tru}`: the bad literal ends at column 11, where '}' stands.

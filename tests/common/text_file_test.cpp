@@ -10,30 +10,19 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "refusal.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::text_file_test {
 
 namespace fs = std::filesystem;
 
-template <typename F>
-std::string refusal_of(F&& read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
+using testing::refusal_of;
 
 class TextFile : public testing::ScratchDirTest {
  protected:
   TextFile() : ScratchDirTest("text_file") {}
-  fs::path write(const std::string& name, const std::string& bytes) {
-    const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
-    return path;
-  }
+  fs::path write(const std::string& name, const std::string& bytes) { return write_file(name, bytes); }
   // Every line LineReader gives, with its number as "N:text".
   std::vector<std::string> lines_of(const fs::path& path) {
     LineReader reader(path);

@@ -9,29 +9,20 @@
 #include <string>
 
 #include "common/input_error.hpp"
+#include "refusal.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::csv_reader_test {
 
 namespace fs = std::filesystem;
 
-template <typename F>
-std::string refusal_of(F&& read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
+using testing::refusal_of;
 
 class CsvReaderFile : public testing::ScratchDirTest {
  protected:
   CsvReaderFile() : ScratchDirTest("csv_reader") {}
   std::string write(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
-    return path.string();
+    return write_file(name, text).string();
   }
 };
 

@@ -12,21 +12,14 @@
 
 #include "common/input_error.hpp"
 #include "io/recording.hpp"
+#include "refusal.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::recording_stream_test {
 
 namespace fs = std::filesystem;
 
-template <typename F>
-std::string refusal_of(F&& read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "accepted";
-}
+using testing::refusal_of;
 
 std::string bytes_of(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -13,18 +13,6 @@
 
 namespace rcsim::stationary_background_test {
 
-// One range bin [10, 20) m, two azimuth bins [-0.1, 0) and [0, 0.1) rad weighted 1 : 3, 20 targets
-// per cycle, amplitudes 10 to 20 dB evenly (deciles 10, 11, ..., 20).
-StationaryBackground hand_background() {
-  StationaryBackground b;
-  b.targets_per_cycle = 20.0;
-  b.range_edges_m = {10.0, 20.0};
-  b.azimuth_edges_rad = {-0.1, 0.0, 0.1};
-  b.weights = {0.25, 0.75};
-  auto& q = b.amplitude_deciles_db.emplace_back();
-  for (int k = 0; k < kAmplitudeQuantiles; ++k) q[static_cast<std::size_t>(k)] = 10.0 + k;
-  return b;
-}
 
 StationaryBackground parsed(const nlohmann::ordered_json& doc) {
   const nlohmann::json plain = nlohmann::json::parse(doc.dump());
@@ -41,7 +29,7 @@ std::string parse_error(const nlohmann::ordered_json& doc) {
 }
 
 TEST(StationaryBackgroundSection, SectionRoundTripsAndBadFieldsAreNamed) {
-  const StationaryBackground b = hand_background();
+  const StationaryBackground b = testing::hand_background();
   const nlohmann::ordered_json doc = stationary_background_to_json(b);
   const nlohmann::json plain = nlohmann::json::parse(doc.dump());
   const StationaryBackground back = parse_stationary_background(JsonField(plain, "s.json", "background"));
@@ -106,7 +94,7 @@ TEST(StationaryBackgroundSection, WeightsAreNormalisedAndAzimuthsReadInDegreesBy
 }
 
 TEST(StationaryBackgroundSection, EdgesAndRowsAreCheckedWithExactMessages) {
-  const nlohmann::ordered_json good = stationary_background_to_json(hand_background());
+  const nlohmann::ordered_json good = stationary_background_to_json(testing::hand_background());
   auto bad = good;
   bad["azimuth_edges_deg"] = {-90.0, 0.0, 10.0};  // a sensor sees less than +-90 deg
   EXPECT_EQ(parse_error(bad), "s.json: background.azimuth_edges_deg: must lie within +-90 deg");

@@ -9,18 +9,6 @@
 namespace rcsim {
 namespace {
 
-// One range bin [10, 20) m, two azimuth bins [-0.1, 0) and [0, 0.1) rad weighted 1 : 3, 20 targets
-// per cycle, amplitudes 10 to 20 dB evenly (deciles 10, 11, ..., 20).
-StationaryBackground hand_background() {
-  StationaryBackground b;
-  b.targets_per_cycle = 20.0;
-  b.range_edges_m = {10.0, 20.0};
-  b.azimuth_edges_rad = {-0.1, 0.0, 0.1};
-  b.weights = {0.25, 0.75};
-  auto& q = b.amplitude_deciles_db.emplace_back();
-  for (int k = 0; k < kAmplitudeQuantiles; ++k) q[static_cast<std::size_t>(k)] = 10.0 + k;
-  return b;
-}
 
 SensorKinematics moving_sensor() {
   SensorKinematics k;
@@ -30,7 +18,7 @@ SensorKinematics moving_sensor() {
 }
 
 TEST(StationaryBackground, DrawsFollowTheDensityAndAreStationary) {
-  const StationaryBackground b = hand_background();
+  const StationaryBackground b = testing::hand_background();
   Rng rng(5, 0);
   constexpr int kCycles = 2000;
   long long count = 0, right_bin = 0;

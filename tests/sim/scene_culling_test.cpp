@@ -16,13 +16,7 @@ namespace rcsim::scene_culling_test {
 // The scene's broad phase: a car beyond every sensor's reach is not selected, one in reach is,
 // absent ones never are; outside the cycle times every present object is.
 TEST(SceneCulling, SelectsObjectsInReach) {
-  Scene scene = testing::single_sensor_scene(2.0);
-  testing::add_object(scene, "near", "passenger_car", {testing::sample(0, 20, 0, kPi, 0)});
-  testing::add_object(scene, "far", "passenger_car", {testing::sample(0, 500, 0, kPi, 0)});
-  testing::add_object(scene, "arriving", "passenger_car",
-                      {testing::sample(0, 80, 0, kPi, 20), testing::sample(2, 40, 0, kPi, 20)});
-  testing::add_object(scene, "gone", "passenger_car", {testing::sample(0, 10, 1, 0, 0)});
-  scene.objects.back().presence = {{0.0, 0.5}};
+  const Scene scene = testing::four_cars_scene();
   std::vector<double> radius_m;
   for (const auto& o : scene.objects) radius_m.push_back(reflection_radius_m(o.model));
   const SceneCulling culling(scene, radius_m);

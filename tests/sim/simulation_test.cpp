@@ -12,22 +12,10 @@
 
 namespace rcsim::simulation_test {
 
-// A car 20 m ahead, one 500 m ahead (beyond the srr24's 40 m + reach), one arriving from 80 m,
-// one present for the first 0.5 s only.
-Scene four_cars() {
-  Scene scene = testing::single_sensor_scene(2.0);
-  testing::add_object(scene, "near", "passenger_car", {testing::sample(0, 20, 0, kPi, 0)});
-  testing::add_object(scene, "far", "passenger_car", {testing::sample(0, 500, 0, kPi, 0)});
-  testing::add_object(scene, "arriving", "passenger_car",
-                      {testing::sample(0, 80, 0, kPi, 20), testing::sample(2, 40, 0, kPi, 20)});
-  testing::add_object(scene, "gone", "passenger_car", {testing::sample(0, 10, 1, 0, 0)});
-  scene.objects.back().presence = {{0.0, 0.5}};
-  return scene;
-}
 
 // The simulation evaluates only what the broad phase selected, and still answers for every object.
 TEST(SimulationCycles, SkipsObjectsOutOfReachButAnswersForEvery) {
-  const Scene scene = four_cars();
+  const Scene scene = testing::four_cars_scene();
   SimulationOptions options;
   Simulation simulation(scene, options);
   simulation.run_at(0.0);
@@ -42,7 +30,7 @@ TEST(SimulationCycles, SkipsObjectsOutOfReachButAnswersForEvery) {
 }
 
 TEST(SimulationCycles, CullWithinMovesTheBroadPhaseToAWindow) {
-  const Scene scene = four_cars();
+  const Scene scene = testing::four_cars_scene();
   Simulation simulation(scene, SimulationOptions{});
   simulation.cull_within(1.0, 2.0);
   // Before the window every present object is visited ("gone" has left at 0.6 s) ...

@@ -13,9 +13,8 @@
 #include "common/angles.hpp"
 #include "synth/scatterers.hpp"
 
-namespace rcsim::propagation_test {
+namespace rcsim::synth::propagation_test {
 
-using namespace rcsim::synth;
 
 // A placed box of 4 m x 2 m (its scatterers are not used by segment_crosses_box).
 PlacedBody box_at(const ScattererBody& body, double x_m, double y_m, double yaw_rad) {
@@ -162,4 +161,4 @@ TEST(SynthPropagation, BackAndForthEchoesAtShortRangeOnly) {
   for (const auto& e : p.echoes(sensor, {PlacedBody{&car, far_car}}, {})) EXPECT_LT(e.range_m, 11.0);
 }
 
-}  // namespace rcsim::propagation_test
+}  // namespace rcsim::synth::propagation_test

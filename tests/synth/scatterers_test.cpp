@@ -11,9 +11,8 @@
 
 #include "common/angles.hpp"
 
-namespace rcsim::scatterers_test {
+namespace rcsim::synth::scatterers_test {
 
-using namespace rcsim::synth;
 
 int count_kind(const ScattererBody& body, ScattererKind kind) {
   return static_cast<int>(std::count_if(body.scatterers.begin(), body.scatterers.end(),
@@ -117,4 +116,4 @@ TEST(SynthScatterers, RoadClutterIsOneFieldWhereverItIsSeenFrom) {
   EXPECT_TRUE(road_clutter_near(clutter, 5, Vec2(0.0, 0.0), 20.0).empty());
 }
 
-}  // namespace rcsim::scatterers_test
+}  // namespace rcsim::synth::scatterers_test

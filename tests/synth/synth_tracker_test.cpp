@@ -6,9 +6,8 @@
 
 #include <vector>
 
-namespace rcsim::synth_tracker_test {
+namespace rcsim::synth::synth_tracker_test {
 
-using namespace rcsim::synth;
 
 Detection detection(double range_m, double range_rate_mps, double azimuth_rad, double amplitude_db) {
   Detection d;
@@ -115,4 +114,4 @@ TEST(SynthTracker, GatesGreedyAssociationAndTheTrackLimit) {
   EXPECT_DOUBLE_EQ(limited.tracks()[1].range_m, 10.0);
 }
 
-}  // namespace rcsim::synth_tracker_test
+}  // namespace rcsim::synth::synth_tracker_test

@@ -20,22 +20,13 @@
 #include "scene/scene.hpp"
 #include "scratch_dir.hpp"
 #include "traffic/traffic_sim.hpp"
+#include "traffic/traffic_fixtures.hpp"
 
 namespace rcsim::scene_writer_test {
 
 using namespace rcsim::traffic;
 
-TrafficConfig small_highway(std::uint64_t seed) {
-  TrafficConfig c;
-  c.layout = Layout::Highway;
-  c.duration_s = 40.0;
-  c.warmup_s = 10.0;
-  c.density_vpkm = 30.0;
-  c.truck_share = 0.2;
-  c.seed = seed;
-  c.record_steps = true;
-  return resolve_traffic_config(c, ".");
-}
+using testing::small_highway;
 
 TEST(TrafficScene, SameSeedSameTextOtherSeedDifferent) {
   TrafficConfig c = small_highway(11);

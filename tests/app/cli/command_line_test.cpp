@@ -66,12 +66,8 @@ using rcsim::testing::CommandResult;
 const std::string kUsageScene = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/front_approach.json";
 const std::string kUsageRecording = std::string(RCSIM_SOURCE_DIR) + "/recordings_synthetic/standstill_1m";
 
-// `rcsim ARGS` with stderr joined, ended after 60 s should it wait for something (a socket).
-CommandResult run_usage(const std::string& args) {
-  return rcsim::testing::run_shell_command("timeout 60 " + std::string(RCSIM_BINARY) + " " + args);
-}
-
-bool output_has(const CommandResult& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
+using rcsim::testing::output_has;
+CommandResult run_usage(const std::string& args) { return rcsim::testing::run_rcsim_with_timeout(args); }
 
 class CliUsage : public rcsim::testing::ScratchDirTest {
  protected:

@@ -142,19 +142,15 @@ using rcsim::testing::CommandResult;
 
 const std::string kUsageScene = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/front_approach.json";
 
-// `rcsim ARGS` with stderr joined, ended after 60 s should it wait for something (a socket).
-CommandResult run_usage(const std::string& args) {
-  return rcsim::testing::run_shell_command("timeout 60 " + std::string(RCSIM_BINARY) + " " + args);
-}
+using rcsim::testing::output_has;
+CommandResult run_usage(const std::string& args) { return rcsim::testing::run_rcsim_with_timeout(args); }
 
-bool output_has(const CommandResult& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
-
-class CliUsage : public rcsim::testing::ScratchDirTest {
+class ListenCliUsage : public rcsim::testing::ScratchDirTest {
  protected:
-  CliUsage() : ScratchDirTest("listen_cli_usage") {}
+  ListenCliUsage() : ScratchDirTest("listen_cli_usage") {}
 };
 
-TEST_F(CliUsage, ListenSaysWhyTheTruthOutputHoldsOnlyItsHeader) {
+TEST_F(ListenCliUsage, ListenSaysWhyTheTruthOutputHoldsOnlyItsHeader) {
   const fs::path truth = dir_ / "truth.csv";
   const auto idle = run_usage("listen --port 0 --idle-timeout-s 0.2 --truth-output " + truth.string());
   EXPECT_EQ(idle.exit_code, 0) << idle.output;

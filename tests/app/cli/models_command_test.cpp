@@ -15,12 +15,12 @@ using Result = rcsim::testing::CommandResult;
 
 Result run(const std::string& args) { return rcsim::testing::run_rcsim(args); }
 
-class Cli : public rcsim::testing::ScratchDirTest {
+class ModelsCli : public rcsim::testing::ScratchDirTest {
  protected:
-  Cli() : ScratchDirTest("models_cli") {}
+  ModelsCli() : ScratchDirTest("models_cli") {}
 };
 
-TEST_F(Cli, ModelsListsTheLibrary) {
+TEST_F(ModelsCli, ModelsListsTheLibrary) {
   const auto r = run("models --json");
   ASSERT_EQ(r.exit_code, 0);
   for (const char* name : {"passenger_car", "truck_trailer", "guide_board", "pole"}) {
@@ -28,7 +28,7 @@ TEST_F(Cli, ModelsListsTheLibrary) {
   }
 }
 
-TEST_F(Cli, ModelsSensorsListsTheProfiles) {
+TEST_F(ModelsCli, ModelsSensorsListsTheProfiles) {
   const auto text = run("models --sensors");
   ASSERT_EQ(text.exit_code, 0) << text.output;
   for (const char* name : {"aimotive_lrr", "srr24"}) {

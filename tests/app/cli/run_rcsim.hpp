@@ -44,4 +44,11 @@ inline std::string read_file(const std::filesystem::path& p) {
   return s.str();
 }
 
+// `rcsim ARGS` with stderr joined, ended after 60 s should it wait for something (a socket).
+inline CommandResult run_rcsim_with_timeout(const std::string& args) {
+  return run_shell_command("timeout 60 " + std::string(RCSIM_BINARY) + " " + args);
+}
+
+inline bool output_has(const CommandResult& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
+
 }  // namespace rcsim::testing

@@ -22,12 +22,12 @@ std::string read(const fs::path& p) { return rcsim::testing::read_file(p); }
 
 const std::string kExamples = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/";
 
-class Cli : public rcsim::testing::ScratchDirTest {
+class SimulateCli : public rcsim::testing::ScratchDirTest {
  protected:
-  Cli() : ScratchDirTest("simulate_cli") {}
+  SimulateCli() : ScratchDirTest("simulate_cli") {}
 };
 
-TEST_F(Cli, SameSeedByteIdenticalOtherSeedDifferent) {
+TEST_F(SimulateCli, SameSeedByteIdenticalOtherSeedDifferent) {
   for (const char* level : {"detections", "tracks"}) {
     const auto a = dir_ / "a.csv", b = dir_ / "b.csv", c = dir_ / "c.csv";
     const std::string scene = kExamples + "front_approach.json --level " + level;
@@ -40,12 +40,12 @@ TEST_F(Cli, SameSeedByteIdenticalOtherSeedDifferent) {
   }
 }
 
-TEST_F(Cli, NoNoiseIgnoresTheSeed) {
+TEST_F(SimulateCli, NoNoiseIgnoresTheSeed) {
   const std::string scene = kExamples + "front_approach.json --no-noise --level detections";
   EXPECT_EQ(run("simulate " + scene + " --seed 1").output, run("simulate " + scene + " --seed 2").output);
 }
 
-TEST_F(Cli, CsvAndJsonlCarryTheSameRows) {
+TEST_F(SimulateCli, CsvAndJsonlCarryTheSameRows) {
   const auto csv = run("simulate " + kExamples + "front_approach.json --level ideal");
   const auto jsonl = run("simulate " + kExamples + "front_approach.json --level ideal --format jsonl");
   ASSERT_EQ(csv.exit_code, 0);
@@ -56,7 +56,7 @@ TEST_F(Cli, CsvAndJsonlCarryTheSameRows) {
   EXPECT_NE(jsonl.output.find("\"reflector\":\"front\""), std::string::npos);
 }
 
-TEST_F(Cli, BadSceneNamesFileAndFieldAndLeavesNoOutput) {
+TEST_F(SimulateCli, BadSceneNamesFileAndFieldAndLeavesNoOutput) {
   const auto scene = dir_ / "bad.json";
   std::string text = read(kExamples + "front_approach.json");
   text.replace(text.find("\"passenger_car\""), 15, "\"hovercraft\"");
@@ -70,7 +70,7 @@ TEST_F(Cli, BadSceneNamesFileAndFieldAndLeavesNoOutput) {
   for (const auto& entry : fs::directory_iterator(dir_)) EXPECT_NE(entry.path().extension(), ".csv") << entry.path();
 }
 
-TEST_F(Cli, EarlierOutputSurvivesAFailedRun) {
+TEST_F(SimulateCli, EarlierOutputSurvivesAFailedRun) {
   const auto out = dir_ / "out.csv";
   ASSERT_EQ(run("simulate " + kExamples + "front_approach.json -o " + out.string()).exit_code, 0);
   const std::string before = read(out);
@@ -83,7 +83,7 @@ TEST_F(Cli, EarlierOutputSurvivesAFailedRun) {
   EXPECT_EQ(read(out), before);
 }
 
-TEST_F(Cli, UnknownLevelIsRefused) {
+TEST_F(SimulateCli, UnknownLevelIsRefused) {
   const auto r = run("simulate " + kExamples + "front_approach.json --level raw");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--level"), std::string::npos) << r.output;

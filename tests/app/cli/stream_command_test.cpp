@@ -17,21 +17,17 @@ using rcsim::testing::CommandResult;
 
 const std::string kUsageScene = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/front_approach.json";
 
-// `rcsim ARGS` with stderr joined, ended after 60 s should it wait for something (a socket).
-CommandResult run_usage(const std::string& args) {
-  return rcsim::testing::run_shell_command("timeout 60 " + std::string(RCSIM_BINARY) + " " + args);
-}
+using rcsim::testing::output_has;
+CommandResult run_usage(const std::string& args) { return rcsim::testing::run_rcsim_with_timeout(args); }
 
-bool output_has(const CommandResult& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
-
-class CliUsage : public rcsim::testing::ScratchDirTest {
+class StreamCliUsage : public rcsim::testing::ScratchDirTest {
  protected:
-  CliUsage() : ScratchDirTest("stream_cli_usage") {}
+  StreamCliUsage() : ScratchDirTest("stream_cli_usage") {}
 };
 
 // README's exit statuses: what the user typed wrong is 2, whichever layer finds it (the stream's
 // and listener's own checks threw errors that ended with 1).
-TEST_F(CliUsage, StreamAndListenRefuseBadArgumentsWithStatusTwo) {
+TEST_F(StreamCliUsage, StreamAndListenRefuseBadArgumentsWithStatusTwo) {
   const std::string stream = "stream " + kUsageScene + " ";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {stream + "--to 127.0.0.1:5000 --speed fast", "--speed 'fast'"},

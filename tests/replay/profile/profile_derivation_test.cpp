@@ -121,13 +121,10 @@ void expect_refused(const Recording& r, const std::string& words) {
   }
 }
 
-TEST(ProfileDerive, RefusesWhatAProfileCannotComeFromNamingWhatIsMissing) {
+// The pool's own refusals (tracks, one cycle, too few detections, one place) are tested in
+// detection_pool_test.cpp; the base is the derivation's.
+TEST(ProfileDerive, RefusesAnUnknownBaseNamingTheNearest) {
   const auto spread = [](int i) { return 10.0 + i; };
-  const auto one_range = [](int) { return 42.0; };
-  expect_refused(made_up(10, 50, ListLevel::tracks, spread), "reports tracks; a profile is derived from raw detections");
-  expect_refused(made_up(1, 500, ListLevel::detections, spread), "1 sensor cycle(s): a profile needs at least 2");
-  expect_refused(made_up(10, 5, ListLevel::detections, spread), "50 detection(s): a profile needs at least 100");
-  expect_refused(made_up(10, 50, ListLevel::detections, one_range), "every detection lies at one range");
   Recording unknown_base = made_up(10, 50, ListLevel::detections, spread);
   unknown_base.sensors.front().type = "aimotive-lrr";
   expect_refused(unknown_base, "did you mean \"aimotive_lrr\"?");

@@ -6,12 +6,11 @@
 #include <gtest/gtest.h>
 
 #include "replay/evaluate/hand_bench_rows.hpp"
+#include "replay/store/report_schema.hpp"
 #include "replay/store/report_store.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::replay {
-
-extern const char* const kReportSchemaSql;  // the tables of version 1
 
 namespace {
 

@@ -4,6 +4,8 @@
 // by name (a class without its offset dropped), NULL optional columns as NaN, the boxes by cycle,
 // each run's GOSPA parameters (the defaults where its parameters are no JSON); and the refusal of
 // targets whose cycle has no row.
+#include "replay/store/report_migration.hpp"
+
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 
@@ -12,18 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "replay/store/report_schema.hpp"
 #include "replay/store/run_rows.hpp"
 
-namespace rcsim::replay {
-
-extern const char* const kReportSchemaSql;
-extern const char* const kBenchSchemaSql;
-extern const char* const kRealDriveSchemaSql;
-extern const char* const kBlockSchemaSql;
-extern const char* const kDropRowTablesSql;
-void convert_row_tables_to_blocks(SQLite::Database& db);
-
-}  // namespace rcsim::replay
 
 namespace rcsim::report_migration_test {
 

@@ -2,7 +2,7 @@
 // applied in turn make the tables of a new report; the row tables of version 1 live only until
 // the v4 conversion; the tables are STRICT and their CHECKs refuse what the schema does not allow;
 // the v6 targets per range bin may be NULL (not known); deleting a run deletes its rows everywhere.
-#include "replay/store/report_store.hpp"
+#include "replay/store/report_schema.hpp"
 
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <fmt/format.h>
@@ -11,20 +11,11 @@
 #include <set>
 #include <string>
 
+#include "replay/store/report_migration.hpp"
+#include "replay/store/report_store.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 
-namespace rcsim::replay {
-
-extern const char* const kReportSchemaSql;
-extern const char* const kBenchSchemaSql;
-extern const char* const kRealDriveSchemaSql;
-extern const char* const kBlockSchemaSql;
-extern const char* const kDropRowTablesSql;
-extern const char* const kCampaignSchemaSql;
-extern const char* const kObjectRangeTargetsSql;
-
-}  // namespace rcsim::replay
 
 namespace rcsim::report_schema_test {
 

@@ -17,19 +17,13 @@
 #include "common/input_error.hpp"
 #include "replay/replay_fixtures.hpp"
 #include "replay/run/replay_run.hpp"
+#include "replay/store/report_migration.hpp"
 #include "replay/store/report_reader.hpp"
+#include "replay/store/report_schema.hpp"
 #include "replay/store/run_rows.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::replay {
-
-extern const char* const kReportSchemaSql;     // the tables of version 1
-extern const char* const kBenchSchemaSql;      // added in version 2
-extern const char* const kRealDriveSchemaSql;  // added in version 3
-extern const char* const kBlockSchemaSql;      // added in version 4, with the row tables' conversion
-extern const char* const kDropRowTablesSql;
-extern const char* const kCampaignSchemaSql;   // added in version 5
-void convert_row_tables_to_blocks(SQLite::Database& db);
 
 namespace {
 

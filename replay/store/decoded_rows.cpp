@@ -1,0 +1,187 @@
+#include "replay/store/decoded_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "metrics/target_class.hpp"
+
+namespace rcsim::replay {
+
+namespace {
+
+using Row = std::vector<DecodedValue>;
+
+constexpr std::string_view kInteger = "INTEGER", kReal = "REAL", kText = "TEXT";
+
+DecodedValue real(double v) { return std::isfinite(v) ? DecodedValue(v) : DecodedValue(); }
+DecodedValue whole(std::int64_t v) { return DecodedValue(v); }
+DecodedValue index_or_none(int v) { return v < 0 ? DecodedValue() : DecodedValue(std::int64_t{v}); }
+template <typename T>
+DecodedValue whole_if(bool has, T v) {
+  return has ? DecodedValue(static_cast<std::int64_t>(v)) : DecodedValue();
+}
+
+const std::vector<DecodedColumn> kCycleColumns = {
+    {"run_id", kInteger},
+    {"cycle", kInteger},
+    {"sensor", kInteger},
+    {"t_s", kReal},
+    {"sensor_x_m", kReal},
+    {"sensor_y_m", kReal},
+    {"sensor_yaw_rad", kReal},
+    {"n_recorded", kInteger},
+    {"n_simulated", kInteger},
+    {"n_assigned", kInteger},
+    {"gospa_m", kReal},
+    {"gospa_localisation_mp", kReal},
+    {"gospa_missed_mp", kReal},
+    {"gospa_false_mp", kReal},
+    {"ospa_m", kReal},
+    {"merge_recorded", kInteger},
+    {"merge_simulated", kInteger},
+    {"merge_matched", kInteger},
+    {"n_object_recorded", kInteger},
+    {"n_object_simulated", kInteger},
+    {"n_background_recorded", kInteger},
+    {"n_background_simulated", kInteger},
+    {"gospa_object_m", kReal},
+    {"ospa_object_m", kReal}};
+
+Row cycle_row(std::int64_t run_id, const StoredCycle& c) {
+  const auto classes = c.classes.value_or(StoredCycle::Classes{});
+  const bool has = c.classes.has_value();
+  return {whole(run_id),
+          whole(c.cycle),
+          whole(c.sensor),
+          real(c.t_s),
+          c.X_WS ? real(c.X_WS->x_m) : DecodedValue(),
+          c.X_WS ? real(c.X_WS->y_m) : DecodedValue(),
+          c.X_WS ? real(c.X_WS->yaw_rad) : DecodedValue(),
+          whole(c.n_recorded),
+          whole(c.n_simulated),
+          whole(c.n_assigned),
+          real(c.gospa_m),
+          real(c.gospa_localisation_mp),
+          real(c.gospa_missed_mp),
+          real(c.gospa_false_mp),
+          real(c.ospa_m),
+          whole(c.merge_recorded),
+          whole(c.merge_simulated),
+          whole(c.merge_matched),
+          whole_if(has, classes.n_object_recorded),
+          whole_if(has, classes.n_object_simulated),
+          whole_if(has, classes.n_background_recorded),
+          whole_if(has, classes.n_background_simulated),
+          has ? real(classes.gospa_object_m) : DecodedValue(),
+          has ? real(classes.ospa_object_m) : DecodedValue()};
+}
+
+const std::vector<DecodedColumn> kTargetColumns = {
+    {"run_id", kInteger},
+    {"cycle", kInteger},
+    {"sensor", kInteger},
+    {"origin", kText},
+    {"idx", kInteger},
+    {"track_id", kInteger},
+    {"range_m", kReal},
+    {"azimuth_rad", kReal},
+    {"range_rate_mps", kReal},
+    {"amplitude_db", kReal},
+    {"x_s_m", kReal},
+    {"y_s_m", kReal},
+    {"object", kInteger},
+    {"match_idx", kInteger},
+    {"merge_artefact", kInteger},
+    {"target_class", kText},
+    {"x_o_m", kReal},
+    {"y_o_m", kReal},
+    {"rcs_dbsm", kReal},
+    {"snr_db", kReal},
+    {"elevation_rad", kReal}};
+
+Row target_row(std::int64_t run_id, const StoredTarget& t) {
+  const Vec2 p_ST_S = t.p_ST_S();
+  return {whole(run_id),
+          whole(t.cycle),
+          whole(t.sensor),
+          DecodedValue(std::string(t.simulated ? "simulated" : "recorded")),
+          whole(t.idx),
+          index_or_none(t.track_id),
+          real(t.range_m),
+          real(t.azimuth_rad),
+          real(t.range_rate_mps),
+          real(t.amplitude_db),
+          real(p_ST_S.x()),
+          real(p_ST_S.y()),
+          index_or_none(t.object),
+          index_or_none(t.match_idx),
+          whole(t.merge_artefact ? 1 : 0),
+          t.target_class ? DecodedValue(std::string(metrics::target_class_name(*t.target_class))) : DecodedValue(),
+          t.p_OT_O ? real(t.p_OT_O->x()) : DecodedValue(),
+          t.p_OT_O ? real(t.p_OT_O->y()) : DecodedValue(),
+          real(t.rcs_dbsm),
+          real(t.snr_db),
+          real(t.elevation_rad)};
+}
+
+const std::vector<DecodedColumn> kObjectColumns = {
+    {"run_id", kInteger},
+    {"cycle", kInteger},
+    {"object", kInteger},
+    {"x_m", kReal},
+    {"y_m", kReal},
+    {"yaw_rad", kReal}};
+
+Row object_row(std::int64_t run_id, const StoredObjectState& s) {
+  return {whole(run_id), whole(s.cycle), whole(s.object), real(s.X_WO.x_m), real(s.X_WO.y_m), real(s.X_WO.yaw_rad)};
+}
+
+}  // namespace
+
+std::optional<DecodedTable> decoded_table_from_name(std::string_view name) {
+  if (name == "cycles") return DecodedTable::cycles;
+  if (name == "targets") return DecodedTable::targets;
+  if (name == "objects") return DecodedTable::objects;
+  return std::nullopt;
+}
+
+std::string_view decoded_table_name(DecodedTable table) {
+  switch (table) {
+    case DecodedTable::cycles: return "cycles";
+    case DecodedTable::targets: return "targets";
+    case DecodedTable::objects: return "objects";
+  }
+  return "";
+}
+
+const std::vector<DecodedColumn>& decoded_columns(DecodedTable table) {
+  switch (table) {
+    case DecodedTable::cycles: return kCycleColumns;
+    case DecodedTable::targets: return kTargetColumns;
+    case DecodedTable::objects: return kObjectColumns;
+  }
+  return kObjectColumns;
+}
+
+void for_each_decoded_row(SQLite::Database& db, DecodedTable table, std::int64_t run_id, CycleSpan span,
+                          const std::function<void(const std::vector<DecodedValue>&)>& visit) {
+  switch (table) {
+    case DecodedTable::cycles:
+      for_each_cycle(db, run_id, span, [&](const StoredCycle& c) { visit(cycle_row(run_id, c)); });
+      return;
+    case DecodedTable::targets:
+      for_each_target(db, run_id, span, [&](const StoredTarget& t) { visit(target_row(run_id, t)); });
+      return;
+    case DecodedTable::objects:
+      for_each_object_state(db, run_id, span, [&](const StoredObjectState& s) { visit(object_row(run_id, s)); });
+      return;
+  }
+}
+
+int last_stored_cycle(SQLite::Database& db, std::int64_t run_id) {
+  int last = -1;
+  for_each_cycle(db, run_id, {}, [&](const StoredCycle& c) { last = std::max(last, c.cycle); });
+  return last;
+}
+
+}  // namespace rcsim::replay

@@ -1,0 +1,266 @@
+// rcsim's SQLite extension (docs/sql.md): loaded into sqlite3 (`.load build/lib/rcsim`), Python's
+// sqlite3 or any SQLite client, it serves a report database's per-cycle, per-target and per-object
+// rows, stored as compact blocks, as the read-only tables `cycles`, `targets` and `objects`, with
+// the columns of `rcsim export` (replay/store/decoded_rows.hpp):
+//   SELECT cycle, gospa_m FROM cycles WHERE run_id = 1;
+// The rows are decoded a block of cycles at a time, so memory stays flat in a run's length; a
+// constraint on run_id and on cycle (=, <, <=, >, >=) reads only the blocks it needs.
+#include <sqlite3ext.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "replay/store/decoded_rows.hpp"
+#include "replay/store/report_reader.hpp"
+#include "replay/store/report_store.hpp"
+
+SQLITE_EXTENSION_INIT1
+
+namespace rcsim::sqlite_extension {
+
+namespace {
+
+using replay::DecodedTable;
+using replay::DecodedValue;
+
+// Cycles decoded at a time: one stored block (replay/store/run_rows.hpp).
+constexpr int kChunkCycles = replay::kBlockCycles;
+
+// idxNum bits of a plan: which constraints xFilter receives, in this order.
+constexpr int kRunEquals = 1, kCycleEquals = 2, kCycleLowest = 4, kCycleHighest = 8;
+
+struct Table {
+  sqlite3_vtab base{};  // first: SQLite hands back a pointer to it
+  DecodedTable table = DecodedTable::cycles;
+  std::string path;     // the connection's main database
+};
+
+struct Cursor {
+  sqlite3_vtab_cursor base{};  // first
+  std::unique_ptr<replay::ReportDatabase> db;
+  std::vector<std::int64_t> runs;
+  std::size_t run_index = 0;
+  replay::CycleSpan wanted;  // from the cycle constraints
+  int next_first_cycle = 0;  // of the current run's next chunk
+  int last_cycle = -1;       // the current run's last stored cycle
+  std::vector<std::vector<DecodedValue>> rows;
+  std::size_t row = 0;
+  sqlite3_int64 rowid = 0;
+};
+
+Table& table_of(sqlite3_vtab* vtab) { return *reinterpret_cast<Table*>(vtab); }
+Cursor& cursor_of(sqlite3_vtab_cursor* cursor) { return *reinterpret_cast<Cursor*>(cursor); }
+
+int fail(sqlite3_vtab* vtab, const std::string& message) {
+  sqlite3_free(vtab->zErrMsg);
+  vtab->zErrMsg = sqlite3_mprintf("%s", message.c_str());
+  return SQLITE_ERROR;
+}
+
+std::string declaration(DecodedTable table) {
+  std::string sql = "CREATE TABLE x(";
+  const auto& columns = replay::decoded_columns(table);
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    sql += (i ? ", " : "") + columns[i].name + " " + std::string(columns[i].sql_type);
+  }
+  return sql + ")";
+}
+
+int connect(sqlite3* db, void* table_kind, int, const char* const*, sqlite3_vtab** out, char** error) {
+  const DecodedTable table = *static_cast<const DecodedTable*>(table_kind);
+  const char* path = sqlite3_db_filename(db, "main");
+  if (path == nullptr || *path == '\0') {
+    *error = sqlite3_mprintf("rcsim: %s reads the report database opened as main; this connection's is in memory",
+                             std::string(replay::decoded_table_name(table)).c_str());
+    return SQLITE_ERROR;
+  }
+  const int declared = sqlite3_declare_vtab(db, declaration(table).c_str());
+  if (declared != SQLITE_OK) return declared;
+  auto* t = new Table;
+  t->table = table;
+  t->path = path;
+  *out = &t->base;
+  return SQLITE_OK;
+}
+
+int disconnect(sqlite3_vtab* vtab) {
+  delete &table_of(vtab);
+  return SQLITE_OK;
+}
+
+// Uses `run_id = ?`, and `cycle = ?` or the last lower and upper bounds on cycle given; SQLite
+// checks the cycle constraints again (they only narrow the blocks read).
+int best_index(sqlite3_vtab*, sqlite3_index_info* info) {
+  int run = -1, equals = -1, lowest = -1, highest = -1;
+  for (int i = 0; i < info->nConstraint; ++i) {
+    const auto& c = info->aConstraint[i];
+    if (!c.usable) continue;
+    if (c.iColumn == 0 && c.op == SQLITE_INDEX_CONSTRAINT_EQ) run = i;
+    if (c.iColumn != 1) continue;
+    if (c.op == SQLITE_INDEX_CONSTRAINT_EQ) equals = i;
+    if (c.op == SQLITE_INDEX_CONSTRAINT_GE || c.op == SQLITE_INDEX_CONSTRAINT_GT) lowest = i;
+    if (c.op == SQLITE_INDEX_CONSTRAINT_LE || c.op == SQLITE_INDEX_CONSTRAINT_LT) highest = i;
+  }
+  if (equals >= 0) lowest = highest = -1;
+  int argument = 0;
+  info->idxNum = 0;
+  const auto use = [&](int constraint, int bit, bool omit) {
+    if (constraint < 0) return;
+    info->idxNum |= bit;
+    info->aConstraintUsage[constraint].argvIndex = ++argument;
+    info->aConstraintUsage[constraint].omit = omit ? 1 : 0;
+  };
+  use(run, kRunEquals, true);
+  use(equals, kCycleEquals, false);
+  use(lowest, kCycleLowest, false);
+  use(highest, kCycleHighest, false);
+  info->estimatedCost = (run >= 0 ? 1.0e4 : 1.0e6) / (info->idxNum > kRunEquals ? 10.0 : 1.0);
+  info->estimatedRows = static_cast<sqlite3_int64>(info->estimatedCost);
+  return SQLITE_OK;
+}
+
+int open_cursor(sqlite3_vtab*, sqlite3_vtab_cursor** out) {
+  auto* c = new Cursor;
+  *out = &c->base;
+  return SQLITE_OK;
+}
+
+int close_cursor(sqlite3_vtab_cursor* cursor) {
+  delete &cursor_of(cursor);
+  return SQLITE_OK;
+}
+
+// Decodes the next chunk of cycles holding rows, moving on to the next run where one ends;
+// leaves `rows` empty at the end.
+void load_next_chunk(Cursor& c, DecodedTable table) {
+  c.rows.clear();
+  c.row = 0;
+  while (c.rows.empty() && c.run_index < c.runs.size()) {
+    const std::int64_t run = c.runs[c.run_index];
+    const int last = std::min(c.last_cycle, c.wanted.last);
+    if (c.next_first_cycle > last) {
+      if (++c.run_index < c.runs.size()) {
+        c.last_cycle = replay::last_stored_cycle(*c.db, c.runs[c.run_index]);
+        c.next_first_cycle = std::max(0, c.wanted.first);
+      }
+      continue;
+    }
+    const replay::CycleSpan chunk{c.next_first_cycle, std::min(last, c.next_first_cycle + kChunkCycles - 1)};
+    replay::for_each_decoded_row(*c.db, table, run, chunk, [&](const std::vector<DecodedValue>& row) { c.rows.push_back(row); });
+    c.next_first_cycle = chunk.last + 1;
+  }
+}
+
+int clamp_to_int(sqlite3_int64 v) {
+  return static_cast<int>(std::clamp<sqlite3_int64>(v, 0, std::numeric_limits<int>::max()));
+}
+
+int filter(sqlite3_vtab_cursor* cursor, int plan, const char*, int argc, sqlite3_value** argv) {
+  Cursor& c = cursor_of(cursor);
+  const Table& t = table_of(cursor->pVtab);
+  try {
+    if (!c.db) c.db = replay::open_report_database_read_only(t.path);
+    int argument = 0;
+    c.runs = replay::report::run_ids(*c.db);
+    if ((plan & kRunEquals) != 0) {
+      const sqlite3_int64 run = sqlite3_value_int64(argv[argument++]);
+      c.runs.erase(std::remove_if(c.runs.begin(), c.runs.end(), [&](std::int64_t id) { return id != run; }), c.runs.end());
+    }
+    c.wanted = replay::CycleSpan{};
+    // `cycle > 5` reads from cycle 5 on, `cycle < 9` to cycle 9: SQLite drops the bound itself.
+    const auto next_cycle = [&] { return clamp_to_int(sqlite3_value_int64(argv[argument++])); };
+    if ((plan & kCycleEquals) != 0 && argument < argc) c.wanted.first = c.wanted.last = next_cycle();
+    if ((plan & kCycleLowest) != 0 && argument < argc) c.wanted.first = next_cycle();
+    if ((plan & kCycleHighest) != 0 && argument < argc) c.wanted.last = next_cycle();
+    c.run_index = 0;
+    c.rowid = 0;
+    c.last_cycle = c.runs.empty() ? -1 : replay::last_stored_cycle(*c.db, c.runs.front());
+    c.next_first_cycle = c.wanted.first;
+    load_next_chunk(c, t.table);
+    return SQLITE_OK;
+  } catch (const std::exception& e) {
+    return fail(cursor->pVtab, std::string("rcsim: ") + t.path + ": " + e.what());
+  }
+}
+
+int next(sqlite3_vtab_cursor* cursor) {
+  Cursor& c = cursor_of(cursor);
+  ++c.rowid;
+  if (++c.row < c.rows.size()) return SQLITE_OK;
+  try {
+    load_next_chunk(c, table_of(cursor->pVtab).table);
+    return SQLITE_OK;
+  } catch (const std::exception& e) {
+    return fail(cursor->pVtab, std::string("rcsim: ") + table_of(cursor->pVtab).path + ": " + e.what());
+  }
+}
+
+int eof(sqlite3_vtab_cursor* cursor) {
+  const Cursor& c = cursor_of(cursor);
+  return c.row >= c.rows.size() ? 1 : 0;
+}
+
+int column(sqlite3_vtab_cursor* cursor, sqlite3_context* context, int index) {
+  const Cursor& c = cursor_of(cursor);
+  const DecodedValue& value = c.rows[c.row][static_cast<std::size_t>(index)];
+  if (const auto* number = std::get_if<std::int64_t>(&value)) {
+    sqlite3_result_int64(context, *number);
+  } else if (const auto* real = std::get_if<double>(&value)) {
+    sqlite3_result_double(context, *real);
+  } else if (const auto* text = std::get_if<std::string>(&value)) {
+    sqlite3_result_text(context, text->c_str(), static_cast<int>(text->size()), SQLITE_TRANSIENT);
+  } else {
+    sqlite3_result_null(context);
+  }
+  return SQLITE_OK;
+}
+
+int rowid(sqlite3_vtab_cursor* cursor, sqlite3_int64* out) {
+  *out = cursor_of(cursor).rowid;
+  return SQLITE_OK;
+}
+
+// Eponymous-only (no xCreate): the tables exist in every connection that loaded the extension.
+sqlite3_module make_module() {
+  sqlite3_module m{};
+  m.iVersion = 0;
+  m.xConnect = connect;
+  m.xBestIndex = best_index;
+  m.xDisconnect = disconnect;
+  m.xOpen = open_cursor;
+  m.xClose = close_cursor;
+  m.xFilter = filter;
+  m.xNext = next;
+  m.xEof = eof;
+  m.xColumn = column;
+  m.xRowid = rowid;
+  return m;
+}
+
+const sqlite3_module kModule = make_module();
+const DecodedTable kTables[] = {DecodedTable::cycles, DecodedTable::targets, DecodedTable::objects};
+
+}  // namespace
+
+}  // namespace rcsim::sqlite_extension
+
+// The entry point SQLite derives from the file name rcsim.so.
+extern "C" __attribute__((visibility("default"))) int sqlite3_rcsim_init(sqlite3* db, char** error,
+                                                                         const sqlite3_api_routines* api) {
+  SQLITE_EXTENSION_INIT2(api);
+  using namespace rcsim::sqlite_extension;
+  for (const DecodedTable& table : kTables) {
+    const std::string name(rcsim::replay::decoded_table_name(table));
+    const int created = sqlite3_create_module(db, name.c_str(), &kModule, const_cast<DecodedTable*>(&table));
+    if (created != SQLITE_OK) {
+      *error = sqlite3_mprintf("rcsim: cannot create the table %s", name.c_str());
+      return created;
+    }
+  }
+  return SQLITE_OK;
+}

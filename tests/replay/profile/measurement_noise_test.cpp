@@ -1,0 +1,133 @@
+// The noise stage of `rcsim profile derive` (replay/profile/measurement_noise.cpp, declared in
+// derivation_stages.hpp): a quantised quantity's step / sqrt(12), residual RMS by SNR margin,
+// MAD sigmas of matched ranges and the cycle time from the matched steps, each worked by hand on
+// detections and frame pairs laid out in code; and what is left to the base or the recordings.
+#include "replay/profile/derivation_stages.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rcsim::replay::profile::measurement_noise_test {
+
+constexpr double kThreshold_db = 10.0;
+
+std::map<std::string, DerivedValue> by_field(const std::vector<DerivedValue>& values) {
+  std::map<std::string, DerivedValue> out;
+  for (const DerivedValue& v : values) out[v.field] = v;
+  return out;
+}
+
+// 200 detections in two cycles; range and range rate of the i-th as given.
+template <class Range, class Rate>
+DetectionPool pool_of(Range range_m, Rate range_rate_mps) {
+  DetectionPool pool;
+  pool.cycles.resize(2);
+  for (int i = 0; i < 200; ++i) {
+    PooledDetection d;
+    d.range_m = range_m(i), d.range_rate_mps = range_rate_mps(i), d.amplitude_db = 20.0;
+    pool.cycles[static_cast<std::size_t>(i % 2)].detections.push_back(d);
+  }
+  pool.detections = 200;
+  pool.recorded_cycle_time_s = 0.0667;
+  return pool;
+}
+
+TEST(ProfileMeasurementNoise, AQuantisedQuantitysNoiseIsItsStepOverRootTwelve) {
+  // Range rates on 10 steps of 0.1 m/s, ranges on 20 steps of 0.2 m (at most a fifth as many
+  // values as detections): 0.1 / sqrt(12) = 0.0289 -> 0.029, 0.2 / sqrt(12) = 0.0577 -> 0.058.
+  const DetectionPool pool = pool_of([](int i) { return 10.0 + 0.2 * (i % 20); }, [](int i) { return -0.5 + 0.1 * (i % 10); });
+  std::vector<DerivationFigure> figures;
+  const auto values = by_field(derive_noise(pool, Cells{}, kThreshold_db, {}, figures));
+  ASSERT_EQ(values.size(), 5u);
+  for (const char* field : {"measurement_noise.range_rate_sigma_at_threshold_mps", "measurement_noise.range_rate_sigma_min_mps"}) {
+    EXPECT_DOUBLE_EQ(values.at(field).value.get<double>(), 0.029) << field;
+    EXPECT_EQ(values.at(field).evidence, "the radial speed is quantised in steps of 0.1000 m/s: step / sqrt(12)");
+    EXPECT_EQ(values.at(field).support, 200);
+  }
+  for (const char* field : {"measurement_noise.range_sigma_at_threshold_m", "measurement_noise.range_sigma_min_m"}) {
+    EXPECT_DOUBLE_EQ(values.at(field).value.get<double>(), 0.058) << field;
+    EXPECT_EQ(values.at(field).evidence, "the range is quantised in steps of 0.2000 m: step / sqrt(12)");
+  }
+  // No frame pairs on a drive: the recordings' clock.
+  EXPECT_EQ(values.at("cycle_time_s").source, ValueSource::recording);
+  EXPECT_DOUBLE_EQ(values.at("cycle_time_s").value.get<double>(), 0.0667);
+  EXPECT_TRUE(figures.empty());
+}
+
+TEST(ProfileMeasurementNoise, ResidualsByMarginAndMatchedRangesByHand) {
+  // Range rates 0.001 m/s apart and ranges 0.01 m apart: no lattice a radar's step could be
+  // (finer than 5 mm). 100 stationary detections within 4 dB of the threshold with residuals
+  // +-0.05 m/s (RMS 0.05), 100 at 11 dB or more with +-0.02 (RMS 0.02).
+  DetectionPool pool = pool_of([](int i) { return 10.0 + 0.01 * i; }, [](int i) { return 0.001 * i; });
+  int n = 0;
+  for (PooledCycle& c : pool.cycles) {
+    for (PooledDetection& d : c.detections) {
+      const bool low = n % 2 == 0;
+      d.amplitude_db = kThreshold_db + (low ? 1.0 : 12.0);
+      d.stationary_residual_mps = low ? 0.05 : 0.02;
+      ++n;
+    }
+  }
+  // 10 frame pairs 0.05 s apart; their range residuals: 40 within 6 dB of the threshold at +-0.1 m
+  // (median 0, MAD 0.1: 1.4826 x 0.1 / sqrt(2) = 0.1048 -> 0.105), 40 at 11 dB or more at +-0.04
+  // m (0.0419 -> 0.04).
+  std::vector<FramePair> pairs(10);
+  for (FramePair& p : pairs) {
+    p.dt_s = 0.05;
+    for (int i = 0; i < 4; ++i) {
+      p.range_residuals.emplace_back(i % 2 == 0 ? 0.1 : -0.1, 2.0);
+      p.range_residuals.emplace_back(i % 2 == 0 ? 0.04 : -0.04, 15.0);
+    }
+  }
+  std::vector<DerivationFigure> figures;
+  const auto values = by_field(derive_noise(pool, Cells{}, kThreshold_db, pairs, figures));
+  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_rate_sigma_at_threshold_mps").value.get<double>(), 0.05);
+  EXPECT_EQ(values.at("measurement_noise.range_rate_sigma_at_threshold_mps").support, 100);
+  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_rate_sigma_min_mps").value.get<double>(), 0.02);
+  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").value.get<double>(), 0.105);
+  EXPECT_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").support, 40);
+  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_sigma_min_m").value.get<double>(), 0.04);
+  // The cycle time from the 10 steps of exactly 50 ms: each one period, sum(k d) / sum(k^2) = 50 ms
+  // (the search's first fit, 52.5 ms, is only where the least-squares period starts).
+  EXPECT_EQ(values.at("cycle_time_s").source, ValueSource::derived);
+  EXPECT_DOUBLE_EQ(values.at("cycle_time_s").value.get<double>(), 0.05);
+  EXPECT_EQ(values.at("cycle_time_s").support, 10);
+  // Figures: the residual RMS per 2-dB bin of margin (bins at 1 and 13 dB), and the steps' histogram.
+  ASSERT_EQ(figures.size(), 2u);
+  const auto& rms = figures[0].series[0].points;
+  ASSERT_EQ(rms.size(), 2u);
+  EXPECT_DOUBLE_EQ(rms[0].first, 1.0);
+  EXPECT_NEAR(rms[0].second, 0.05, 1e-12);
+  EXPECT_DOUBLE_EQ(rms[1].first, 13.0);
+  EXPECT_NEAR(rms[1].second, 0.02, 1e-12);
+}
+
+TEST(ProfileMeasurementNoise, WhatTheDataCannotShowComesFromTheBaseOrTheRecordings) {
+  // Nothing quantised, nothing stationary, no frame pairs.
+  DetectionPool pool = pool_of([](int i) { return 10.0 + 0.01 * i; }, [](int i) { return 0.001 * i; });
+  std::vector<DerivationFigure> figures;
+  auto values = by_field(derive_noise(pool, Cells{}, kThreshold_db, {}, figures));
+  EXPECT_EQ(values.at("measurement_noise.range_rate_sigma_min_mps").source, ValueSource::base);
+  EXPECT_EQ(values.at("measurement_noise.range_rate_sigma_min_mps").evidence,
+            "too few stationary detections near the threshold (0) or far above it (0)");
+  EXPECT_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").source, ValueSource::base);
+  EXPECT_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").evidence,
+            "too few stationary detections matched frame to frame (0 near the threshold, 0 far above)");
+  EXPECT_EQ(values.at("cycle_time_s").evidence, "the recordings' clock (0 frame pairs matched, too few to show the radar's own)");
+  // Single frames with a range cell: the range noise is the cell's quantisation, 0.15 / sqrt(12)
+  // = 0.0433 -> 0.043; the cycle time cannot be seen.
+  pool.snapshots = true;
+  values = by_field(derive_noise(pool, Cells{0.15, 0.1, true}, kThreshold_db, {}, figures));
+  EXPECT_EQ(values.at("measurement_noise.range_sigma_min_m").source, ValueSource::derived);
+  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_sigma_min_m").value.get<double>(), 0.043);
+  EXPECT_EQ(values.at("measurement_noise.range_sigma_min_m").support, 0);
+  EXPECT_EQ(values.at("cycle_time_s").source, ValueSource::base);
+  EXPECT_TRUE(values.at("cycle_time_s").value.is_null());
+  EXPECT_EQ(values.at("cycle_time_s").evidence, "not observable: single frames, none follows another");
+}
+
+}  // namespace rcsim::replay::profile::measurement_noise_test

@@ -1,0 +1,113 @@
+// The resolution stage of `rcsim profile derive` (replay/profile/resolution_gaps.cpp, declared in
+// derivation_stages.hpp): the range and range-rate cells read off the gaps between pairs of one
+// cycle, on detections laid out a known cell apart, with the pairs counted by hand.
+#include "replay/profile/derivation_stages.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace rcsim::replay::profile::resolution_gaps_test {
+
+// `cycles` cycles, each a full lattice of 5 ranges 1.5 m apart by 4 range rates 0.25 m/s apart
+// (10 + 1.5 i m, -1 + 0.25 j m/s: exact in binary), one detection per cell.
+DetectionPool lattice(int cycles) {
+  DetectionPool pool;
+  for (int k = 0; k < cycles; ++k) {
+    PooledCycle& c = pool.cycles.emplace_back();
+    c.cycle = k;
+    for (int i = 0; i < 5; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        PooledDetection d;
+        d.range_m = 10.0 + 1.5 * i, d.range_rate_mps = -1.0 + 0.25 * j, d.azimuth_rad = 0.01 * (i + j);
+        c.detections.push_back(d);
+      }
+    }
+    pool.detections += 20;
+  }
+  return pool;
+}
+
+TEST(ProfileResolutionGaps, ALatticeGivesItsCellsWithThePairsCountedByHand) {
+  // Pairs at one radial speed (|d rate| < 0.02 m/s: the same j): 4 x C(5, 2) = 40 a cycle, 120 in
+  // three; their range gaps 1.5 m (16 a cycle), 3, 4.5, 6: the density rises from none below
+  // 1.5 m to 48 pairs in [1.5, 2.25). Pairs within half of it, 0.75 m (the same i): 5 x C(4, 2)
+  // = 30 a cycle, 90, gaps 0.25 m/s and multiples. Round two (pairs within a quarter of 0.25 m/s)
+  // gives the same pairs again.
+  const DetectionPool pool = lattice(3);
+  Cells cells;
+  std::vector<DerivationFigure> figures;
+  const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
+  EXPECT_TRUE(cells.found);
+  EXPECT_DOUBLE_EQ(cells.range_m, 1.5);
+  EXPECT_DOUBLE_EQ(cells.range_rate_mps, 0.25);
+  ASSERT_EQ(values.size(), 3u);
+  EXPECT_EQ(values[0].field, "resolution.range_cell_m");
+  EXPECT_DOUBLE_EQ(values[0].value.get<double>(), 1.5);
+  EXPECT_EQ(values[0].support, 120);
+  EXPECT_EQ(values[0].evidence,
+            "120 pairs at one radial speed: their density rises 4-fold at 1.500 m (1 % quantile 1.500, 5 % 1.500)");
+  EXPECT_EQ(values[1].field, "resolution.range_rate_cell_mps");
+  EXPECT_DOUBLE_EQ(values[1].value.get<double>(), 0.25);
+  EXPECT_EQ(values[1].support, 90);
+  // No two detections share a range and radial speed: no beams of one cell, the azimuth cell is the base's.
+  EXPECT_EQ(values[2].field, "resolution.azimuth_cell_deg");
+  EXPECT_EQ(values[2].source, ValueSource::base);
+  EXPECT_NE(values[2].evidence.find("not shown: 0 pair(s) at one radial speed within half a range cell"), std::string::npos)
+      << values[2].evidence;
+  EXPECT_NE(values[2].evidence.find("among 60 detections"), std::string::npos) << values[2].evidence;
+  // Two histograms over 4 cells in 60 bins, the cell marked: the 1.5-m gaps (48) in the bin at 1.5 m.
+  ASSERT_EQ(figures.size(), 2u);
+  EXPECT_DOUBLE_EQ(figures[0].bin_width, 0.1);
+  EXPECT_EQ(figures[0].counts[15], 48);
+  EXPECT_DOUBLE_EQ(figures[0].marker, 1.5);
+  EXPECT_DOUBLE_EQ(figures[1].marker, 0.25);
+}
+
+TEST(ProfileResolutionGaps, TwoBeamsOfOneCellDoNotCloseTheRangeRateGap) {
+  // Every cycle adds a second detection in the cell (10 m, -1 m/s) at another azimuth, as an
+  // imaging array's second beam: 3 pairs at the very same radial speed within half a range cell,
+  // set aside; the cells stay.
+  DetectionPool pool = lattice(3);
+  for (PooledCycle& c : pool.cycles) {
+    PooledDetection twin = c.detections.front();
+    twin.azimuth_rad = 0.3;
+    c.detections.push_back(twin);
+    ++pool.detections;
+  }
+  Cells cells;
+  std::vector<DerivationFigure> figures;
+  const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
+  EXPECT_DOUBLE_EQ(cells.range_m, 1.5);
+  EXPECT_DOUBLE_EQ(cells.range_rate_mps, 0.25);
+  ASSERT_EQ(values.size(), 3u);
+  EXPECT_NE(values[2].evidence.find("not shown: 3 pair(s)"), std::string::npos) << values[2].evidence;
+  EXPECT_NE(values[2].evidence.find("among 63 detections"), std::string::npos) << values[2].evidence;
+}
+
+TEST(ProfileResolutionGaps, TooFewPairsLeaveBothCellsToTheBase) {
+  // One cycle of 2 ranges by 4 rates: 4 pairs at one radial speed, fewer than the 20 a gap needs.
+  DetectionPool pool;
+  PooledCycle& c = pool.cycles.emplace_back();
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      PooledDetection d;
+      d.range_m = 10.0 + 1.5 * i, d.range_rate_mps = 0.25 * j;
+      c.detections.push_back(d);
+    }
+  }
+  pool.detections = 8;
+  Cells cells;
+  std::vector<DerivationFigure> figures;
+  const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
+  EXPECT_FALSE(cells.found);
+  EXPECT_TRUE(figures.empty());
+  ASSERT_EQ(values.size(), 2u);
+  for (const DerivedValue& v : values) {
+    EXPECT_EQ(v.source, ValueSource::base) << v.field;
+    EXPECT_TRUE(v.value.is_null()) << v.field;
+    EXPECT_EQ(v.evidence, "too few pairs of detections in one cycle at one radial speed (4) to show a gap");
+  }
+}
+
+}  // namespace rcsim::replay::profile::resolution_gaps_test
