@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace rcsim::replay::profile::resolution_gaps_test {
@@ -53,9 +54,9 @@ TEST(ProfileResolutionGaps, ALatticeGivesItsCellsWithThePairsCountedByHand) {
   // No two detections share a range and radial speed: no beams of one cell, the azimuth cell is the base's.
   EXPECT_EQ(values[2].field, "resolution.azimuth_cell_deg");
   EXPECT_EQ(values[2].source, ValueSource::base);
-  EXPECT_NE(values[2].evidence.find("not shown: 0 pair(s) at one radial speed within half a range cell"), std::string::npos)
+  EXPECT_NE(values[2].evidence.find("not shown: among 60 detections, 0 pair(s) inside one range-Doppler cell at one elevation"),
+            std::string::npos)
       << values[2].evidence;
-  EXPECT_NE(values[2].evidence.find("among 60 detections"), std::string::npos) << values[2].evidence;
   // Two histograms over 4 cells in 60 bins, the cell marked: the 1.5-m gaps (48) in the bin at 1.5 m.
   ASSERT_EQ(figures.size(), 2u);
   EXPECT_DOUBLE_EQ(figures[0].bin_width, 0.1);
@@ -81,8 +82,46 @@ TEST(ProfileResolutionGaps, TwoBeamsOfOneCellDoNotCloseTheRangeRateGap) {
   EXPECT_DOUBLE_EQ(cells.range_m, 1.5);
   EXPECT_DOUBLE_EQ(cells.range_rate_mps, 0.25);
   ASSERT_EQ(values.size(), 3u);
-  EXPECT_NE(values[2].evidence.find("not shown: 3 pair(s)"), std::string::npos) << values[2].evidence;
-  EXPECT_NE(values[2].evidence.find("among 63 detections"), std::string::npos) << values[2].evidence;
+  // 3 pairs among 63 detections, 4.76 %, but fewer than the 20 a gap needs: the base's.
+  EXPECT_EQ(values[2].source, ValueSource::base);
+  EXPECT_NE(values[2].evidence.find("not shown: among 63 detections, 3 pair(s) inside one range-Doppler cell at one elevation (4.76 %"),
+            std::string::npos)
+      << values[2].evidence;
+}
+
+// An array that resolves azimuth: every cycle, the cell (10 m, -1 m/s) holds a second beam
+// u = sin(az) 0.0175 (1.00 deg) further, at the same elevation: 30 same-cell pairs in 30 cycles,
+// 4.8 % of the 630 detections, all asin(0.0175) = 1.003 deg apart: the azimuth cell is 1.0 deg. The
+// second beam apart in elevation instead (0.02 in sin el) is counted apart and leaves the azimuth
+// cell to the base.
+TEST(ProfileResolutionGaps, BeamsOfOneCellAtOneElevationShowTheAzimuthCellAtTwoElevationsNot) {
+  const auto with_twins = [](double du, double elevation_rad) {
+    DetectionPool pool = lattice(30);
+    for (PooledCycle& c : pool.cycles) {
+      c.detections.front().elevation_rad = 0.0;
+      PooledDetection twin = c.detections.front();
+      twin.azimuth_rad = std::asin(std::sin(twin.azimuth_rad) + du);
+      twin.elevation_rad = elevation_rad;
+      c.detections.push_back(twin);
+      ++pool.detections;
+    }
+    return pool;
+  };
+  Cells cells;
+  std::vector<DerivationFigure> figures;
+  const std::vector<DerivedValue> azimuth = derive_resolution(with_twins(0.0175, 0.0), cells, figures);
+  ASSERT_EQ(azimuth.size(), 3u);
+  EXPECT_EQ(azimuth[2].source, ValueSource::derived) << azimuth[2].evidence;
+  EXPECT_DOUBLE_EQ(azimuth[2].value.get<double>(), 1.0);
+  EXPECT_EQ(azimuth[2].support, 30);
+  EXPECT_NE(azimuth[2].evidence.find("30 pairs inside one range-Doppler cell at one elevation (4.8 % of the detections; 0 more at two elevations)"),
+            std::string::npos)
+      << azimuth[2].evidence;
+  const std::vector<DerivedValue> elevation = derive_resolution(with_twins(0.0, std::asin(0.02)), cells, figures);
+  EXPECT_EQ(elevation[2].source, ValueSource::base);
+  EXPECT_NE(elevation[2].evidence.find("0 pair(s) inside one range-Doppler cell at one elevation (0.00 %"), std::string::npos)
+      << elevation[2].evidence;
+  EXPECT_NE(elevation[2].evidence.find("30 at two elevations"), std::string::npos) << elevation[2].evidence;
 }
 
 TEST(ProfileResolutionGaps, TooFewPairsLeaveBothCellsToTheBase) {
