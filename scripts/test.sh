@@ -36,6 +36,7 @@ stage() {
 }
 
 stage "Release build" scripts/setup.sh build
+stage "Test tools (npm, lockfiles)" scripts/test-tools.sh
 stage "Release tests" ctest --test-dir build --output-on-failure -j "$test_jobs"
 if [ "${RCSIM_SKIP_SANITIZE:-0}" != "1" ] || [ "${RCSIM_SKIP_FUZZ:-0}" != "1" ]; then
   stage "ASan+UBSan build (clang, with the fuzzers)" scripts/build-sanitize.sh

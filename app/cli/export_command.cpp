@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "replay/report/mcap_replay.hpp"
 #include "replay/store/decoded_rows.hpp"
 #include "replay/store/report_reader.hpp"
 #include "replay/store/report_store.hpp"
@@ -90,7 +91,22 @@ long long export_rows(replay::ReportDatabase& db, const ExportArgs& args, std::o
   return writer.rows();
 }
 
+// One run as an MCAP file for Foxglove (schemas/mcap-replay.md), written atomically.
+void export_mcap(const ExportArgs& args) {
+  if (args.output.empty()) throw CLI::ValidationError("--output", "--format mcap writes a binary file: name it with -o FILE.mcap");
+  check_output_file(args.output);  // before any work
+  const auto db = replay::open_report_database_for_reading(args.db_path);
+  (void)replay::report::select_runs(*db, args.db_path, {args.run_id}, 1);  // an unknown run is refused by name
+  AtomicFileWriter file(args.output);
+  const replay::McapReplayCounts counts = replay::write_run_mcap(*db, args.run_id, file.stream());
+  file.commit();
+  std::cerr << fmt::format("rcsim export: run {} as MCAP, {} cycles of {} sensor(s), {} messages, {} bytes written to {}\n",
+                           args.run_id, counts.cycles, counts.sensors, counts.messages, counts.bytes, args.output);
+}
+
 void run_export(const ExportArgs& args) {
+  if (args.format == "mcap") return export_mcap(args);
+  if (args.table.empty()) throw CLI::ValidationError("--table", "is required for --format " + args.format + ": cycles, targets or objects");
   if (!args.output.empty()) check_output_file(args.output);  // before any work
   const auto db = replay::open_report_database_for_reading(args.db_path);
   (void)replay::report::select_runs(*db, args.db_path, {args.run_id}, 1);  // an unknown run is refused by name
@@ -117,16 +133,17 @@ void add_export_command(CLI::App& app) {
   auto args = std::make_shared<ExportArgs>();
   auto* cmd = app.add_subcommand("export",
                                  "one run's per-cycle, per-target or per-object rows as CSV or JSON Lines, decoded "
-                                 "from the report's compact storage");
+                                 "from the report's compact storage; or the whole run as MCAP for Foxglove");
   cmd->add_option("REPORT_DB", args->db_path, "report database (rcsim-report, SQLite)")->required();
   cmd->add_option("--run", args->run_id, "run id (rcsim report and the replay's first line name it)")->required();
   cmd->add_option("--table", args->table,
                   "cycles (figures per cycle and sensor), targets (every recorded and simulated target) or objects "
-                  "(the annotated boxes per cycle)")
-      ->required()
+                  "(the annotated boxes per cycle); not with --format mcap")
       ->check(CLI::IsMember({"cycles", "targets", "objects"}));
-  cmd->add_option("--format", args->format, "csv (with a header row) or jsonl (one JSON object per line)")
-      ->check(CLI::IsMember({"csv", "jsonl"}))
+  cmd->add_option("--format", args->format,
+                  "csv (with a header row), jsonl (one JSON object per line), or mcap (the whole run: targets, boxes, "
+                  "transforms, view fields and figures for Foxglove, schemas/mcap-replay.md; needs -o)")
+      ->check(CLI::IsMember({"csv", "jsonl", "mcap"}))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "file to write (atomically); default: standard output");
   cmd->callback([args] { run_export(*args); });

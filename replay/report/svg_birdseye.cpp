@@ -217,8 +217,6 @@ void draw_ego_sensors_and_links(const BirdsEyeSpec& spec, const View& v, std::st
   out += "</g>";
 }
 
-constexpr const char* kBackgroundColour = "#868e96";  // grey
-constexpr const char* kOtherColour = "#0ca678";       // teal
 
 const char* target_colour(const BirdsEyeTarget& t) {
   if (t.target_class == "background") return kBackgroundColour;

@@ -9,6 +9,9 @@ namespace rcsim::replay::svg {
 
 inline constexpr const char* kRecordedColour = "#1f5fbf";   // blue
 inline constexpr const char* kSimulatedColour = "#d9480f";  // orange-red
+// Targets on no annotated box: the stationary background and the other (moving) ones.
+inline constexpr const char* kBackgroundColour = "#868e96";  // grey
+inline constexpr const char* kOtherColour = "#0ca678";       // teal
 
 struct PlotSeries {
   std::string label;

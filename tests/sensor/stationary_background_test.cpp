@@ -10,6 +10,7 @@
 #include "common/angles.hpp"
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "test_support.hpp"
 
 namespace rcsim::stationary_background_test {
 

@@ -1,6 +1,7 @@
 // The fitted stationary background (paper VI): drawn as its density says, each target a stationary
 // reflector.
 #include "sim/background.hpp"
+#include "test_support.hpp"
 
 #include <gtest/gtest.h>
 

@@ -99,5 +99,27 @@ TEST_F(ExportCli, RefusalsNameTheRunAndLeaveNoFile) {
   EXPECT_FALSE(fs::exists(dir_ / "elsewhere.csv"));
 }
 
+
+// --format mcap: the whole run in one file, said in one line; refused without -o (a binary file on
+// a terminal), for an unknown run, and over a link, leaving no file.
+TEST_F(ExportCli, McapIsOneFileWrittenAtomicallyAndRefusedWithoutAName) {
+  const fs::path out = dir_ / "run1.mcap";
+  const auto written = run_rcsim(fmt::format("export {} --run 1 --format mcap -o {}", db(), out.string()));
+  ASSERT_EQ(written.exit_code, 0) << written.output;
+  EXPECT_NE(written.output.find("rcsim export: run 1 as MCAP, 126 cycles of 2 sensor(s), "), std::string::npos) << written.output;
+  const std::string bytes = testing::read_file(out);
+  EXPECT_EQ(bytes.substr(0, 5), "\x89MCAP");
+  EXPECT_EQ(bytes.substr(bytes.size() - 8, 5), "\x89MCAP");
+  const auto no_name = run_rcsim(fmt::format("export {} --run 1 --format mcap", db()));
+  EXPECT_EQ(no_name.exit_code, 2);
+  EXPECT_NE(no_name.output.find("--format mcap writes a binary file: name it with -o FILE.mcap"), std::string::npos) << no_name.output;
+  const auto unknown = run_rcsim(fmt::format("export {} --run 9 --format mcap -o {}", db(), (dir_ / "x.mcap").string()));
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "x.mcap"));
+  const auto no_table = run_rcsim(fmt::format("export {} --run 1", db()));
+  EXPECT_EQ(no_table.exit_code, 2);
+  EXPECT_NE(no_table.output.find("--table: is required for --format csv"), std::string::npos) << no_table.output;
+}
+
 }  // namespace
 }  // namespace rcsim

@@ -15,7 +15,7 @@ Recording recording_reporting(const std::vector<ListLevel>& levels) {
   r.name = "levels";
   for (std::size_t i = 0; i < levels.size(); ++i) {
     RecordingSensor s;
-    s.id = "s" + std::to_string(i);
+    s.id = std::string("s").append(std::to_string(i));
     s.type = "srr24";
     s.reports = levels[i];
     r.sensors.push_back(s);

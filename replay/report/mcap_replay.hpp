@@ -1,0 +1,32 @@
+#pragma once
+// One stored run as an MCAP file that Foxglove opens with no set-up (schemas/mcap-replay.md):
+// recorded and simulated targets per sensor coloured by class, the annotated boxes, the ego and
+// the sensors' mountings as transforms, the view fields, and each cycle's figures to plot. JSON
+// messages under Foxglove's own schema names (foxglove.SceneUpdate, foxglove.FrameTransform),
+// the figures under rcsim.CycleFigures, every schema written as JSON Schema.
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "replay/store/report_database.hpp"
+
+namespace rcsim::replay {
+
+struct McapReplayCounts {
+  std::uint64_t messages = 0, bytes = 0;
+  int cycles = 0, sensors = 0;
+};
+
+// Writes run `run_id` of `db` to `out`. A run stored with --store summary has no targets, boxes
+// or sensor poses: its file holds the view fields, the mountings and the figures.
+McapReplayCounts write_run_mcap(ReportDatabase& db, std::int64_t run_id, std::ostream& out);
+
+// A sensor's frame id, also the middle of its topics: its id with every character but letters,
+// digits, '_' and '-' made '_'; "sensor_N" where that is empty, taken, or one of world, ego, boxes.
+std::string mcap_frame_name(const std::string& sensor_id, int sensor, const std::vector<std::string>& taken);
+
+// "/rcsim/FRAME/WHAT" (recorded, simulated, view_field, figures), "/rcsim/WHAT" without a frame.
+std::string mcap_replay_topic(const std::string& frame, const std::string& what);
+
+}  // namespace rcsim::replay

@@ -1,0 +1,235 @@
+#include "io/mcap_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "common/input_error.hpp"
+
+namespace rcsim::mcap {
+
+namespace {
+
+constexpr std::uint64_t kFooterRecordBytes = 1 + 8 + 20;
+constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 30;  // 1 GiB uncompressed at the most
+
+std::string opcode_name(std::uint8_t op) {
+  switch (static_cast<Opcode>(op)) {
+    case Opcode::header: return "Header";
+    case Opcode::footer: return "Footer";
+    case Opcode::schema: return "Schema";
+    case Opcode::channel: return "Channel";
+    case Opcode::message: return "Message";
+    case Opcode::chunk: return "Chunk";
+    case Opcode::message_index: return "Message Index";
+    case Opcode::chunk_index: return "Chunk Index";
+    case Opcode::statistics: return "Statistics";
+    case Opcode::summary_offset: return "Summary Offset";
+    case Opcode::data_end: return "Data End";
+  }
+  return fmt::format("record 0x{:02x}", op);
+}
+
+// Reads the spec's little-endian primitives from a record's content; throws std::out_of_range
+// (turned into the caller's refusal) where the content ends first.
+class Cursor {
+ public:
+  explicit Cursor(const std::string& bytes) : bytes_(bytes) {}
+  std::uint64_t unsigned_of(int n) {
+    need(static_cast<std::size_t>(n));
+    std::uint64_t v = 0;
+    for (int i = 0; i < n; ++i) v |= std::uint64_t{static_cast<unsigned char>(bytes_[at_ + static_cast<std::size_t>(i)])} << (8 * i);
+    at_ += static_cast<std::size_t>(n);
+    return v;
+  }
+  std::uint8_t u8() { return static_cast<std::uint8_t>(unsigned_of(1)); }
+  std::uint16_t u16() { return static_cast<std::uint16_t>(unsigned_of(2)); }
+  std::uint32_t u32() { return static_cast<std::uint32_t>(unsigned_of(4)); }
+  std::uint64_t u64() { return unsigned_of(8); }
+  std::string bytes(std::size_t n) {
+    need(n);
+    std::string s = bytes_.substr(at_, n);
+    at_ += n;
+    return s;
+  }
+  std::string string() { return bytes(u32()); }
+  std::map<std::string, std::string> string_map() {
+    const std::size_t length = u32();
+    const std::size_t end = at_ + length;
+    std::map<std::string, std::string> m;
+    while (at_ < end) {
+      std::string key = string();
+      m[key] = string();
+    }
+    if (at_ != end) throw std::out_of_range("map");
+    return m;
+  }
+  std::string rest() { return bytes(bytes_.size() - at_); }
+
+ private:
+  void need(std::size_t n) const {
+    if (n > bytes_.size() - at_) throw std::out_of_range("record");
+  }
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace
+
+void Reader::fail(const std::string& where, std::uint64_t offset, const std::string& what) const {
+  throw InputError(path_.string(), fmt::format("{} at byte {}", where, offset), what);
+}
+
+Reader::Reader(const std::filesystem::path& path) : path_(path), in_(path, std::ios::binary) {
+  if (!in_) throw InputError(path_.string(), "", "cannot open for reading");
+  in_.seekg(0, std::ios::end);
+  size_ = static_cast<std::uint64_t>(in_.tellg());
+  const auto read_at = [&](std::uint64_t offset, std::size_t n) {
+    std::string bytes(n, '\0');
+    in_.seekg(static_cast<std::streamoff>(offset));
+    in_.read(bytes.data(), static_cast<std::streamsize>(n));
+    return bytes;
+  };
+  const std::string magic(reinterpret_cast<const char*>(kMagic), sizeof kMagic);
+  if (size_ < 2 * sizeof kMagic + kFooterRecordBytes || read_at(0, sizeof kMagic) != magic) {
+    fail("the start", 0, "not an MCAP file (no magic 0x89 MCAP0)");
+  }
+  if (read_at(size_ - sizeof kMagic, sizeof kMagic) != magic) {
+    fail("the end", size_ - sizeof kMagic, "no closing magic: the file is truncated or still being written");
+  }
+  const std::uint64_t footer_at = size_ - sizeof kMagic - kFooterRecordBytes;
+  const std::string footer = read_at(footer_at, kFooterRecordBytes);
+  Cursor f(footer);
+  if (f.u8() != static_cast<std::uint8_t>(Opcode::footer) || f.u64() != 20) fail("Footer", footer_at, "not a footer record");
+  summary_.summary_start = f.u64();
+  summary_.summary_offset_start = f.u64();
+  summary_.summary_crc = f.u32();
+  if (summary_.summary_start > footer_at || summary_.summary_offset_start > footer_at) {
+    fail("Footer", footer_at, "its summary offsets point beyond the footer");
+  }
+}
+
+void Reader::check_summary_crc() {
+  if (summary_.summary_crc == 0 || summary_.summary_start == 0) return;
+  const std::uint64_t footer_at = size_ - sizeof kMagic - kFooterRecordBytes;
+  std::string bytes(footer_at + 1 + 8 + 16 - summary_.summary_start, '\0');
+  in_.clear();
+  in_.seekg(static_cast<std::streamoff>(summary_.summary_start));
+  in_.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (crc32_of(bytes) != summary_.summary_crc) {
+    fail("Summary", summary_.summary_start, fmt::format("CRC-32 0x{:08x} where the footer says 0x{:08x}", crc32_of(bytes), summary_.summary_crc));
+  }
+}
+
+void Reader::for_each_message(const Visit& visit) {
+  check_summary_crc();
+  in_.clear();
+  in_.seekg(static_cast<std::streamoff>(sizeof kMagic));
+  std::uint64_t offset = sizeof kMagic;
+  const std::uint64_t data_end = summary_.summary_start != 0 ? summary_.summary_start : size_ - sizeof kMagic - kFooterRecordBytes;
+  bool first = true;
+  while (offset < data_end) {
+    std::string head(9, '\0');
+    in_.read(head.data(), 9);
+    if (!in_) fail("a record", offset, "the file ends inside its opcode and length");
+    Cursor h(head);
+    const std::uint8_t op = h.u8();
+    const std::uint64_t length = h.u64();
+    if (length > size_ - offset - 9) fail(opcode_name(op), offset, fmt::format("its length {} runs past the end of the file", length));
+    if (op == static_cast<std::uint8_t>(Opcode::chunk) && length > kMaxChunkBytes + 64) {
+      fail("Chunk", offset, fmt::format("{} bytes: more than the 1 GiB a chunk may hold here", length));
+    }
+    std::string content(length, '\0');
+    in_.read(content.data(), static_cast<std::streamsize>(length));
+    if (first && op != static_cast<std::uint8_t>(Opcode::header)) fail(opcode_name(op), offset, "the first record is not the header");
+    first = false;
+    const std::string one_record = head + content;
+    read_records(one_record, offset, false, visit);
+    offset += 9 + length;
+    if (op == static_cast<std::uint8_t>(Opcode::data_end) || op == static_cast<std::uint8_t>(Opcode::footer)) break;
+  }
+}
+
+// Records in `bytes` (at `base_offset` in the file): the top level, or a chunk's records.
+void Reader::read_records(const std::string& bytes, std::uint64_t base_offset, bool in_chunk, const Visit& visit) {
+  std::size_t at = 0;
+  while (at < bytes.size()) {
+    const std::uint64_t offset = base_offset + at;
+    std::string where = "a record";
+    try {
+      const std::string head_bytes = bytes.substr(at, std::min<std::size_t>(9, bytes.size() - at));
+      Cursor head(head_bytes);
+      const std::uint8_t op = head.u8();
+      const std::uint64_t length = head.u64();
+      where = (in_chunk ? "in a chunk, " : "") + opcode_name(op);
+      if (length > bytes.size() - at - 9) fail(where, offset, fmt::format("its length {} runs past its chunk", length));
+      const std::string content = bytes.substr(at + 9, length);
+      Cursor c(content);
+      switch (static_cast<Opcode>(op)) {
+        case Opcode::header:
+          summary_.profile = c.string();
+          summary_.library = c.string();
+          break;
+        case Opcode::schema: {
+          Schema s;
+          s.id = c.u16();
+          s.name = c.string();
+          s.encoding = c.string();
+          s.data = c.string();
+          if (s.id != 0) schemas_[s.id] = s;
+          break;
+        }
+        case Opcode::channel: {
+          Channel ch;
+          ch.id = c.u16();
+          ch.schema_id = c.u16();
+          ch.topic = c.string();
+          ch.message_encoding = c.string();
+          ch.metadata = c.string_map();
+          if (ch.schema_id != 0 && !schemas_.count(ch.schema_id)) {
+            fail(where, offset, fmt::format("channel {} ({}) names schema {}, never announced", ch.id, ch.topic, ch.schema_id));
+          }
+          channels_[ch.id] = ch;
+          break;
+        }
+        case Opcode::message: {
+          Message m;
+          m.channel_id = c.u16();
+          m.sequence = c.u32();
+          m.log_time_ns = c.u64();
+          m.publish_time_ns = c.u64();
+          m.data = c.rest();
+          const auto channel = channels_.find(m.channel_id);
+          if (channel == channels_.end()) fail(where, offset, fmt::format("a message on channel {}, never announced", m.channel_id));
+          const auto schema = schemas_.find(channel->second.schema_id);
+          ++summary_.messages;
+          visit(m, channel->second, schema == schemas_.end() ? nullptr : &schema->second);
+          break;
+        }
+        case Opcode::chunk: {
+          c.u64(), c.u64();
+          const std::uint64_t uncompressed_size = c.u64();
+          const std::uint32_t crc = c.u32();
+          const std::string compression = c.string();
+          const std::string records = c.bytes(c.u64());
+          if (!compression.empty()) fail(where, offset, fmt::format("compression '{}' is not read (only uncompressed chunks)", compression));
+          if (records.size() != uncompressed_size) {
+            fail(where, offset, fmt::format("{} bytes of records where it says {}", records.size(), uncompressed_size));
+          }
+          if (crc != 0 && crc32_of(records) != crc) fail(where, offset, fmt::format("CRC-32 0x{:08x} where it says 0x{:08x}", crc32_of(records), crc));
+          ++summary_.chunks;
+          read_records(records, offset + 9 + 8 + 8 + 8 + 4 + 4 + compression.size() + 8, true, visit);
+          break;
+        }
+        default:
+          break;  // indexes, statistics, attachments, metadata: not needed to read the messages in order
+      }
+      at += 9 + length;
+    } catch (const std::out_of_range&) {
+      fail(where, offset, "its content ends before its fields do");
+    }
+  }
+}
+
+}  // namespace rcsim::mcap

@@ -1,0 +1,140 @@
+// One stored run as MCAP for Foxglove (replay/report/mcap_replay.cpp): the topics and their
+// message counts by hand, the ego's transform from a sensor's pose and mounting, targets in their
+// sensor's frame coloured by class, a summary run; and, where the test tools are installed
+// (scripts/test-tools.sh), the file read by the format's own reader with every foxglove.* message
+// checked against Foxglove's published JSON schema.
+#include "replay/report/mcap_replay.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "app/cli/run_rcsim.hpp"
+#include "io/mcap_reader.hpp"
+#include "replay/store/report_store.hpp"
+#include "scratch_dir.hpp"
+
+namespace rcsim::mcap_replay_test {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+class McapReplay : public rcsim::testing::ScratchDirTest {
+ protected:
+  McapReplay() : ScratchDirTest("mcap_replay") {}
+  // Replays a bundled recording into r.sqlite (full, then summary) and writes run `run` as MCAP.
+  fs::path replay_and_write(const std::string& recording, int run, const std::string& store = "full") {
+    const std::string db_path = (dir_ / "r.sqlite").string();
+    const auto r = rcsim::testing::run_rcsim("replay " + std::string(RCSIM_SOURCE_DIR) + "/recordings_synthetic/" + recording +
+                                             " --db " + db_path + " --store " + store + " --again");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const auto db = replay::open_report_database_for_reading(db_path);
+    const fs::path path = dir_ / ("run" + std::to_string(run) + ".mcap");
+    std::ofstream out(path, std::ios::binary);
+    counts = replay::write_run_mcap(*db, run, out);
+    return path;
+  }
+  replay::McapReplayCounts counts;
+};
+
+TEST(McapReplayNames, FramesAreSensorIdsMadeSafeAndUnique) {
+  EXPECT_EQ(replay::mcap_frame_name("front_left", 0, {}), "front_left");
+  EXPECT_EQ(replay::mcap_frame_name("F LRR/C", 1, {}), "F_LRR_C");
+  EXPECT_EQ(replay::mcap_frame_name("", 2, {}), "sensor_2");
+  EXPECT_EQ(replay::mcap_frame_name("ego", 3, {}), "sensor_3");  // a frame of the file's own
+  EXPECT_EQ(replay::mcap_frame_name("a", 4, {"a"}), "sensor_4");
+  EXPECT_EQ(replay::mcap_replay_topic("front", "recorded"), "/rcsim/front/recorded");
+  EXPECT_EQ(replay::mcap_replay_topic("", "boxes"), "/rcsim/boxes");
+}
+
+TEST_F(McapReplay, EveryCycleHasItsTargetsBoxesEgoAndFiguresPerSensor) {
+  const fs::path path = replay_and_write("two_in_one_cell", 1);
+  mcap::Reader reader(path);
+  std::map<std::string, int> per_topic;
+  std::map<std::string, int> targets_by_colour;
+  Json first_ego, first_mount;
+  reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& c, const mcap::Schema* s) {
+    ++per_topic[c.topic];
+    ASSERT_NE(s, nullptr) << c.topic;
+    const Json body = Json::parse(m.data);
+    if (c.topic == "/tf" && body["child_frame_id"] == "ego" && first_ego.is_null()) first_ego = body;
+    if (c.topic == "/tf" && body["parent_frame_id"] == "ego" && first_mount.is_null()) first_mount = body;
+    if (c.topic.ends_with("/recorded") || c.topic.ends_with("/simulated")) {
+      EXPECT_EQ(s->name, "foxglove.SceneUpdate");
+      for (const auto& shape : body["entities"][0][c.topic.ends_with("/recorded") ? "spheres" : "cubes"]) {
+        ++targets_by_colour[shape["color"].dump()];
+      }
+    }
+    if (c.topic.ends_with("/figures")) {
+      EXPECT_EQ(s->name, "rcsim.CycleFigures");
+    }
+  });
+  // 126 cycles of 2 sensors (front_left, front_right): per sensor a message a cycle on recorded,
+  // simulated and figures, one view field; boxes a cycle; /tf the ego a cycle and 2 mountings.
+  EXPECT_EQ(counts.cycles, 126);
+  EXPECT_EQ(counts.sensors, 2);
+  for (const std::string sensor : {"front_left", "front_right"}) {
+    for (const std::string what : {"recorded", "simulated", "figures"}) EXPECT_EQ(per_topic["/rcsim/" + sensor + "/" + what], 126) << sensor << what;
+    EXPECT_EQ(per_topic["/rcsim/" + sensor + "/view_field"], 1);
+  }
+  EXPECT_EQ(per_topic["/rcsim/boxes"], 126);
+  for (const auto& [id, channel] : reader.channels()) {
+    EXPECT_EQ(channel.metadata, (std::map<std::string, std::string>{{"format", "rcsim-mcap-replay"}, {"version", "1"}})) << channel.topic;
+  }
+  EXPECT_EQ(per_topic["/tf"], 126 + 2);
+  EXPECT_EQ(counts.messages, 1 + 1 + 126 * (1 + 1 + 2 * 3) + 2);
+  // The first ego pose in the world, X_WS X_VS^-1: the recording's first ego row, ego.csv's
+  // (-3.5827 m, -1.1596 m, 0.5 rad), its yaw as (0, 0, sin 0.25, cos 0.25).
+  ASSERT_FALSE(first_ego.is_null());
+  EXPECT_EQ(first_ego["parent_frame_id"], "world");
+  EXPECT_NEAR(first_ego["translation"]["x"].get<double>(), -3.5827, 1e-9);
+  EXPECT_NEAR(first_ego["translation"]["y"].get<double>(), -1.1596, 1e-9);
+  EXPECT_NEAR(first_ego["rotation"]["z"].get<double>(), std::sin(0.25), 1e-9);
+  EXPECT_NEAR(first_ego["rotation"]["w"].get<double>(), std::cos(0.25), 1e-9);
+  // A mounting, yaw as a quaternion about z: (0, 0, sin(yaw / 2), cos(yaw / 2)), of unit length.
+  ASSERT_FALSE(first_mount.is_null());
+  const double qz = first_mount["rotation"]["z"], qw = first_mount["rotation"]["w"];
+  EXPECT_NEAR(qz * qz + qw * qw, 1.0, 1e-12);
+  // Coloured by class: the recorded object targets blue (#1f5fbf: 31, 95, 191 / 255), others teal.
+  EXPECT_GT(targets_by_colour[Json({{"r", 31 / 255.0}, {"g", 95 / 255.0}, {"b", 191 / 255.0}, {"a", 1.0}}).dump()], 0);
+  EXPECT_GT(targets_by_colour[Json({{"r", 12 / 255.0}, {"g", 166 / 255.0}, {"b", 120 / 255.0}, {"a", 1.0}}).dump()], 0);
+}
+
+TEST_F(McapReplay, ASummaryRunHasItsFiguresAndViewFieldsButNoTargets) {
+  replay_and_write("standstill_1m", 1, "full");
+  const fs::path path = replay_and_write("standstill_1m", 2, "summary");
+  mcap::Reader reader(path);
+  int shapes = 0, figures = 0;
+  reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& c, const mcap::Schema*) {
+    const Json body = Json::parse(m.data);
+    if (c.topic.ends_with("/recorded") || c.topic.ends_with("/simulated")) {
+      shapes += static_cast<int>(body["entities"][0]["spheres"].size() + body["entities"][0]["cubes"].size());
+    }
+    figures += c.topic.ends_with("/figures");
+  });
+  EXPECT_EQ(shapes, 0);
+  EXPECT_EQ(figures, 51 * 2);
+}
+
+TEST_F(McapReplay, TheFormatsOwnReaderAndFoxglovesSchemasAcceptTheFile) {
+  const fs::path tool = fs::path(RCSIM_SOURCE_DIR) / "tests" / "tools" / "mcap";
+  if (std::system("command -v node > /dev/null 2>&1") != 0 || !fs::exists(tool / "node_modules" / "@mcap" / "core")) {
+    GTEST_SKIP() << "the MCAP test tool is not installed (scripts/test-tools.sh: Node.js and npm ci in tests/tools/mcap)";
+  }
+  const fs::path path = replay_and_write("two_in_one_cell", 1);
+  const auto checked = rcsim::testing::run_shell_command("node " + (tool / "check_mcap.js").string() + " " + path.string());
+  ASSERT_EQ(checked.exit_code, 0) << checked.output;
+  const Json report = Json::parse(checked.output);
+  EXPECT_EQ(report["problems"].size(), 0u) << checked.output;
+  EXPECT_EQ(report["streamed"], counts.messages);
+  EXPECT_EQ(report["counts"]["/rcsim/front_left/recorded"], 126);
+  EXPECT_EQ(report["schemas"], Json({"foxglove.SceneUpdate:jsonschema", "foxglove.FrameTransform:jsonschema", "rcsim.CycleFigures:jsonschema"}));
+}
+
+}  // namespace rcsim::mcap_replay_test
