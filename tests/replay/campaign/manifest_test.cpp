@@ -11,6 +11,7 @@
 
 #include "common/input_error.hpp"
 #include "common/json_reader.hpp"
+#include "replay/campaign/manifest_fixtures.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 
@@ -18,22 +19,9 @@ namespace rcsim::replay::campaign::manifest_test {
 
 namespace fs = std::filesystem;
 
-class CampaignManifestTest : public rcsim::testing::ScratchDirTest {
+class CampaignManifestTest : public rcsim::testing::ManifestFileTest {
  protected:
-  CampaignManifestTest() : ScratchDirTest("campaign_manifest") {}
-  fs::path write_manifest(const std::string& body) {
-    const auto path = dir_ / "campaign.json";
-    std::ofstream(path) << R"({"format": "rcsim-campaign", "version": 1, "name": "t", )" << body << "}";
-    return path;
-  }
-  std::string error_of(const std::string& body) {
-    try {
-      read_manifest(write_manifest(body));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "no error";
-  }
+  CampaignManifestTest() : ManifestFileTest("campaign_manifest") {}
   // The replay member `text` parsed against dir_, or its refusal.
   std::string replay_error_of(const std::string& text) {
     const nlohmann::json json = nlohmann::json::parse(text);

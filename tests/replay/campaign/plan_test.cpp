@@ -8,6 +8,7 @@
 
 #include "io/recording.hpp"
 #include "app/cli/run_rcsim.hpp"
+#include "replay/campaign/manifest_fixtures.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 
@@ -42,22 +43,9 @@ TEST(RecordedDuration, IsTheEgoLogsSpanPlusOneCycle) {
   }
 }
 
-class PlanTest : public rcsim::testing::ScratchDirTest {
+class PlanTest : public rcsim::testing::ManifestFileTest {
  protected:
-  PlanTest() : ScratchDirTest("plan") {}
-  std::filesystem::path write_manifest(const std::string& body) {
-    const auto path = dir_ / "campaign.json";
-    std::ofstream(path) << R"({"format": "rcsim-campaign", "version": 1, "name": "t", )" << body << "}";
-    return path;
-  }
-  std::string error_of(const std::string& body) {
-    try {
-      read_manifest(write_manifest(body));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "no error";
-  }
+  PlanTest() : ManifestFileTest("plan") {}
 };
 
 TEST_F(PlanTest, WritesPlanAndBatchScriptAndReadsThemBack) {
