@@ -66,7 +66,6 @@ inline void add_object(Scene& scene, const std::string& id, const std::string& m
   scene.objects.push_back(object);
 }
 
-// What `rcsim simulate` writes for the scene: every cycle and sensor, one writer.
 // A car 20 m ahead, one 500 m ahead (beyond the srr24's 40 m + reach), one arriving from 80 m,
 // one present for the first 0.5 s only.
 inline Scene four_cars_scene() {
@@ -93,6 +92,7 @@ inline StationaryBackground hand_background() {
   return b;
 }
 
+// What `rcsim simulate` writes for the scene: every cycle and sensor, one writer.
 inline std::string simulate_rows(const Scene& scene, const SimulationOptions& options,
                                  TargetListFormat format = TargetListFormat::Csv) {
   std::ostringstream out;

@@ -1,12 +1,16 @@
 // rcsim simulate SCENE.json: target lists for every sensor and cycle.
+#include <fmt/format.h>
+
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "cli/fidelity_option.hpp"
 #include "cli/seed_option.hpp"
 #include "common/atomic_file.hpp"
+#include "sim/target_list_mcap.hpp"
 #include "sim/target_list_writer.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
@@ -36,6 +40,26 @@ void run_simulate(const SimulateArgs& args) {
   options.noise = !args.no_noise;
   options.fidelity = fidelity_from_arg(args.fidelity);
   options.culling = !args.no_culling;
+  if (args.format == "mcap") {
+    if (args.output.empty() || args.output == "-") {
+      throw CLI::ValidationError("--output", "--format mcap writes a binary file: name it with -o FILE.mcap");
+    }
+    AtomicFileWriter file(args.output);
+    Simulation simulation(scene, options);
+    McapTargetListWriter writer(file.stream(), scene, options.level);
+    std::vector<const SensorCycleState*> states;
+    for (int cycle = 0; cycle < simulation.cycle_count(); ++cycle) {
+      simulation.run_cycle(cycle);
+      states.clear();
+      for (std::size_t s = 0; s < simulation.sensor_count(); ++s) states.push_back(&simulation.sensor_state(s));
+      writer.write_cycle(scene, cycle, scene.cycle_time_at(cycle), states);
+    }
+    const std::uint64_t bytes = writer.finish();
+    file.commit();
+    std::cerr << fmt::format("rcsim simulate: {} cycles of {} sensor(s), {} messages, {} bytes written to {}\n",
+                             simulation.cycle_count(), simulation.sensor_count(), writer.messages(), bytes, args.output);
+    return;
+  }
   const auto format = args.format == "jsonl" ? TargetListFormat::Jsonl : TargetListFormat::Csv;
 
   std::optional<AtomicFileWriter> file;
@@ -67,7 +91,9 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_flag("--no-noise", args->no_noise, "Turn every random draw off: outputs follow the equations exactly");
   add_fidelity_option(*cmd, args->fidelity);
   cmd->add_flag("--no-culling", args->no_culling, "Visit every object's reflectors (the output is the same; for checking and timing)");
-  cmd->add_option("--format", args->format, "csv | jsonl")->check(CLI::IsMember({"csv", "jsonl"}))->capture_default_str();
+  cmd->add_option("--format", args->format, "csv | jsonl | mcap (for Foxglove, schemas/mcap-replay.md; needs -o)")
+      ->check(CLI::IsMember({"csv", "jsonl", "mcap"}))
+      ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output file (written atomically); stdout if omitted");
   cmd->callback([args] { run_simulate(*args); });
 }

@@ -11,9 +11,10 @@
 #include <vector>
 
 #include "common/pose2.hpp"
+#include "common/target_colours.hpp"
+#include "io/foxglove_json.hpp"
 #include "io/mcap_writer.hpp"
 #include "metrics/target_class.hpp"
-#include "replay/report/svg_plot.hpp"
 #include "replay/store/decoded_rows.hpp"
 #include "replay/store/report_reader.hpp"
 #include "replay/store/run_rows.hpp"
@@ -22,37 +23,19 @@ namespace rcsim::replay {
 
 namespace mcap_replay_internal {
 
-using Json = nlohmann::ordered_json;
+using foxglove::colour;
+using foxglove::entity;
+using foxglove::Json;
+using foxglove::pose_json;
+using foxglove::scene_update;
+using foxglove::time_ns;
+using foxglove::vec3;
 
 constexpr double kBoxHeightM = 1.5;    // the boxes are 2-D: drawn 1.5 m tall
 constexpr double kTargetSizeM = 0.5;   // a target's sphere or cube
-constexpr int kViewFieldSegments = 32;
 // Every channel names the format (schemas/mcap-replay.md).
 const std::map<std::string, std::string> kFormat = {{"format", "rcsim-mcap-replay"}, {"version", "1"}};
 
-// JSON Schemas of the messages (Foxglove knows its own by name; the schema lets a client list
-// the fields). Kept to the fields written.
-const char* const kTimeSchema = R"({"type": "object", "properties": {"sec": {"type": "integer"}, "nsec": {"type": "integer"}}})";
-std::string vector3_schema() { return R"({"type": "object", "properties": {"x": {"type": "number"}, "y": {"type": "number"}, "z": {"type": "number"}}})"; }
-std::string quaternion_schema() {
-  return R"({"type": "object", "properties": {"x": {"type": "number"}, "y": {"type": "number"}, "z": {"type": "number"}, "w": {"type": "number"}}})";
-}
-std::string frame_transform_schema() {
-  return fmt::format(R"({{"title": "foxglove.FrameTransform", "type": "object", "properties": {{"timestamp": {}, "parent_frame_id": {{"type": "string"}}, "child_frame_id": {{"type": "string"}}, "translation": {}, "rotation": {}}}}})",
-                     kTimeSchema, vector3_schema(), quaternion_schema());
-}
-std::string scene_update_schema() {
-  const std::string pose = fmt::format(R"({{"type": "object", "properties": {{"position": {}, "orientation": {}}}}})", vector3_schema(), quaternion_schema());
-  const std::string color = R"({"type": "object", "properties": {"r": {"type": "number"}, "g": {"type": "number"}, "b": {"type": "number"}, "a": {"type": "number"}}})";
-  const std::string shape = fmt::format(R"({{"type": "array", "items": {{"type": "object", "properties": {{"pose": {}, "size": {}, "color": {}}}}}}})", pose, vector3_schema(), color);
-  const std::string line = fmt::format(R"({{"type": "array", "items": {{"type": "object", "properties": {{"type": {{"type": "integer"}}, "pose": {}, "thickness": {{"type": "number"}}, "scale_invariant": {{"type": "boolean"}}, "points": {{"type": "array", "items": {}}}, "color": {}, "colors": {{"type": "array"}}, "indices": {{"type": "array"}}}}}}}})",
-                                       pose, vector3_schema(), color);
-  const std::string text = fmt::format(R"({{"type": "array", "items": {{"type": "object", "properties": {{"pose": {}, "billboard": {{"type": "boolean"}}, "font_size": {{"type": "number"}}, "scale_invariant": {{"type": "boolean"}}, "color": {}, "text": {{"type": "string"}}}}}}}})",
-                                       pose, color);
-  const std::string entity = fmt::format(R"({{"type": "object", "properties": {{"timestamp": {0}, "frame_id": {{"type": "string"}}, "id": {{"type": "string"}}, "lifetime": {0}, "frame_locked": {{"type": "boolean"}}, "metadata": {{"type": "array"}}, "arrows": {{"type": "array"}}, "cubes": {1}, "spheres": {1}, "cylinders": {{"type": "array"}}, "lines": {2}, "triangles": {{"type": "array"}}, "texts": {3}, "models": {{"type": "array"}}}}}})",
-                                         kTimeSchema, shape, line, text);
-  return fmt::format(R"({{"title": "foxglove.SceneUpdate", "type": "object", "properties": {{"deletions": {{"type": "array"}}, "entities": {{"type": "array", "items": {}}}}}}})", entity);
-}
 std::string cycle_figures_schema() {
   Json properties = Json::object();
   for (const DecodedColumn& c : decoded_columns(DecodedTable::cycles)) {
@@ -61,52 +44,10 @@ std::string cycle_figures_schema() {
   return Json{{"title", "rcsim.CycleFigures"}, {"type", "object"}, {"properties", properties}}.dump();
 }
 
-std::uint64_t time_ns(double t_s) { return static_cast<std::uint64_t>(std::llround(std::max(0.0, t_s) * 1e9)); }
-Json time_json(std::uint64_t ns) { return {{"sec", ns / 1000000000}, {"nsec", ns % 1000000000}}; }
-Json vec3(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
-Json yaw_quaternion(double yaw_rad) { return {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(0.5 * yaw_rad)}, {"w", std::cos(0.5 * yaw_rad)}}; }
-Json pose_json(double x_m, double y_m, double z_m, double yaw_rad) { return {{"position", vec3(x_m, y_m, z_m)}, {"orientation", yaw_quaternion(yaw_rad)}}; }
-
-// "#1f5fbf" as Foxglove's colour, components 0..1.
-Json colour(const char* hex, double alpha = 1.0) {
-  const auto component = [&](int i) { return std::stoi(std::string(hex + 1 + 2 * i, 2), nullptr, 16) / 255.0; };
-  return {{"r", component(0)}, {"g", component(1)}, {"b", component(2)}, {"a", alpha}};
-}
-
-Json entity(std::uint64_t ns, const std::string& frame_id, const std::string& id, std::uint64_t lifetime_ns) {
-  return {{"timestamp", time_json(ns)}, {"frame_id", frame_id}, {"id", id}, {"lifetime", time_json(lifetime_ns)},
-          {"frame_locked", false}, {"metadata", Json::array()}, {"arrows", Json::array()}, {"cubes", Json::array()},
-          {"spheres", Json::array()}, {"cylinders", Json::array()}, {"lines", Json::array()}, {"triangles", Json::array()},
-          {"texts", Json::array()}, {"models", Json::array()}};
-}
-
-Json scene_update(Json entities) { return {{"deletions", Json::array()}, {"entities", std::move(entities)}}; }
-
-Json transform(std::uint64_t ns, const std::string& parent, const std::string& child, const Pose2& X_PC) {
-  return {{"timestamp", time_json(ns)}, {"parent_frame_id", parent}, {"child_frame_id", child},
-          {"translation", vec3(X_PC.x_m, X_PC.y_m, 0.0)}, {"rotation", yaw_quaternion(X_PC.yaw_rad)}};
-}
-
 const char* class_colour(const StoredTarget& t) {
-  if (t.target_class == metrics::TargetClass::stationary_background) return svg::kBackgroundColour;
-  if (t.target_class == metrics::TargetClass::other) return svg::kOtherColour;
-  return t.simulated ? svg::kSimulatedColour : svg::kRecordedColour;
-}
-
-// The view field as a closed line in the sensor's frame: its origin, the arc, back.
-Json view_field_entity(const report::SensorInfo& s, const std::string& frame, std::uint64_t ns) {
-  Json points = Json::array({vec3(0, 0, 0)});
-  for (int i = 0; i <= kViewFieldSegments; ++i) {
-    const double a = -s.azimuth_half_rad + 2.0 * s.azimuth_half_rad * i / kViewFieldSegments;
-    const Vec2 p = point_from_polar(s.max_range_m, a);
-    points.push_back(vec3(p.x(), p.y(), 0.0));
-  }
-  points.push_back(vec3(0, 0, 0));
-  Json e = entity(ns, frame, "view_field", 0);
-  e["frame_locked"] = true;
-  e["lines"].push_back({{"type", 0}, {"pose", pose_json(0, 0, 0, 0)}, {"thickness", 2.0}, {"scale_invariant", true},
-                        {"points", points}, {"color", colour("#2b8a3e", 0.8)}, {"colors", Json::array()}, {"indices", Json::array()}});
-  return e;
+  if (t.target_class == metrics::TargetClass::stationary_background) return colours::kBackground;
+  if (t.target_class == metrics::TargetClass::other) return colours::kOther;
+  return t.simulated ? colours::kSimulated : colours::kRecorded;
 }
 
 Json figures_json(const std::vector<DecodedValue>& row) {
@@ -138,14 +79,14 @@ class McapReplayWriter {
  public:
   McapReplayWriter(ReportDatabase& db, std::int64_t run_id, std::ostream& out)
       : db_(db), run_id_(run_id), run_(report::load_run(db, run_id)), writer_(out) {
-    scene_ = writer_.add_schema("foxglove.SceneUpdate", "jsonschema", scene_update_schema());
-    transform_ = writer_.add_schema("foxglove.FrameTransform", "jsonschema", frame_transform_schema());
+    scene_ = writer_.add_schema("foxglove.SceneUpdate", "jsonschema", foxglove::scene_update_schema());
+    transform_ = writer_.add_schema("foxglove.FrameTransform", "jsonschema", foxglove::frame_transform_schema());
     figures_ = writer_.add_schema("rcsim.CycleFigures", "jsonschema", cycle_figures_schema());
     tf_channel_ = writer_.add_channel("/tf", "json", transform_, kFormat);
     boxes_channel_ = writer_.add_channel(mcap_replay_topic("", "boxes"), "json", scene_, kFormat);
     for (std::size_t i = 0; i < run_.sensors.size(); ++i) {
       SensorChannels c;
-      c.frame = mcap_frame_name(run_.sensors[i].id, static_cast<int>(i), frames_);
+      c.frame = foxglove::frame_name(run_.sensors[i].id, static_cast<int>(i), frames_);
       frames_.push_back(c.frame);
       c.recorded = writer_.add_channel(mcap_replay_topic(c.frame, "recorded"), "json", scene_, kFormat);
       c.simulated = writer_.add_channel(mcap_replay_topic(c.frame, "simulated"), "json", scene_, kFormat);
@@ -192,8 +133,8 @@ class McapReplayWriter {
   void write_static(std::uint64_t ns) {
     for (std::size_t i = 0; i < run_.sensors.size(); ++i) {
       const report::SensorInfo& s = run_.sensors[i];
-      message(tf_channel_, ns, transform(ns, "ego", sensor_channels_[i].frame, s.X_VS));
-      message(sensor_channels_[i].view_field, ns, scene_update(Json::array({view_field_entity(s, sensor_channels_[i].frame, ns)})));
+      message(tf_channel_, ns, foxglove::frame_transform(ns, "ego", sensor_channels_[i].frame, s.X_VS));
+      message(sensor_channels_[i].view_field, ns, scene_update(Json::array({foxglove::view_field_entity(sensor_channels_[i].frame, s.azimuth_half_rad, s.max_range_m, ns)})));
     }
   }
 
@@ -221,10 +162,10 @@ class McapReplayWriter {
     for (const StoredCycle& c : sensors) {
       if (!c.X_WS || c.sensor < 0 || static_cast<std::size_t>(c.sensor) >= run_.sensors.size()) continue;
       const Pose2 X_WV = compose(*c.X_WS, inverse(run_.sensors[static_cast<std::size_t>(c.sensor)].X_VS));
-      message(tf_channel_, ns, transform(ns, "world", "ego", X_WV));
+      message(tf_channel_, ns, foxglove::frame_transform(ns, "world", "ego", X_WV));
       return;
     }
-    if (!ego_at_origin_) message(tf_channel_, ns, transform(ns, "world", "ego", Pose2{})), ego_at_origin_ = true;
+    if (!ego_at_origin_) message(tf_channel_, ns, foxglove::frame_transform(ns, "world", "ego", Pose2{})), ego_at_origin_ = true;
   }
 
   void write_boxes(std::uint64_t ns, const std::vector<StoredObjectState>& boxes) {
@@ -233,9 +174,9 @@ class McapReplayWriter {
       const report::ObjectInfo* o = s.object >= 0 && static_cast<std::size_t>(s.object) < run_.objects.size() ? &run_.objects[static_cast<std::size_t>(s.object)] : nullptr;
       const Json pose = pose_json(s.X_WO.x_m, s.X_WO.y_m, 0.5 * kBoxHeightM, s.X_WO.yaw_rad);
       e["cubes"].push_back({{"pose", pose}, {"size", vec3(o ? o->length_m : 4.5, o ? o->width_m : 1.8, kBoxHeightM)},
-                            {"color", colour("#868e96", 0.35)}});
+                            {"color", colour(colours::kBackground, 0.35)}});
       e["texts"].push_back({{"pose", pose_json(s.X_WO.x_m, s.X_WO.y_m, kBoxHeightM + 0.5, 0.0)}, {"billboard", true},
-                            {"font_size", 14.0}, {"scale_invariant", true}, {"color", colour("#343a40")},
+                            {"font_size", 14.0}, {"scale_invariant", true}, {"color", colour(colours::kLabel)},
                             {"text", run_.object_label(s.object)}});
     }
     message(boxes_channel_, ns, scene_update(Json::array({e})));
@@ -272,16 +213,6 @@ class McapReplayWriter {
 };
 
 }  // namespace mcap_replay_internal
-
-std::string mcap_frame_name(const std::string& sensor_id, int sensor, const std::vector<std::string>& taken) {
-  std::string name;
-  for (const char c : sensor_id) name += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
-  if (name.empty() || name == "world" || name == "ego" || name == "boxes" ||
-      std::find(taken.begin(), taken.end(), name) != taken.end()) {
-    name = fmt::format("sensor_{}", sensor);
-  }
-  return name;
-}
 
 std::string mcap_replay_topic(const std::string& sensor_id, const std::string& what) {
   return sensor_id.empty() ? "/rcsim/" + what : "/rcsim/" + sensor_id + "/" + what;

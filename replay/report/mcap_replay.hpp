@@ -22,10 +22,6 @@ struct McapReplayCounts {
 // or sensor poses: its file holds the view fields, the mountings and the figures.
 McapReplayCounts write_run_mcap(ReportDatabase& db, std::int64_t run_id, std::ostream& out);
 
-// A sensor's frame id, also the middle of its topics: its id with every character but letters,
-// digits, '_' and '-' made '_'; "sensor_N" where that is empty, taken, or one of world, ego, boxes.
-std::string mcap_frame_name(const std::string& sensor_id, int sensor, const std::vector<std::string>& taken);
-
 // "/rcsim/FRAME/WHAT" (recorded, simulated, view_field, figures), "/rcsim/WHAT" without a frame.
 std::string mcap_replay_topic(const std::string& frame, const std::string& what);
 

@@ -5,13 +5,15 @@
 #include <utility>
 #include <vector>
 
+#include "common/target_colours.hpp"
+
 namespace rcsim::replay::svg {
 
-inline constexpr const char* kRecordedColour = "#1f5fbf";   // blue
-inline constexpr const char* kSimulatedColour = "#d9480f";  // orange-red
+inline constexpr const char* kRecordedColour = colours::kRecorded;
+inline constexpr const char* kSimulatedColour = colours::kSimulated;
 // Targets on no annotated box: the stationary background and the other (moving) ones.
-inline constexpr const char* kBackgroundColour = "#868e96";  // grey
-inline constexpr const char* kOtherColour = "#0ca678";       // teal
+inline constexpr const char* kBackgroundColour = colours::kBackground;
+inline constexpr const char* kOtherColour = colours::kOther;
 
 struct PlotSeries {
   std::string label;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <fmt/format.h>
+
+#include <fstream>
 #include <numbers>
 
 #include "common/limits.hpp"
@@ -33,6 +35,21 @@ int count_data_rows(const fs::path& path) {
     if (line.find_first_not_of(" \t") != std::string_view::npos) ++rows;
   }
   return std::max(rows, 0);
+}
+
+// A recording's CSV file cut short (a copy or a write that stopped) loses its last line's end,
+// and a row cut inside its last number still reads as a row: every line of a recording's CSV ends
+// with LF or CR LF (schemas/recording.md), so a file whose last byte is none is refused.
+void check_ends_with_line_end(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() <= 0) return;  // a missing or empty file: its reader says what is wrong
+  in.seekg(-1, std::ios::end);
+  char last = 0;
+  in.get(last);
+  if (last != '\n') {
+    throw InputError(path.string(), "its last line",
+                     "no line end: the file is cut short? (every line of a recording's CSV ends with LF or CR LF)");
+  }
 }
 
 std::unordered_map<std::string, std::size_t> index_by_id(const std::vector<RecordingObject>& objects) {
@@ -245,6 +262,9 @@ RecordingStream::RecordingStream(const fs::path& dir)
       }()),
       ego_(dir / "ego.csv", header_.cycle_time_s),
       boxes_(dir / "objects.csv", header_.objects),
-      targets_(dir / "targets.csv", header_, header_.cycle_count()) {}
+      targets_(dir / "targets.csv", header_, header_.cycle_count()) {
+  // After the readers: they refuse a device or a pipe before anything reads to its end.
+  for (const char* file : {"ego.csv", "objects.csv", "targets.csv"}) check_ends_with_line_end(dir / file);
+}
 
 }  // namespace rcsim

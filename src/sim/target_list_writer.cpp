@@ -20,7 +20,7 @@ void TargetListWriter::write_header() {
   out_ << '\n';
 }
 
-void TargetListWriter::write_row(int cycle, double t_s, const std::string& sensor_id, const Row& row) {
+void TargetListWriter::write_row(int cycle, double t_s, const std::string& sensor_id, const TargetListRow& row) {
   ++rows_;
   if (format_ == TargetListFormat::Csv) {
     out_ << fmt::format("{:.6f},{},{},{},{:.4f},{:.6f},{:.4f},{:.3f}", t_s, cycle, csv_field(sensor_id), row.id,
@@ -40,9 +40,9 @@ void TargetListWriter::write_row(int cycle, double t_s, const std::string& senso
   out_ << "}\n";
 }
 
-void TargetListWriter::write_sensor_cycle(const Scene& scene, int cycle, double t_s, const std::string& sensor_id,
-                                          const SensorCycleState& state) {
-  switch (level_) {
+std::vector<TargetListRow> target_list_rows(const Scene& scene, const SensorCycleState& state, ListLevel level) {
+  std::vector<TargetListRow> rows;
+  switch (level) {
     case ListLevel::ideal:
       for (std::size_t i = 0; i < state.ideal.size(); ++i) {
         const auto& t = state.ideal[i];
@@ -54,24 +54,28 @@ void TargetListWriter::write_sensor_cycle(const Scene& scene, int cycle, double 
         if (t.kind == ReflectorKind::PlaneDiffuse || t.kind == ReflectorKind::BoxDiffuse) reflector += "#diffuse";
         if (t.bounce_order > 1) reflector += fmt::format("#bounce{}", t.bounce_order);
         // echoes[i] belongs to ideal[i] at this level (cells are not formed).
-        write_row(cycle, t_s, sensor_id,
-                  {static_cast<int>(i), t.range_m, t.azimuth_rad, t.range_rate_mps,
-                   amplitude_to_db(state.echoes[i].amplitude), &object.id, std::move(reflector)});
+        rows.push_back({static_cast<int>(i), t.range_m, t.azimuth_rad, t.range_rate_mps,
+                        amplitude_to_db(state.echoes[i].amplitude), &object.id, std::move(reflector)});
       }
       break;
     case ListLevel::detections:
       for (std::size_t i = 0; i < state.detections.size(); ++i) {
         const auto& d = state.detections[i];
-        write_row(cycle, t_s, sensor_id,
-                  {static_cast<int>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, nullptr, {}});
+        rows.push_back({static_cast<int>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, nullptr, {}});
       }
       break;
     case ListLevel::tracks:
       for (const auto& r : state.reported) {
-        write_row(cycle, t_s, sensor_id, {r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, nullptr, {}});
+        rows.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, nullptr, {}});
       }
       break;
   }
+  return rows;
+}
+
+void TargetListWriter::write_sensor_cycle(const Scene& scene, int cycle, double t_s, const std::string& sensor_id,
+                                          const SensorCycleState& state) {
+  for (const TargetListRow& row : target_list_rows(scene, state, level_)) write_row(cycle, t_s, sensor_id, row);
 }
 
 }  // namespace rcsim

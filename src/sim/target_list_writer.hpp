@@ -3,12 +3,24 @@
 // keys, one row per target; fixed decimals so that equal runs give byte-identical files.
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "sim/simulation.hpp"
 
 namespace rcsim {
 
 enum class TargetListFormat { Csv, Jsonl };
+
+// One row of a sensor's cycle at a list level (schemas/target-list.md).
+struct TargetListRow {
+  int id;
+  double range_m, azimuth_rad, range_rate_mps, amplitude_db;
+  const std::string* object;  // ideal targets only
+  std::string reflector;      // ideal targets only
+};
+
+// The rows of one sensor's cycle at `level`: ideal targets, detections or reported tracks.
+std::vector<TargetListRow> target_list_rows(const Scene& scene, const SensorCycleState& state, ListLevel level);
 
 class TargetListWriter {
  public:
@@ -21,13 +33,7 @@ class TargetListWriter {
   long long rows_written() const { return rows_; }
 
  private:
-  struct Row {
-    int id;
-    double range_m, azimuth_rad, range_rate_mps, amplitude_db;
-    const std::string* object;
-    std::string reflector;
-  };
-  void write_row(int cycle, double t_s, const std::string& sensor_id, const Row& row);
+  void write_row(int cycle, double t_s, const std::string& sensor_id, const TargetListRow& row);
 
   std::ostream& out_;
   TargetListFormat format_;

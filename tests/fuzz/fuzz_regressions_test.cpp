@@ -104,8 +104,7 @@ TEST(FuzzBases, TheBaseRecordingIsReadAndReplayed) {
   const auto sections = split_sections(text);
   ASSERT_EQ(sections.size(), 4u);
   const fs::path dir = fresh_dir("base_recording");
-  const char* files[] = {"recording.json", "ego.csv", "objects.csv", "targets.csv"};
-  for (std::size_t i = 0; i < 4; ++i) write_file(dir / files[i], sections[i]);
+  write_recording_sections(dir, sections);
   const Recording recording = read_recording(dir);
   EXPECT_EQ(recording.cycle_count(), 12);
   EXPECT_GT(recording.targets.size(), 10u);

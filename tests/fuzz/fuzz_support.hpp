@@ -81,6 +81,18 @@ inline void write_file(const std::filesystem::path& path, std::string_view text)
   }
 }
 
+// The four files of a recording from their sections (recording.json, ego.csv, objects.csv,
+// targets.csv). A CSV section gets the line end every writer puts after its last line where it has
+// none (a recording refuses a CSV without one as cut short): the fuzzers vary the rows, not that.
+inline void write_recording_sections(const std::filesystem::path& dir, const std::vector<std::string_view>& sections) {
+  static constexpr const char* kFiles[] = {"recording.json", "ego.csv", "objects.csv", "targets.csv"};
+  for (std::size_t i = 0; i < std::size(kFiles) && i < sections.size(); ++i) {
+    std::string text(sections[i]);
+    if (i > 0 && !text.empty() && text.back() != '\n') text += '\n';
+    write_file(dir / kFiles[i], text);
+  }
+}
+
 // A directory of this process under the system's temporary directory, removed at exit.
 class ScratchDir {
  public:

@@ -18,10 +18,10 @@ inline void fuzz_recording(Input data) {
   constexpr int kMaxReplayedCycles = 100;
   static const std::string base_text = read_source_file("tests/fuzz/base/recording.txt");
   static const std::vector<std::string_view> base = split_sections(base_text);
-  static constexpr const char* kFiles[] = {"recording.json", "ego.csv", "objects.csv", "targets.csv"};
   const std::vector<std::string_view> input = split_sections(as_text(data));
   const std::filesystem::path dir = fresh_dir("recording");
-  for (std::size_t i = 0; i < std::size(kFiles); ++i) write_file(dir / kFiles[i], section_or_base(input, base, i));
+  write_recording_sections(dir, {section_or_base(input, base, 0), section_or_base(input, base, 1), section_or_base(input, base, 2),
+                                 section_or_base(input, base, 3)});
   refusals_are_fine([&] {
     const Recording recording = read_recording(dir);
     if (recording.cycle_count() > kMaxReplayedCycles) return;

@@ -23,9 +23,8 @@ inline std::filesystem::path base_recording_dir() {
   static const std::filesystem::path dir = [] {
     static const std::string base_text = read_source_file("tests/fuzz/base/recording.txt");
     const std::vector<std::string_view> base = split_sections(base_text);
-    static constexpr const char* kFiles[] = {"recording.json", "ego.csv", "objects.csv", "targets.csv"};
     const std::filesystem::path d = fresh_dir("base_recording");
-    for (std::size_t i = 0; i < std::size(kFiles); ++i) write_file(d / kFiles[i], base[i]);
+    write_recording_sections(d, base);
     return d;
   }();
   return dir;

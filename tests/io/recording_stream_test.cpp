@@ -78,6 +78,22 @@ TEST_F(RecordingStreamFiles, TheHeaderPassCountsCyclesAndHashesTheFourFiles) {
   EXPECT_EQ(RecordingStream(dir).header().streamed_cycles, 3);
 }
 
+// A file cut inside its last number still has the header's fields ("...,17.0,-2.0,1" for
+// 12.0): without the line end every writer puts there, it is refused as cut short, not read.
+TEST_F(RecordingStreamFiles, ACsvWhoseLastLineHasNoLineEndIsRefusedAsCutShort) {
+  const fs::path dir = written();
+  std::string targets = bytes_of(dir / "targets.csv");
+  ASSERT_EQ(targets.back(), '\n');
+  targets.resize(targets.size() - 5);  // "12.000\n" becomes "12"
+  std::ofstream(dir / "targets.csv", std::ios::binary | std::ios::trunc) << targets;
+  EXPECT_EQ(refusal_of([&] { RecordingStream stream(dir); }),
+            (dir / "targets.csv").string() +
+                ": its last line: no line end: the file is cut short? (every line of a recording's CSV ends with LF or CR LF)");
+  EXPECT_EQ(refusal_of([&] { read_recording(dir); }).find((dir / "targets.csv").string() + ": its last line"), 0u);
+  std::ofstream(dir / "targets.csv", std::ios::binary | std::ios::app) << "\r\n";  // CR LF ends it too
+  EXPECT_EQ(refusal_of([&] { RecordingStream stream(dir); }), "accepted");
+}
+
 TEST_F(RecordingStreamFiles, RowsComeInOrderAndTargetsCycleByCycle) {
   RecordingStream stream(written());
   std::vector<double> ego_x_m;

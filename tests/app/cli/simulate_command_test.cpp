@@ -56,6 +56,18 @@ TEST_F(SimulateCli, CsvAndJsonlCarryTheSameRows) {
   EXPECT_NE(jsonl.output.find("\"reflector\":\"front\""), std::string::npos);
 }
 
+// --format mcap: the scene for Foxglove in one file, written atomically; refused without -o.
+TEST_F(SimulateCli, McapWritesOneFileAndNeedsAName) {
+  const auto out = dir_ / "s.mcap";
+  const auto written = run("simulate " + kExamples + "front_approach.json --format mcap -o " + out.string());
+  ASSERT_EQ(written.exit_code, 0) << written.output;
+  EXPECT_NE(written.output.find("rcsim simulate: 101 cycles of 2 sensor(s), 408 messages, "), std::string::npos) << written.output;
+  EXPECT_EQ(read(out).substr(0, 5), "\x89MCAP");
+  const auto no_name = run("simulate " + kExamples + "front_approach.json --format mcap");
+  EXPECT_EQ(no_name.exit_code, 2);
+  EXPECT_NE(no_name.output.find("--format mcap writes a binary file: name it with -o FILE.mcap"), std::string::npos) << no_name.output;
+}
+
 TEST_F(SimulateCli, BadSceneNamesFileAndFieldAndLeavesNoOutput) {
   const auto scene = dir_ / "bad.json";
   std::string text = read(kExamples + "front_approach.json");

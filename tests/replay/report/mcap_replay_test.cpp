@@ -43,12 +43,7 @@ class McapReplay : public rcsim::testing::ScratchDirTest {
   replay::McapReplayCounts counts;
 };
 
-TEST(McapReplayNames, FramesAreSensorIdsMadeSafeAndUnique) {
-  EXPECT_EQ(replay::mcap_frame_name("front_left", 0, {}), "front_left");
-  EXPECT_EQ(replay::mcap_frame_name("F LRR/C", 1, {}), "F_LRR_C");
-  EXPECT_EQ(replay::mcap_frame_name("", 2, {}), "sensor_2");
-  EXPECT_EQ(replay::mcap_frame_name("ego", 3, {}), "sensor_3");  // a frame of the file's own
-  EXPECT_EQ(replay::mcap_frame_name("a", 4, {"a"}), "sensor_4");
+TEST(McapReplayNames, TopicsNameTheSensorsFrame) {
   EXPECT_EQ(replay::mcap_replay_topic("front", "recorded"), "/rcsim/front/recorded");
   EXPECT_EQ(replay::mcap_replay_topic("", "boxes"), "/rcsim/boxes");
 }

@@ -1,0 +1,77 @@
+#include "sim/target_list_mcap.hpp"
+
+#include <cmath>
+#include <map>
+
+#include "common/target_colours.hpp"
+#include "io/foxglove_json.hpp"
+
+namespace rcsim {
+
+namespace {
+
+using foxglove::Json;
+
+constexpr double kBoxHeightM = 1.5;   // the boxes are 2-D: drawn 1.5 m tall
+constexpr double kTargetSizeM = 0.5;  // a target's sphere
+const std::map<std::string, std::string> kSimulatedFormat = {{"format", "rcsim-mcap-replay"}, {"version", "1"}, {"source", "simulate"}};
+
+}  // namespace
+
+McapTargetListWriter::McapTargetListWriter(std::ostream& out, const Scene& scene, ListLevel level) : level_(level), writer_(out) {
+  const auto scene_schema = writer_.add_schema("foxglove.SceneUpdate", "jsonschema", foxglove::scene_update_schema());
+  const auto transform_schema = writer_.add_schema("foxglove.FrameTransform", "jsonschema", foxglove::frame_transform_schema());
+  tf_channel_ = writer_.add_channel("/tf", "json", transform_schema, kSimulatedFormat);
+  boxes_channel_ = writer_.add_channel("/rcsim/boxes", "json", scene_schema, kSimulatedFormat);
+  for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+    frames_.push_back(foxglove::frame_name(scene.sensors[i].id, static_cast<int>(i), frames_));
+    target_channels_.push_back(writer_.add_channel("/rcsim/" + frames_.back() + "/simulated", "json", scene_schema, kSimulatedFormat));
+    view_field_channels_.push_back(writer_.add_channel("/rcsim/" + frames_.back() + "/view_field", "json", scene_schema, kSimulatedFormat));
+  }
+  lifetime_ns_ = foxglove::time_ns(scene.cycle_time_s);
+}
+
+void McapTargetListWriter::message(std::uint16_t channel, std::uint64_t ns, const std::string& body) {
+  writer_.write_message(channel, ns, body);
+  ++messages_;
+}
+
+void McapTargetListWriter::write_cycle(const Scene& scene, int cycle, double t_s, const std::vector<const SensorCycleState*>& states) {
+  (void)cycle;
+  const std::uint64_t ns = foxglove::time_ns(t_s);
+  if (!static_written_) {
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+      const MountedSensor& s = scene.sensors[i];
+      message(tf_channel_, ns, foxglove::frame_transform(ns, "ego", frames_[i], s.X_VS).dump());
+      message(view_field_channels_[i], ns,
+              foxglove::scene_update(Json::array({foxglove::view_field_entity(frames_[i], s.config.fov.azimuth_half_rad, s.config.fov.max_range_m, ns)})).dump());
+    }
+    static_written_ = true;
+  }
+  message(tf_channel_, ns, foxglove::frame_transform(ns, "world", "ego", scene.ego.state_at(t_s).X_WB).dump());
+  Json boxes = foxglove::entity(ns, "world", "boxes", lifetime_ns_);
+  for (const SceneObject& o : scene.objects) {
+    if (!o.present_at(t_s)) continue;
+    const Pose2 X_WO = o.trajectory.state_at(t_s).X_WB;
+    const Json pose = foxglove::pose_json(X_WO.x_m, X_WO.y_m, 0.5 * kBoxHeightM, X_WO.yaw_rad);
+    boxes["cubes"].push_back({{"pose", pose}, {"size", foxglove::vec3(o.model.length_m, o.model.width_m, kBoxHeightM)},
+                              {"color", foxglove::colour(colours::kBackground, 0.35)}});
+    boxes["texts"].push_back({{"pose", foxglove::pose_json(X_WO.x_m, X_WO.y_m, kBoxHeightM + 0.5, 0.0)}, {"billboard", true},
+                              {"font_size", 14.0}, {"scale_invariant", true}, {"color", foxglove::colour(colours::kLabel)}, {"text", o.id}});
+  }
+  message(boxes_channel_, ns, foxglove::scene_update(Json::array({boxes})).dump());
+  for (std::size_t i = 0; i < states.size() && i < frames_.size(); ++i) {
+    Json targets = foxglove::entity(ns, frames_[i], "simulated", lifetime_ns_);
+    for (const TargetListRow& row : target_list_rows(scene, *states[i], level_)) {
+      const Vec2 p = point_from_polar(row.range_m, row.azimuth_rad);
+      targets["spheres"].push_back({{"pose", foxglove::pose_json(p.x(), p.y(), 0.0, 0.0)},
+                                    {"size", foxglove::vec3(kTargetSizeM, kTargetSizeM, kTargetSizeM)},
+                                    {"color", foxglove::colour(colours::kSimulated)}});
+    }
+    message(target_channels_[i], ns, foxglove::scene_update(Json::array({targets})).dump());
+  }
+}
+
+std::uint64_t McapTargetListWriter::finish() { return writer_.finish(); }
+
+}  // namespace rcsim
