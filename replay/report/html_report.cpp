@@ -254,7 +254,7 @@ void write_page(ReportDatabase& db, const std::string& db_label, const HtmlRepor
         << fmt::format(R"(<span class="swatch" style="background:{}"></span>orange (simulated),)", svg::kSimulatedColour)
         << " the stationary background grey, other targets teal."
         << " GOSPA (&alpha; = 2) and OSPA are computed per cycle and sensor in the sensor's Cartesian frame; the "
-           "localisation, missed and false parts are in m^p and add up to GOSPA^p. Residuals are simulated minus "
+           "localisation, missed and false parts are in mᵖ and add up to GOSPAᵖ. Residuals are simulated minus "
            "recorded of the assigned pairs. Latency is the time from when an object becomes detectable to its "
            "first reported target.</p>\n";
   }

@@ -45,9 +45,9 @@ std::string summary_table(const RunData& run) {
   out += kv("targets_matched", "targets matched (assigned pairs)", std::to_string(s.targets_matched),
             percent(s.targets_matched, s.targets_recorded) + " of recorded");
   out += kv("gospa_mean", "GOSPA, mean over cycles and sensors", num(s.gospa_mean_m, 3), "m");
-  out += kv("gospa_localisation", "  localisation part (mean)", num(s.gospa_localisation_mean_mp, 3), "m^p");
-  out += kv("gospa_missed", "  missed part (mean)", num(s.gospa_missed_mean_mp, 3), "m^p");
-  out += kv("gospa_false", "  false part (mean)", num(s.gospa_false_mean_mp, 3), "m^p");
+  out += kv("gospa_localisation", "  localisation part (mean)", num(s.gospa_localisation_mean_mp, 3), "mᵖ");
+  out += kv("gospa_missed", "  missed part (mean)", num(s.gospa_missed_mean_mp, 3), "mᵖ");
+  out += kv("gospa_false", "  false part (mean)", num(s.gospa_false_mean_mp, 3), "mᵖ");
   out += kv("ospa_mean", "OSPA, mean", num(s.ospa_mean_m, 3), "m");
   if (s.classes) {
     const RunSummary::Classes& k = *s.classes;
@@ -85,8 +85,8 @@ std::string summary_table(const RunData& run) {
               fmt::format("s, over {} object-sensor pairs reported in both", s.latency_pairs));
     out += kv("latency_simulated", "confirmation latency simulated, mean", opt(s.latency_simulated_s, 3, "-"), "s");
   }
-  out += kv("simulate_cpu", "simulation CPU time", num(s.simulate_cpu_s, 2), "s");
-  out += kv("total_wall", "replay wall time (import, simulation, metrics, storage)", num(s.total_wall_s, 2), "s");
+  out += kv("simulate_cpu", "simulation CPU time", num(s.simulate_cpu_s, 3), "s");
+  out += kv("total_wall", "replay wall time (import, simulation, metrics, storage)", num(s.total_wall_s, 3), "s");
   return out + "</table>";
 }
 
@@ -284,9 +284,9 @@ std::string comparison_table(const std::vector<RunData>& runs, const std::map<st
   row("targets simulated", summary([](const RunSummary& s) { return std::to_string(s.targets_simulated); }));
   row("targets matched", summary([](const RunSummary& s) { return std::to_string(s.targets_matched); }));
   row("GOSPA mean / m", summary([](const RunSummary& s) { return num(s.gospa_mean_m, 3); }));
-  row("  localisation / m^p", summary([](const RunSummary& s) { return num(s.gospa_localisation_mean_mp, 3); }));
-  row("  missed / m^p", summary([](const RunSummary& s) { return num(s.gospa_missed_mean_mp, 3); }));
-  row("  false / m^p", summary([](const RunSummary& s) { return num(s.gospa_false_mean_mp, 3); }));
+  row("  localisation / mᵖ", summary([](const RunSummary& s) { return num(s.gospa_localisation_mean_mp, 3); }));
+  row("  missed / mᵖ", summary([](const RunSummary& s) { return num(s.gospa_missed_mean_mp, 3); }));
+  row("  false / mᵖ", summary([](const RunSummary& s) { return num(s.gospa_false_mean_mp, 3); }));
   row("OSPA mean / m", summary([](const RunSummary& s) { return num(s.ospa_mean_m, 3); }));
   row("residual RMS range / m", summary([](const RunSummary& s) { return num(s.residual_range_rms_m, 3); }));
   row("residual RMS azimuth / deg", summary([](const RunSummary& s) { return deg(s.residual_azimuth_rms_rad, 3); }));
