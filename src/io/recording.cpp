@@ -13,6 +13,7 @@
 #include <numbers>
 #include <unistd.h>
 
+#include "common/closest_name.hpp"
 #include "common/angles.hpp"
 #include "common/atomic_file.hpp"
 #include "common/limits.hpp"
@@ -273,7 +274,20 @@ std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t hash) {
 }
 
 Recording read_recording_header(const fs::path& dir) {
-  if (!fs::is_directory(dir)) throw InputError(dir.string(), "", "not a recording directory");
+  if (!fs::is_directory(dir)) {
+    // A mistyped directory: the nearest recording beside it, if one is close.
+    std::string hint;
+    std::error_code error;
+    const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+    if (!fs::exists(dir, error) && fs::is_directory(parent, error)) {
+      std::vector<std::string> siblings;
+      for (const auto& entry : fs::directory_iterator(parent, error)) {
+        if (fs::is_regular_file(entry.path() / "recording.json", error)) siblings.push_back(entry.path().filename().string());
+      }
+      if (const auto meant = closest_name(dir.filename().string(), siblings)) hint = fmt::format("; did you mean '{}'?", (parent / *meant).string());
+    }
+    throw InputError(dir.string(), "", "not a recording directory" + hint);
+  }
   Recording rec;
   rec.dir = dir;
   read_header(rec, dir / "recording.json");

@@ -12,6 +12,7 @@
 
 #include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
+#include "io/recording_stream.hpp"
 
 namespace rcsim {
 namespace {
@@ -56,6 +57,24 @@ class RecordingFiles : public ::testing::Test {
   fs::path dir_;
   Recording rec_;
 };
+
+// A mistyped recording directory is named with the nearest recording beside it; one nothing
+// resembles, or beside no recording, only as what it is not.
+TEST(RecordingDirectory, AMistypedDirectoryIsNamedWithTheNearestRecordingBesideIt) {
+  const std::string bundled = std::string(RCSIM_SOURCE_DIR) + "/recordings_synthetic/";
+  const auto message = [](const std::string& dir) {
+    try {
+      read_recording_header(dir);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message(bundled + "two_in_one_cel"),
+            bundled + "two_in_one_cel: not a recording directory; did you mean '" + bundled + "two_in_one_cell'?");
+  EXPECT_EQ(message(bundled + "zzzzzzzzzz"), bundled + "zzzzzzzzzz: not a recording directory");
+  EXPECT_EQ(message(bundled + "no_such/two_in_one_cel"), bundled + "no_such/two_in_one_cel: not a recording directory");
+}
 
 TEST_F(RecordingFiles, RoundTripKeepsEveryRowAndIsByteStable) {
   write_recording(dir_ / "a", rec_);
