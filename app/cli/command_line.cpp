@@ -45,7 +45,9 @@ int run_command_line(int argc, char** argv) {
       std::cerr << *unknown << '\n';
       return 2;
     }
-    app.exit(e);
+    // CLI11's own message ("--seed: 1 required UINT missing", "A subcommand is required"), in
+    // rcsim's form: the program first, the way to the options after.
+    std::cerr << "rcsim: " << e.what() << " (--help lists the options)\n";
     return 2;
   } catch (const VerdictsFailed& e) {
     std::cerr << "rcsim: failed: " << e.what() << '\n';

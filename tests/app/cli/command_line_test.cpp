@@ -48,6 +48,10 @@ TEST_F(Cli, EveryCommandLineErrorIsExitStatusTwoWithAShortMessage) {
     EXPECT_NE(r.output.find(message), std::string::npos) << args << ": " << r.output;
     EXPECT_LT(r.output.size(), 400u) << args << ": " << r.output;
   }
+  // CLI11's messages in rcsim's form: the program first, then where the options are.
+  const auto bare = run("");
+  EXPECT_EQ(bare.exit_code, 2);
+  EXPECT_EQ(bare.output, "rcsim: A subcommand is required (--help lists the options)\n");
   EXPECT_EQ(run("--help").exit_code, 0);
   EXPECT_EQ(run("--version").exit_code, 0);
 }
