@@ -223,6 +223,7 @@ void Listener::Impl::process_from(SenderState& source, const Header& header, std
     if (error != DecodeError::none) return refuse(error);
     summary.end_received = true;
     summary.end = end;
+    summary.sent_before_first = source.sequence.first().value_or(0);  // sequences count from 0
     if (options.stop_at_end) finish();
     return;
   }
@@ -432,6 +433,10 @@ std::string ListenSummary::line() const {
   }
   if (end_received) {
     text += fmt::format("; end of stream: the sender sent {} datagrams, {} cycles", end.datagrams_sent + 1, end.cycles_sent);
+    if (sent_before_first > 0) {
+      text += fmt::format(", {} of the datagrams before the first one received (the listener started after the stream)",
+                          sent_before_first);
+    }
   } else {
     text += "; no end of stream received";
   }

@@ -50,6 +50,9 @@ struct ListenSummary {
   std::size_t senders_peak = 0, sender_state_peak_bytes = 0;
   bool end_received = false;
   EndOfStream end;
+  // Of the stream that ended: its datagrams numbered before the first one this listener received
+  // (a listener started after the stream: not lost, never seen).
+  std::uint64_t sent_before_first = 0;
   bool interrupted = false, idle = false;
   std::string line() const;
 };
