@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -45,18 +44,6 @@ std::string csv_field(const replay::DecodedValue& v) {
   return quoted + "\"";
 }
 
-nlohmann::ordered_json json_value(const replay::DecodedValue& v) {
-  return std::visit(
-      [](const auto& x) -> nlohmann::ordered_json {
-        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) {
-          return nullptr;
-        } else {
-          return x;
-        }
-      },
-      v);
-}
-
 class RowWriter {
  public:
   RowWriter(std::ostream& out, bool csv, const std::vector<replay::DecodedColumn>& columns) : out_(out), csv_(csv), columns_(columns) {
@@ -70,7 +57,7 @@ class RowWriter {
       out_ << '\n';
     } else {
       nlohmann::ordered_json line = nlohmann::ordered_json::object();
-      for (std::size_t i = 0; i < row.size(); ++i) line[columns_[i].name] = json_value(row[i]);
+      for (std::size_t i = 0; i < row.size(); ++i) line[columns_[i].name] = replay::decoded_value_json(row[i]);
       out_ << line.dump() << '\n';
     }
     ++rows_;

@@ -53,17 +53,7 @@ const char* class_colour(const StoredTarget& t) {
 Json figures_json(const std::vector<DecodedValue>& row) {
   Json out = Json::object();
   const auto& columns = decoded_columns(DecodedTable::cycles);
-  for (std::size_t i = 0; i < row.size(); ++i) {
-    std::visit(
-        [&](const auto& v) {
-          if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::monostate>) {
-            out[columns[i].name] = nullptr;
-          } else {
-            out[columns[i].name] = v;
-          }
-        },
-        row[i]);
-  }
+  for (std::size_t i = 0; i < row.size(); ++i) out[columns[i].name] = decoded_value_json(row[i]);
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "metrics/target_class.hpp"
 
@@ -152,6 +153,18 @@ std::string_view decoded_table_name(DecodedTable table) {
     case DecodedTable::objects: return "objects";
   }
   return "";
+}
+
+nlohmann::ordered_json decoded_value_json(const DecodedValue& value) {
+  return std::visit(
+      [](const auto& x) -> nlohmann::ordered_json {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) {
+          return nullptr;
+        } else {
+          return x;
+        }
+      },
+      value);
 }
 
 const std::vector<DecodedColumn>& decoded_columns(DecodedTable table) {

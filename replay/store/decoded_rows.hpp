@@ -5,6 +5,7 @@
 // tables `cycles`, `targets` and `objects`.
 #include <cstdint>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -30,6 +31,10 @@ struct DecodedColumn {
   std::string name;
   std::string_view sql_type;
 };
+
+// A value as JSON: null, a whole number, a real or a text (rcsim export --format jsonl, the MCAP
+// figures).
+nlohmann::ordered_json decoded_value_json(const DecodedValue& value);
 
 // The columns of `table`, in order; the first is always run_id, the second cycle.
 const std::vector<DecodedColumn>& decoded_columns(DecodedTable table);

@@ -62,12 +62,12 @@ void McapTargetListWriter::write_cycle(const Scene& scene, int cycle, double t_s
   message(boxes_channel_, ns, foxglove::scene_update(Json::array({boxes})).dump());
   for (std::size_t i = 0; i < states.size() && i < frames_.size(); ++i) {
     Json targets = foxglove::entity(ns, frames_[i], "simulated", lifetime_ns_);
-    for (const TargetListRow& row : target_list_rows(scene, *states[i], level_)) {
+    for_each_target_list_row(scene, *states[i], level_, [&](const TargetListRow& row) {
       const Vec2 p = point_from_polar(row.range_m, row.azimuth_rad);
       targets["spheres"].push_back({{"pose", foxglove::pose_json(p.x(), p.y(), 0.0, 0.0)},
                                     {"size", foxglove::vec3(kTargetSizeM, kTargetSizeM, kTargetSizeM)},
                                     {"color", foxglove::colour(colours::kSimulated)}});
-    }
+    });
     message(target_channels_[i], ns, foxglove::scene_update(Json::array({targets})).dump());
   }
 }

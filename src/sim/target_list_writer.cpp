@@ -40,8 +40,8 @@ void TargetListWriter::write_row(int cycle, double t_s, const std::string& senso
   out_ << "}\n";
 }
 
-std::vector<TargetListRow> target_list_rows(const Scene& scene, const SensorCycleState& state, ListLevel level) {
-  std::vector<TargetListRow> rows;
+void for_each_target_list_row(const Scene& scene, const SensorCycleState& state, ListLevel level,
+                              const std::function<void(const TargetListRow&)>& visit) {
   switch (level) {
     case ListLevel::ideal:
       for (std::size_t i = 0; i < state.ideal.size(); ++i) {
@@ -54,28 +54,27 @@ std::vector<TargetListRow> target_list_rows(const Scene& scene, const SensorCycl
         if (t.kind == ReflectorKind::PlaneDiffuse || t.kind == ReflectorKind::BoxDiffuse) reflector += "#diffuse";
         if (t.bounce_order > 1) reflector += fmt::format("#bounce{}", t.bounce_order);
         // echoes[i] belongs to ideal[i] at this level (cells are not formed).
-        rows.push_back({static_cast<int>(i), t.range_m, t.azimuth_rad, t.range_rate_mps,
+        visit({static_cast<int>(i), t.range_m, t.azimuth_rad, t.range_rate_mps,
                         amplitude_to_db(state.echoes[i].amplitude), &object.id, std::move(reflector)});
       }
       break;
     case ListLevel::detections:
       for (std::size_t i = 0; i < state.detections.size(); ++i) {
         const auto& d = state.detections[i];
-        rows.push_back({static_cast<int>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, nullptr, {}});
+        visit({static_cast<int>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, nullptr, {}});
       }
       break;
     case ListLevel::tracks:
       for (const auto& r : state.reported) {
-        rows.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, nullptr, {}});
+        visit({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, nullptr, {}});
       }
       break;
   }
-  return rows;
 }
 
 void TargetListWriter::write_sensor_cycle(const Scene& scene, int cycle, double t_s, const std::string& sensor_id,
                                           const SensorCycleState& state) {
-  for (const TargetListRow& row : target_list_rows(scene, state, level_)) write_row(cycle, t_s, sensor_id, row);
+  for_each_target_list_row(scene, state, level_, [&](const TargetListRow& row) { write_row(cycle, t_s, sensor_id, row); });
 }
 
 }  // namespace rcsim

@@ -1,6 +1,7 @@
 #pragma once
 // Target list output (schemas/target-list.md): CSV with a header, or JSON Lines with the same
 // keys, one row per target; fixed decimals so that equal runs give byte-identical files.
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -19,8 +20,10 @@ struct TargetListRow {
   std::string reflector;      // ideal targets only
 };
 
-// The rows of one sensor's cycle at `level`: ideal targets, detections or reported tracks.
-std::vector<TargetListRow> target_list_rows(const Scene& scene, const SensorCycleState& state, ListLevel level);
+// The rows of one sensor's cycle at `level`, in order: ideal targets, detections or reported
+// tracks. Visited one by one, so that writing a cycle allocates no list.
+void for_each_target_list_row(const Scene& scene, const SensorCycleState& state, ListLevel level,
+                              const std::function<void(const TargetListRow&)>& visit);
 
 class TargetListWriter {
  public:

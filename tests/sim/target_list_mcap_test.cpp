@@ -37,7 +37,9 @@ TEST_F(TargetListMcap, EachCycleHoldsTheRowsOfTheCsvWriterAndTheBoxesPresent) {
     Simulation simulation(scene, options);
     for (int cycle = 0; cycle < simulation.cycle_count(); ++cycle) {
       simulation.run_cycle(cycle);
-      csv_rows[cycle] = target_list_rows(scene, simulation.sensor_state(0), options.level).size();
+      std::size_t rows = 0;
+      for_each_target_list_row(scene, simulation.sensor_state(0), options.level, [&](const TargetListRow&) { ++rows; });
+      csv_rows[cycle] = rows;
       writer.write_cycle(scene, cycle, scene.cycle_time_at(cycle), {&simulation.sensor_state(0)});
     }
     writer.finish();
