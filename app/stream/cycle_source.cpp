@@ -5,6 +5,7 @@
 #include <deque>
 #include <stdexcept>
 
+#include "common/input_error.hpp"
 #include "io/recording_stream.hpp"
 #include "model/model_library.hpp"
 #include "replay/import/streaming_import.hpp"
@@ -121,6 +122,12 @@ class RecordingSource final : public CycleSource {
   RecordingSource(std::filesystem::path dir, const SourceOptions& options)
       : dir_(std::move(dir)), options_(options), library_(ModelLibrary::builtin()) {
     list_level(options_.simulation.level);
+    if (read_recording_header(dir_).clock == Clock::per_sensor) {
+      // A frame on the wire is one cycle of every sensor, with the ego row of that cycle.
+      throw InputError((dir_ / "recording.json").string(), "clock",
+                       "the sensors run on their own clocks (\"per_sensor\"); rcsim stream sends one shared cycle "
+                       "of every sensor per frame: replay this recording with rcsim replay");
+    }
     restart();
     const Recording& header = input_->recording();
     check_sensor_count(header.sensors.size());
@@ -166,8 +173,8 @@ class RecordingSource final : public CycleSource {
  private:
   // The next cycle read and simulated; its recorded targets in recorded_, its time in t_rec_s_.
   void advance() {
-    int cycle = 0;
-    if (!input_->next_cycle(cycle, t_rec_s_, recorded_)) throw std::logic_error("a recording streamed beyond its last cycle");
+    int cycle = 0, all_sensors = -1;
+    if (!input_->next_cycle(cycle, t_rec_s_, all_sensors, recorded_)) throw std::logic_error("a recording streamed beyond its last cycle");
     if (const auto window = input_->take_moved_window()) simulation_->cull_within(window->first, window->second);
     simulation_->run_at(t_rec_s_ - input_->imported().time_offset_s);
     next_ = cycle + 1;
@@ -177,7 +184,7 @@ class RecordingSource final : public CycleSource {
     simulation_.reset();  // it refers to the old import's scene
     input_ = std::make_unique<replay::StreamingImport>(dir_, library_, replay::ImportOptions{});
     const Recording& header = input_->recording();
-    truth_ego_ = std::make_unique<EgoRowReader>(dir_ / "ego.csv", header.cycle_time_s);
+    truth_ego_ = std::make_unique<EgoRowReader>(dir_ / "ego.csv", EgoLogSpacing{header.cycle_time_s});
     truth_boxes_ = std::make_unique<BoxRowReader>(dir_ / "objects.csv", header.objects);
     truth_ego_cycle_ = 0;
     boxes_ahead_.clear();

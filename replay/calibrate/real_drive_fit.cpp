@@ -18,10 +18,21 @@ Recording restrict_to_sensor(const Recording& recording, int sensor) {
   Recording out = recording;
   out.sensors = {recording.sensors.at(static_cast<std::size_t>(sensor))};
   out.targets.clear();
+  // Sensors on their own clocks: that sensor's cycles alone, renumbered.
+  std::vector<int> kept_as(recording.cycles.size(), -1);
+  if (recording.clock == Clock::per_sensor) {
+    out.cycles.clear();
+    for (std::size_t k = 0; k < recording.cycles.size(); ++k) {
+      if (recording.cycles[k].sensor != sensor) continue;
+      kept_as[k] = static_cast<int>(out.cycles.size());
+      out.cycles.push_back({recording.cycles[k].t_s, 0});
+    }
+  }
   for (const RecordedTarget& t : recording.targets) {
     if (t.sensor != sensor) continue;
     out.targets.push_back(t);
     out.targets.back().sensor = 0;
+    if (recording.clock == Clock::per_sensor) out.targets.back().cycle = kept_as[static_cast<std::size_t>(t.cycle)];
   }
   out.name = recording.name + "/" + recording.sensors[static_cast<std::size_t>(sensor)].id;
   return out;
@@ -30,9 +41,21 @@ Recording restrict_to_sensor(const Recording& recording, int sensor) {
 Recording restrict_to_cycles(const Recording& recording, int first, int end) {
   if (!(0 <= first && first < end && end <= recording.cycle_count())) throw std::out_of_range("restrict_to_cycles: no such cycles");
   Recording out = recording;
-  out.ego.assign(recording.ego.begin() + first, recording.ego.begin() + end);
-  const double from_s = out.ego.front().t_s - 0.5 * recording.cycle_time_s;
-  const double until_s = out.ego.back().t_s + 0.5 * recording.cycle_time_s;
+  if (recording.clock == Clock::per_sensor) {
+    // The cycles, and the ego log's rows around them (the rows just before and after included).
+    out.cycles.assign(recording.cycles.begin() + first, recording.cycles.begin() + end);
+    const double t0_s = out.cycles.front().t_s, t1_s = out.cycles.back().t_s;
+    const auto& ego = recording.ego;
+    auto from = std::upper_bound(ego.begin(), ego.end(), t0_s, [](double t, const EgoSample& e) { return t < e.t_s; });
+    if (from != ego.begin()) --from;
+    auto until = std::lower_bound(ego.begin(), ego.end(), t1_s, [](const EgoSample& e, double t) { return e.t_s < t; });
+    if (until != ego.end()) ++until;
+    out.ego.assign(from, until);
+  } else {
+    out.ego.assign(recording.ego.begin() + first, recording.ego.begin() + end);
+  }
+  const double from_s = recording.cycle_t_s(first) - 0.5 * recording.cycle_time_s;
+  const double until_s = recording.cycle_t_s(end - 1) + 0.5 * recording.cycle_time_s;
   for (auto& boxes : out.boxes) {
     std::erase_if(boxes, [&](const AnnotatedBox& b) { return b.t_s < from_s || b.t_s > until_s; });
   }

@@ -36,7 +36,7 @@ BenchRow row_of(const Recording& rec, int index, std::string_view level, const R
   row.recording_name = rec.name;
   row.recording_checksum = rec.checksum;
   row.level = std::string(level);
-  row.sensor_cycles = static_cast<long long>(rec.cycle_count()) * static_cast<long long>(rec.sensors.size());
+  row.sensor_cycles = rec.sensor_cycle_count();
   row.gospa_mean_m = s.gospa_mean_m;
   row.targets_recorded = s.targets_recorded;
   row.targets_simulated = s.targets_simulated;
@@ -65,7 +65,7 @@ double time_model_pass_cpu_s(const Scene& scene, const Recording& rec, double ti
   do {
     Simulation simulation(scene, options);
     const double start_s = thread_cpu_s();
-    for (const EgoSample& e : rec.ego) simulation.run_at(e.t_s - time_offset_s);
+    for (int k = 0; k < rec.cycle_count(); ++k) simulation.run_at(rec.cycle_t_s(k) - time_offset_s, rec.cycle_sensor(k));
     total_cpu_s += thread_cpu_s() - start_s;
     ++passes;
   } while (total_cpu_s < min_cpu_s && passes < 100000);

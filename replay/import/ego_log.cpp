@@ -33,13 +33,8 @@ std::vector<EgoSample> ego_at_times(const std::vector<EgoSample>& log, const std
       out.back().t_s = t_keyframe_s;
       continue;
     }
-    const EgoSample& a = *(hi - 1);
-    const EgoSample& b = *hi;
-    const double f = (t - a.t_s) / (b.t_s - a.t_s);
-    const auto lerp = [f](double u, double v) { return u + f * (v - u); };
-    out.push_back({t_keyframe_s, lerp(a.x_m, b.x_m), lerp(a.y_m, b.y_m),
-                   wrap_angle_rad(a.yaw_rad + f * angle_difference_rad(b.yaw_rad, a.yaw_rad)),
-                   lerp(a.speed_mps, b.speed_mps), lerp(a.yaw_rate_radps, b.yaw_rate_radps)});
+    out.push_back(interpolate_ego(*(hi - 1), *hi, t));
+    out.back().t_s = t_keyframe_s;
   }
   return out;
 }

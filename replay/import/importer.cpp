@@ -174,6 +174,7 @@ Scene build_scene(const ImportedScene& in, const ModelLibrary& library, const st
                        fmt::format("sensors[{}].type", i), e.what());
     }
     sensor.X_VS = {s.x_m, s.y_m, s.yaw_rad};
+    sensor.cycle_time_s = s.cycle_time_s;  // its own clock (recording v4), else 0: the scene's
     scene.sensors.push_back(std::move(sensor));
   }
   for (std::size_t i = 0; i < in.objects.size(); ++i) {

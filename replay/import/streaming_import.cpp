@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "common/angles.hpp"
 #include "replay/import/annotation_smoothing.hpp"
@@ -49,7 +50,9 @@ StreamingImport::StreamingImport(const std::filesystem::path& dir, const ModelLi
   for (SceneObject& object : scene_.objects) object.presence = kNotYetPresent;
   objects_.resize(scene_.objects.size());
   scene_.ego.append(ego_sample(first, imported_.time_offset_s));
-  cycle_times_rec_s_.push_back(first.t_s);
+  own_clocks_ = stream_->header().clock == Clock::per_sensor;
+  first_ego_rec_s_ = first.t_s;
+  if (!own_clocks_) cycle_times_rec_s_.push_back(first.t_s);
   front_rec_s_ = -kInfinity;
   // A time t is final once the boxes are read beyond t + this: the segment holding t has its
   // later node within max_gap, that node's fit needs the boxes within ±half window of it, and
@@ -140,7 +143,7 @@ void StreamingImport::read_ahead(double horizon_s) {
       break;
     }
     scene_.ego.append(ego_sample(e, t0_s));
-    cycle_times_rec_s_.push_back(e.t_s);
+    if (!own_clocks_) cycle_times_rec_s_.push_back(e.t_s);
   }
   while (!boxes_done_ && front_rec_s_ - t0_s <= horizon_s + lookahead_s_) {
     std::size_t object = 0;
@@ -180,15 +183,25 @@ void StreamingImport::forget_before(double t_s) {
   }
 }
 
-bool StreamingImport::next_cycle(int& cycle, double& t_rec_s, std::vector<RecordedTarget>& targets) {
+bool StreamingImport::next_cycle(int& cycle, double& t_rec_s, int& sensor, std::vector<RecordedTarget>& targets) {
   const int cycles = stream_->header().cycle_count();
   if (next_cycle_ >= cycles) {
-    if (!boxes_done_) read_ahead(kInfinity);  // the rest is read for its checks
+    if (!boxes_done_ || !ego_done_) read_ahead(kInfinity);  // the rest is read for its checks
     stream_->targets().finish();
+    if (own_clocks_) stream_->cycles()->finish();
     return false;
   }
-  if (cycle_times_rec_s_.empty()) read_ahead(scene_.ego.end_s());
-  t_rec_s = cycle_times_rec_s_.front();
+  sensor = -1;
+  if (own_clocks_) {  // the sensor's own cycle, the ego log interpolated to it
+    SensorCycle c;
+    if (!stream_->cycles()->next(c)) throw std::logic_error("cycles.csv ended before its counted rows");
+    t_rec_s = c.t_s;
+    sensor = c.sensor;
+  } else {
+    if (cycle_times_rec_s_.empty()) read_ahead(scene_.ego.end_s());
+    t_rec_s = cycle_times_rec_s_.front();
+    cycle_times_rec_s_.pop_front();
+  }
   const double t_s = t_rec_s - imported_.time_offset_s;
   if (t_s > window_until_s_) {
     window_until_s_ = t_s + kWindowStep_s;
@@ -196,10 +209,15 @@ bool StreamingImport::next_cycle(int& cycle, double& t_rec_s, std::vector<Record
     forget_before(t_s - kKeepBehind_s);
     moved_window_ = std::pair{t_s, window_until_s_};
   }
-  cycle_times_rec_s_.pop_front();
+  if (own_clocks_) {
+    // The window reads the ego log beyond t unless it ended before: then t may lie beyond its last
+    // row by the margin alone.
+    const double last_ego_rec_s = ego_done_ ? scene_.ego.end_s() + imported_.time_offset_s : kInfinity;
+    stream_->cycles()->check_within_ego_log(first_ego_rec_s_, last_ego_rec_s);
+  }
   cycle = next_cycle_++;
   targets.clear();
-  stream_->targets().read_cycle(cycle, t_rec_s, targets);
+  stream_->targets().read_cycle(cycle, t_rec_s, sensor, targets);
   return true;
 }
 

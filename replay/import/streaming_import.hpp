@@ -26,10 +26,11 @@ class StreamingImport {
   const ImportedScene& imported() const { return imported_; }  // no trajectories; warnings as found
   const Scene& scene() const { return scene_; }                // trajectories over a window
 
-  // The next cycle: its index, recording time and recorded targets (replacing `targets`); the
-  // scene then holds every sample that times up to the current window's end need. False after
-  // the last cycle, once every file has been read to its end and checked.
-  bool next_cycle(int& cycle, double& t_rec_s, std::vector<RecordedTarget>& targets);
+  // The next cycle: its index, recording time, the sensor whose cycle it is (-1: every sensor's,
+  // a shared clock) and recorded targets (replacing `targets`); the scene then holds every sample
+  // that times up to the current window's end need. False after the last cycle, once every file
+  // has been read to its end and checked.
+  bool next_cycle(int& cycle, double& t_rec_s, int& sensor, std::vector<RecordedTarget>& targets);
   // The scene-time window [from, until] the trajectories hold in full, when it has moved since
   // the last call (for the simulations' broad phase: Simulation::cull_within).
   std::optional<std::pair<double, double>> take_moved_window();
@@ -56,7 +57,9 @@ class StreamingImport {
   ImportedScene imported_;
   Scene scene_;
   std::vector<ObjectFeed> objects_;
-  std::deque<double> cycle_times_rec_s_;  // ego rows read ahead, not yet replayed
+  std::deque<double> cycle_times_rec_s_;  // a shared clock: ego rows read ahead, not yet replayed
+  bool own_clocks_ = false;                // the sensors' cycles come from cycles.csv
+  double first_ego_rec_s_ = 0.0;
   int next_cycle_ = 0;
   bool ego_done_ = false, boxes_done_ = false;
   double front_rec_s_;                     // the latest annotation time read

@@ -82,9 +82,13 @@ DetectionPool pool_detections(const std::vector<const Recording*>& recordings) {
     if (pool.recordings == 0) pool.recorded_cycle_time_s = r->cycle_time_s;
     pool.snapshots = pool.snapshots || r->timeline == Timeline::snapshots;
     const std::size_t first = pool.cycles.size();
+    // One pooled cycle per sensor and cycle: every sensor's in each cycle of a shared clock, the
+    // one sensor's of a cycle on its own clock.
+    const bool own_clocks = r->clock == Clock::per_sensor;
     for (int k = 0; k < r->cycle_count(); ++k) {
       for (int s = 0; s < static_cast<int>(r->sensors.size()); ++s) {
-        const EgoSample& e = r->ego[static_cast<std::size_t>(k)];
+        if (own_clocks && r->cycle_sensor(k) != s) continue;
+        const EgoSample e = r->ego_at_cycle(k);
         const RecordingSensor& sensor = r->sensors[static_cast<std::size_t>(s)];
         PooledCycle& cycle = pool.cycles.emplace_back();
         cycle.recording = pool.recordings, cycle.sensor = s, cycle.cycle = k, cycle.t_s = e.t_s;
@@ -93,7 +97,8 @@ DetectionPool pool_detections(const std::vector<const Recording*>& recordings) {
     }
     const std::size_t sensors = r->sensors.size();
     for (const RecordedTarget& t : r->targets) {
-      PooledCycle& cycle = pool.cycles[first + static_cast<std::size_t>(t.cycle) * sensors + static_cast<std::size_t>(t.sensor)];
+      const std::size_t k = static_cast<std::size_t>(t.cycle);
+      PooledCycle& cycle = pool.cycles[first + (own_clocks ? k : k * sensors + static_cast<std::size_t>(t.sensor))];
       cycle.detections.push_back({t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db, t.rcs_dbsm, t.elevation_rad});
       ++pool.detections;
     }

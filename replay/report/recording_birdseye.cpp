@@ -26,7 +26,7 @@ int pictured_cycle(const Recording& rec, double time_s) {
   int last = rec.cycle_count() - 1;
   if (time_s >= 0.0) {
     for (int k = 0; k < rec.cycle_count(); ++k) {
-      if (rec.ego[static_cast<std::size_t>(k)].t_s <= time_s + 1e-9) last = k;
+      if (rec.cycle_t_s(k) <= time_s + 1e-9) last = k;
     }
   }
   return last;
@@ -42,7 +42,7 @@ PicturedWindow pictured_window(const Recording& rec, const RecordingPictureOptio
   PicturedWindow w;
   w.last = pictured_cycle(rec, options.time_s);
   w.first = std::max(0, w.last - options.cycles + 1);
-  const EgoSample& ego = rec.ego[static_cast<std::size_t>(w.last)];
+  const EgoSample ego = rec.ego_at_cycle(w.last);
   w.X_WV = Pose2{ego.x_m, ego.y_m, ego.yaw_rad};
   return w;
 }
@@ -57,7 +57,7 @@ void add_sensors(const Recording& rec, BirdsEyeSpec& spec) {
 
 // The annotated boxes at the pictured cycle's time; ids are shortened here and escaped when drawn.
 void add_boxes(const Recording& rec, const PicturedWindow& w, BirdsEyeSpec& spec) {
-  const double t_s = rec.ego[static_cast<std::size_t>(w.last)].t_s;
+  const double t_s = rec.cycle_t_s(w.last);
   for (std::size_t i = 0; i < rec.boxes.size(); ++i) {
     for (const AnnotatedBox& b : rec.boxes[i]) {
       if (std::abs(b.t_s - t_s) > 1e-6) continue;
@@ -72,7 +72,7 @@ void add_boxes(const Recording& rec, const PicturedWindow& w, BirdsEyeSpec& spec
 void add_target(const Recording& rec, const PicturedWindow& w, int cycle, int sensor, double range_m,
                 double azimuth_rad, bool compared, BirdsEyeSpec& spec) {
   if (cycle < w.first || cycle > w.last) return;
-  const EgoSample& e = rec.ego[static_cast<std::size_t>(cycle)];
+  const EgoSample e = rec.ego_at_cycle(cycle);
   const RecordingSensor& s = rec.sensors[static_cast<std::size_t>(sensor)];
   const Pose2 X_WS = compose(Pose2{e.x_m, e.y_m, e.yaw_rad}, Pose2{s.x_m, s.y_m, s.yaw_rad});
   const Vec2 p_WT_W = transform_point(X_WS, point_from_polar(range_m, azimuth_rad));
@@ -96,7 +96,7 @@ BirdsEyeSpec recording_birdseye(const Recording& rec, const RecordingPictureOpti
   BirdsEyeSpec spec;
   if (rec.cycle_count() == 0) return spec;
   const PicturedWindow w = pictured_window(rec, options);
-  const double t_s = rec.ego[static_cast<std::size_t>(w.last)].t_s;
+  const double t_s = rec.cycle_t_s(w.last);
   spec.title = options.title.empty() ? rec.name : options.title;
   spec.notes.push_back(fmt::format("cycle {} at t = {:.2f} s; targets of cycles {} to {}", w.last, t_s, w.first, w.last));
   spec.trace_cycles = w.last - w.first;

@@ -199,10 +199,11 @@ void compare_sensor_cycle(const RunContext& run, std::size_t s, double t_rec_s, 
 class RecordingInMemory final : public RecordedCycles {
  public:
   explicit RecordingInMemory(const Recording& rec) : rec_(rec) {}
-  bool next(int& cycle, double& t_rec_s, std::vector<RecordedTarget>& targets) override {
+  bool next(int& cycle, double& t_rec_s, int& sensor, std::vector<RecordedTarget>& targets) override {
     if (k_ >= rec_.cycle_count()) return false;
     cycle = k_;
-    t_rec_s = rec_.ego[static_cast<std::size_t>(k_)].t_s;
+    t_rec_s = rec_.cycle_t_s(k_);
+    sensor = rec_.cycle_sensor(k_);
     targets.clear();
     while (cursor_ < rec_.targets.size() && rec_.targets[cursor_].cycle == k_) targets.push_back(rec_.targets[cursor_++]);
     ++k_;
@@ -219,8 +220,8 @@ class RecordingInMemory final : public RecordedCycles {
 class RecordingStreamed final : public RecordedCycles {
  public:
   explicit RecordingStreamed(StreamingImport& input) : input_(input) {}
-  bool next(int& cycle, double& t_rec_s, std::vector<RecordedTarget>& targets) override {
-    return input_.next_cycle(cycle, t_rec_s, targets);
+  bool next(int& cycle, double& t_rec_s, int& sensor, std::vector<RecordedTarget>& targets) override {
+    return input_.next_cycle(cycle, t_rec_s, sensor, targets);
   }
   std::optional<std::pair<double, double>> take_moved_window() override { return input_.take_moved_window(); }
 
@@ -269,9 +270,9 @@ ReplaySummary compare_cycles(const Recording& rec, const ImportedScene& imported
   CycleBuffers buffers;
   std::vector<BodyState> object_states(n_objects);
   std::vector<RecordedTarget> recorded;
-  int k = 0;
+  int k = 0, only_sensor = -1;
   double t_rec_s = 0.0;
-  while (cycles.next(k, t_rec_s, recorded)) {
+  while (cycles.next(k, t_rec_s, only_sensor, recorded)) {
     // read the cycle => simulate => per sensor: boxes, detectability, match, figures, store
     if (const auto window = cycles.take_moved_window()) {
       source.cull_within(window->first, window->second);
@@ -279,9 +280,9 @@ ReplaySummary compare_cycles(const Recording& rec, const ImportedScene& imported
     }
     const double t_scene_s = t_rec_s - imported.time_offset_s;
     const double cpu_start_s = thread_cpu_s();
-    source.run_at(t_scene_s);
+    source.run_at(t_scene_s, only_sensor);
     simulate_cpu_s += thread_cpu_s() - cpu_start_s;
-    geometry.run_at(t_scene_s);
+    geometry.run_at(t_scene_s, only_sensor);
     // The annotated (smoothed) boxes and the ego at this time, as the scene gives them.
     const BodyState ego = scene.ego.state_at(t_scene_s);
     for (std::size_t o = 0; o < n_objects; ++o) {
@@ -290,6 +291,7 @@ ReplaySummary compare_cycles(const Recording& rec, const ImportedScene& imported
     cycle.cycle = k;
     cycle.t_s = t_rec_s;
     for (std::size_t s = 0; s < n_sensors; ++s) {
+      if (only_sensor >= 0 && static_cast<std::size_t>(only_sensor) != s) continue;  // another sensor's clock
       compare_sensor_cycle(run, s, t_rec_s, t_scene_s, ego, object_states, recorded, source, buffers, cycle, latency,
                            acc, objects, sink);
     }

@@ -156,8 +156,8 @@ class DiscardingSink final : public ReplaySink {
 class SimulatedSource {
  public:
   virtual ~SimulatedSource() = default;
-  // Runs every sensor at scene time t (times increasing).
-  virtual void run_at(double t_scene_s) = 0;
+  // Runs every sensor (only_sensor < 0) or that sensor alone at scene time t (times increasing).
+  virtual void run_at(double t_scene_s, int only_sensor) = 0;
   // The scene's trajectories now hold scene times [t0_s, t1_s] in full (a streaming replay).
   virtual void cull_within(double /*t0_s*/, double /*t1_s*/) {}
   // The target list one sensor reported in the last run_at, appended to `out`.
@@ -169,8 +169,9 @@ class SimulatedSource {
 class RecordedCycles {
  public:
   virtual ~RecordedCycles() = default;
-  // The next cycle's index, recording time and targets (replacing `targets`); false at the end.
-  virtual bool next(int& cycle, double& t_rec_s, std::vector<RecordedTarget>& targets) = 0;
+  // The next cycle's index, recording time, sensor (-1: every sensor's cycle, a shared clock) and
+  // targets (replacing `targets`); false at the end.
+  virtual bool next(int& cycle, double& t_rec_s, int& sensor, std::vector<RecordedTarget>& targets) = 0;
   // The scene-time window the trajectories now hold in full, when it has moved.
   virtual std::optional<std::pair<double, double>> take_moved_window() { return std::nullopt; }
 };

@@ -22,9 +22,11 @@ SimulationOptions geometry_options() {
 SceneGeometry::SceneGeometry(const Scene& scene)
     : simulation_(scene, geometry_options()), merge_cells_(scene.sensors.size()) {}
 
-void SceneGeometry::run_at(double t_scene_s) {
-  simulation_.run_at(t_scene_s);
-  for (std::size_t s = 0; s < simulation_.sensor_count(); ++s) find_merge_cells(s);
+void SceneGeometry::run_at(double t_scene_s, int only_sensor) {
+  simulation_.run_at(t_scene_s, only_sensor);
+  for (std::size_t s = 0; s < simulation_.sensor_count(); ++s) {
+    if (only_sensor < 0 || static_cast<std::size_t>(only_sensor) == s) find_merge_cells(s);
+  }
 }
 
 // The ideal targets are the visible reflectors in the view field, those hidden behind other

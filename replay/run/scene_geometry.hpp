@@ -22,7 +22,7 @@ class SceneGeometry {
   explicit SceneGeometry(const Scene& scene);
 
   // Every sensor at scene time t (times increasing).
-  void run_at(double t_scene_s);
+  void run_at(double t_scene_s, int only_sensor = -1);  // only_sensor >= 0: that sensor alone
   void cull_within(double t0_s, double t1_s) { simulation_.cull_within(t0_s, t1_s); }
   // detectable[object] = 1 for every object with a reflector detectable by eq. (1) now.
   void mark_detectable(std::size_t sensor, std::vector<char>& detectable) const;

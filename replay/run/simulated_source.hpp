@@ -34,7 +34,7 @@ SimulationOptions model_options(std::uint64_t seed, Fidelity fidelity);
 class ModelSource final : public SimulatedSource {
  public:
   ModelSource(const Scene& scene, const SimulationOptions& options) : simulation_(scene, options) {}
-  void run_at(double t_scene_s) override { simulation_.run_at(t_scene_s); }
+  void run_at(double t_scene_s, int only_sensor) override { simulation_.run_at(t_scene_s, only_sensor); }
   void cull_within(double t0_s, double t1_s) override { simulation_.cull_within(t0_s, t1_s); }
   void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const override;
 
@@ -47,7 +47,7 @@ class ModelSource final : public SimulatedSource {
 class ReferenceSource final : public SimulatedSource {
  public:
   ReferenceSource(const Scene& scene, std::uint64_t seed) : reference_(scene, synth::SynthConfig{}, seed) {}
-  void run_at(double t_scene_s) override { reference_.run_at(t_scene_s); }
+  void run_at(double t_scene_s, int only_sensor) override { reference_.run_at(t_scene_s, only_sensor); }
   void append_targets(std::size_t sensor, std::vector<ComparedTarget>& out) const override;
 
  private:

@@ -94,6 +94,7 @@ std::size_t one_of(const JsonField& field, std::string_view key, const std::arra
 
 constexpr std::array<std::string_view, 2> kTimelineWords{"drive", "snapshots"};
 constexpr std::array<std::string_view, 2> kAmplitudeUnitWords{"snr_db", "relative_db"};
+constexpr std::array<std::string_view, 2> kClockWords{"shared", "per_sensor"};
 
 // A field of a later version than the file declares is refused by name (a reader of that
 // version would ignore nothing, and neither does this one).
@@ -110,16 +111,18 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
   const std::string file = path.string();
   const nlohmann::json json = parse_json_text(read_text_file(path), file);
   const JsonField root(json, file, "");
-  const int version = root.expect_format_versions("rcsim-recording", 1, 3);
+  const int version = root.expect_format_versions("rcsim-recording", 1, 4);
   refuse_newer_fields(root, version, 3, {"timeline", "ego_motion_known"});
-  root.expect_only({"format", "version", "name", "description", "cycle_time_s", "timeline", "ego_motion_known", "sensors",
-                    "objects", "source"});
+  refuse_newer_fields(root, version, 4, {"clock"});
+  root.expect_only({"format", "version", "name", "description", "cycle_time_s", "timeline", "ego_motion_known", "clock",
+                    "sensors", "objects", "source"});
   rec.name = root.string("name");
   if (root.has("description")) rec.description = root.string("description");
   rec.cycle_time_s = root.number_within("cycle_time_s", 0.0, limits::kMaxCycleTime_s, "s");
   require_positive(root, "cycle_time_s", rec.cycle_time_s);
   if (root.has("timeline")) rec.timeline = static_cast<Timeline>(one_of(root, "timeline", kTimelineWords));
   rec.ego_motion_known = root.boolean_or("ego_motion_known", true);
+  if (root.has("clock")) rec.clock = static_cast<Clock>(one_of(root, "clock", kClockWords));
   if (const auto source = root.optional_member("source")) {
     if (!source->json().is_object()) root.fail("source", "must be an object");
     rec.source = source->json();
@@ -127,7 +130,9 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
   for (const JsonField& s : root.array("sensors")) {
     refuse_newer_fields(s, version, 2, {"reports"});
     refuse_newer_fields(s, version, 3, {"amplitude_unit", "range_rate_interval_mps"});
-    s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad", "reports", "amplitude_unit", "range_rate_interval_mps"});
+    refuse_newer_fields(s, version, 4, {"cycle_time_s"});
+    s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad", "reports", "amplitude_unit", "range_rate_interval_mps",
+                   "cycle_time_s"});
     using namespace limits;
     RecordingSensor sensor{s.string("id"), s.string("type"),
                            s.number_within("x_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"),
@@ -152,6 +157,14 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
       const RangeRateInterval interval{bounds[0].json().get<double>(), bounds[1].json().get<double>()};
       if (const auto problem = interval_problem(interval)) s.fail("range_rate_interval_mps", *problem);
       sensor.range_rate_interval_mps = interval;
+    }
+    // A sensor's own cycle time goes with its own clock, and its own clock needs one.
+    if (rec.clock == Clock::per_sensor) {
+      if (!s.has("cycle_time_s")) s.fail("cycle_time_s", "a sensor on its own clock (clock \"per_sensor\") needs its cycle time");
+      sensor.cycle_time_s = s.number_within("cycle_time_s", 0.0, limits::kMaxCycleTime_s, "s");
+      require_positive(s, "cycle_time_s", sensor.cycle_time_s);
+    } else if (s.has("cycle_time_s")) {
+      s.fail("cycle_time_s", "a sensor's own cycle time needs the recording's \"clock\": \"per_sensor\"");
     }
     if (sensor.id.empty()) s.fail("id", "must not be empty");
     if (rec.sensor_index(sensor.id) >= 0) s.fail("id", fmt::format("sensor '{}' is listed twice", sensor.id));
@@ -211,10 +224,13 @@ bool uses_version_3(const Recording& rec) {
 
 std::string header_text(const Recording& rec) {
   nlohmann::ordered_json json;
-  // The lowest version that holds the fields used, so that version 1 and 2 recordings are
-  // rewritten byte for byte as they were: 3 where a version 3 field differs from its default, 2
-  // where a sensor reports detections, else 1.
-  const int version = uses_version_3(rec) ? 3 : !rec.all_sensors_report(ListLevel::tracks) ? 2 : 1;
+  // The lowest version that holds the fields used, so that version 1 to 3 recordings are
+  // rewritten byte for byte as they were: 4 where the sensors run on their own clocks, 3 where a
+  // version 3 field differs from its default, 2 where a sensor reports detections, else 1.
+  const int version = rec.clock == Clock::per_sensor ? 4
+                      : uses_version_3(rec)           ? 3
+                      : !rec.all_sensors_report(ListLevel::tracks) ? 2
+                                                                   : 1;
   json["format"] = "rcsim-recording";
   json["version"] = version;
   json["name"] = rec.name;
@@ -224,6 +240,7 @@ std::string header_text(const Recording& rec) {
     json["timeline"] = std::string(kTimelineWords[static_cast<std::size_t>(rec.timeline)]);
     json["ego_motion_known"] = rec.ego_motion_known;
   }
+  if (version >= 4) json["clock"] = std::string(kClockWords[static_cast<std::size_t>(rec.clock)]);
   json["sensors"] = nlohmann::ordered_json::array();
   for (const auto& s : rec.sensors) {
     json["sensors"].push_back({{"id", s.id}, {"type", s.type}, {"x_m", s.x_m}, {"y_m", s.y_m}, {"yaw_rad", s.yaw_rad}});
@@ -235,6 +252,7 @@ std::string header_text(const Recording& rec) {
         sensor["range_rate_interval_mps"] = {s.range_rate_interval_mps->min_mps, s.range_rate_interval_mps->max_mps};
       }
     }
+    if (rec.clock == Clock::per_sensor) sensor["cycle_time_s"] = s.cycle_time_s;
   }
   json["objects"] = nlohmann::ordered_json::array();
   for (const auto& o : rec.objects) {
@@ -249,13 +267,48 @@ std::string header_text(const Recording& rec) {
 
 std::vector<EgoSample> read_ego_log(const fs::path& path) {
   std::vector<EgoSample> rows;
-  EgoRowReader reader(path, 0.0);
+  EgoRowReader reader(path, EgoLogSpacing{});
   for (EgoSample s; reader.next(s);) rows.push_back(s);
   return rows;
 }
 
 bool Recording::all_sensors_report(ListLevel level) const {
   return std::all_of(sensors.begin(), sensors.end(), [&](const RecordingSensor& s) { return s.reports == level; });
+}
+
+int Recording::cycle_count() const {
+  const std::size_t rows = clock == Clock::per_sensor ? cycles.size() : ego.size();
+  return rows == 0 ? streamed_cycles : static_cast<int>(rows);
+}
+
+double Recording::cycle_t_s(int k) const {
+  return clock == Clock::per_sensor ? cycles.at(static_cast<std::size_t>(k)).t_s : ego.at(static_cast<std::size_t>(k)).t_s;
+}
+
+int Recording::cycle_sensor(int k) const {
+  return clock == Clock::per_sensor ? cycles.at(static_cast<std::size_t>(k)).sensor : -1;
+}
+
+EgoSample Recording::ego_at_cycle(int k) const {
+  if (clock == Clock::shared) return ego.at(static_cast<std::size_t>(k));
+  const double t_s = cycle_t_s(k);
+  const auto hi = std::lower_bound(ego.begin(), ego.end(), t_s, [](const EgoSample& e, double t) { return e.t_s < t; });
+  if (hi == ego.begin() || hi == ego.end()) {  // within the margin beyond the log's ends: its end row
+    EgoSample end = hi == ego.begin() ? ego.front() : ego.back();
+    end.t_s = t_s;
+    return end;
+  }
+  return interpolate_ego(*(hi - 1), *hi, t_s);
+}
+
+double Recording::sensor_cycle_time_s(std::size_t sensor) const {
+  const double own_s = sensors.at(sensor).cycle_time_s;
+  return clock == Clock::per_sensor && own_s > 0.0 ? own_s : cycle_time_s;
+}
+
+long long Recording::sensor_cycle_count() const {
+  const long long count = cycle_count();
+  return clock == Clock::per_sensor ? count : count * static_cast<long long>(sensors.size());
 }
 
 int Recording::sensor_index(const std::string& id) const {
@@ -294,11 +347,14 @@ Recording read_recording_header(const fs::path& dir) {
   return rec;
 }
 
-std::uint64_t recording_checksum(const fs::path& dir) {
+std::uint64_t recording_checksum(const fs::path& dir) { return recording_checksum(dir, read_recording_header(dir).clock); }
+
+std::uint64_t recording_checksum(const fs::path& dir, Clock clock) {
   std::uint64_t hash = fnv1a64("rcsim-recording/1");
   for (const char* name : {"recording.json", "ego.csv", "objects.csv", "targets.csv"}) {
     hash = fnv1a64_file(dir / name, hash);
   }
+  if (clock == Clock::per_sensor) hash = fnv1a64_file(dir / "cycles.csv", hash);
   return hash;
 }
 
@@ -307,11 +363,21 @@ Recording read_recording(const fs::path& dir) {
   Recording rec = stream.header();
   rec.ego.reserve(static_cast<std::size_t>(rec.cycle_count()));
   for (EgoSample s; stream.ego().next(s);) rec.ego.push_back(s);
+  if (CycleRowReader* cycles = stream.cycles()) {
+    rec.cycles.reserve(static_cast<std::size_t>(rec.cycle_count()));
+    for (SensorCycle c; cycles->next(c);) {
+      cycles->check_within_ego_log(rec.ego.front().t_s, rec.ego.back().t_s);
+      rec.cycles.push_back(c);
+    }
+    cycles->finish();
+  }
   rec.boxes.assign(rec.objects.size(), {});
   std::size_t object = 0;
   for (AnnotatedBox box; stream.boxes().next(object, box);) rec.boxes[object].push_back(box);
   stream.boxes().finish();
-  for (int k = 0; k < rec.cycle_count(); ++k) stream.targets().read_cycle(k, rec.ego[k].t_s, rec.targets);
+  for (int k = 0; k < rec.cycle_count(); ++k) {
+    stream.targets().read_cycle(k, rec.cycle_t_s(k), rec.cycle_sensor(k), rec.targets);
+  }
   stream.targets().finish();
   rec.streamed_cycles = 0;  // the rows are here
   return rec;
@@ -339,6 +405,13 @@ void check_writable(const Recording& rec) {
       throw std::invalid_argument(fmt::format("the id '{}' holds {}: a recording's ids are one line", id, *bad));
     }
   }
+  // Sensors on their own clocks: each with its cycle time, cycles listed.
+  if (rec.clock == Clock::per_sensor) {
+    for (const auto& s : rec.sensors) {
+      if (!(s.cycle_time_s > 0.0)) throw std::invalid_argument(fmt::format("sensor '{}' on its own clock has no cycle time", s.id));
+    }
+    if (rec.cycles.empty()) throw std::invalid_argument("sensors on their own clocks: no cycles listed");
+  }
   // Version 3's fields as the reader takes them.
   for (const auto& s : rec.sensors) {
     if (!s.range_rate_interval_mps) continue;
@@ -362,6 +435,14 @@ std::string ego_csv(const Recording& rec) {
                    e.yaw_rad, e.speed_mps, e.yaw_rate_radps);
   }
   return ego;
+}
+
+std::string cycles_csv(const Recording& rec) {
+  std::string cycles = "t_s,sensor\n";
+  for (const auto& c : rec.cycles) {
+    fmt::format_to(std::back_inserter(cycles), "{:.6f},{}\n", c.t_s, csv_field(rec.sensors.at(static_cast<std::size_t>(c.sensor)).id));
+  }
+  return cycles;
 }
 
 std::string objects_csv(const Recording& rec) {
@@ -434,6 +515,7 @@ void write_recording(const fs::path& dir, const Recording& rec, const std::map<s
     write_file(temp / "ego.csv", ego_csv(rec));
     write_file(temp / "objects.csv", objects_csv(rec));
     write_file(temp / "targets.csv", targets_csv(rec));
+    if (rec.clock == Clock::per_sensor) write_file(temp / "cycles.csv", cycles_csv(rec));
     for (const auto& [file, content] : extra_files) write_file(temp / fs::path(file).filename(), content);
 
     // A directory cannot be renamed over a non-empty one: move the old one aside first.
@@ -447,6 +529,13 @@ void write_recording(const fs::path& dir, const Recording& rec, const std::map<s
     fs::remove_all(temp, ignored);
     throw;
   }
+}
+
+EgoSample interpolate_ego(const EgoSample& a, const EgoSample& b, double t_s) {
+  const double f = b.t_s > a.t_s ? (t_s - a.t_s) / (b.t_s - a.t_s) : 0.0;
+  const auto lerp = [f](double u, double v) { return u + f * (v - u); };
+  return {t_s, lerp(a.x_m, b.x_m), lerp(a.y_m, b.y_m), wrap_angle_rad(a.yaw_rad + f * angle_difference_rad(b.yaw_rad, a.yaw_rad)),
+          lerp(a.speed_mps, b.speed_mps), lerp(a.yaw_rate_radps, b.yaw_rate_radps)};
 }
 
 EgoSample ego_sample(double t_s, const BodyState& ego) {

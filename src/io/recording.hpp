@@ -1,7 +1,9 @@
 #pragma once
-// A recorded measurement campaign (`rcsim-recording` v1 to v3, schemas/recording.md): a directory with
-// recording.json, ego.csv (one row per sensor cycle), objects.csv (annotated boxes) and
-// targets.csv (what the sensors reported). Read once, validated, then read-only.
+// A recorded measurement campaign (`rcsim-recording` v1 to v4, schemas/recording.md): a directory with
+// recording.json, ego.csv (one row per sensor cycle, or an ego log at its own rate where the
+// sensors run on their own clocks), objects.csv (annotated boxes), targets.csv (what the sensors
+// reported) and, for sensors on their own clocks (v4), cycles.csv (every sensor cycle's time).
+// Read once, validated, then read-only.
 #include <cstdint>
 #include <limits>
 #include <filesystem>
@@ -28,6 +30,18 @@ struct RangeRateInterval {
 // carried from one cycle to the next, and `t_s` only orders them).
 enum class Timeline { drive, snapshots };
 
+// Whose clock the cycles follow (version 4): one cycle clock for every sensor, whose cycles are
+// ego.csv's rows (versions 1 to 3), or each sensor on its own clock, its cycles listed in
+// cycles.csv and the ego log at a rate of its own, interpolated to them.
+enum class Clock { shared, per_sensor };
+
+// A sensor cycle interpolates the ego log within its span and at most this far beyond its first or
+// last row (the ego's state there is extrapolated from that row by its speed and yaw rate).
+inline constexpr double kEgoExtrapolationMargin_s = 0.1;
+// An ego log of sensors on their own clocks has rows at most this far apart (interpolation bridges
+// no longer hole).
+inline constexpr double kMaxEgoLogStep_s = 1.0;
+
 struct RecordingSensor {
   std::string id;
   std::string type;  // built-in sensor configuration name or a path relative to the recording
@@ -35,6 +49,7 @@ struct RecordingSensor {
   ListLevel reports = ListLevel::tracks;  // detections or tracks (version 2; version 1 recordings report tracks); replay compares at this level by default
   AmplitudeUnit amplitude_unit = AmplitudeUnit::snr_db;     // version 3
   std::optional<RangeRateInterval> range_rate_interval_mps = std::nullopt;  // version 3: none, unambiguous
+  double cycle_time_s = 0.0;  // version 4, sensors on their own clocks: this sensor's nominal cycle time (0: the recording's)
 };
 
 struct RecordingObject {
@@ -55,10 +70,20 @@ struct EgoSample {
 // writer of a recording from a scene (rcsim synth, model-made recordings) takes it from here.
 EgoSample ego_sample(double t_s, const BodyState& ego);
 
+// The ego between two rows a and b (a.t_s <= t_s <= b.t_s) at t_s: linear in position, speed and
+// yaw rate, the yaw along the shorter arc.
+EgoSample interpolate_ego(const EgoSample& a, const EgoSample& b, double t_s);
+
 // One objects.csv row: an annotated box centre in the world frame.
 struct AnnotatedBox {
   double t_s = 0.0, x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, speed_mps = 0.0;
   int line = 0;  // line in objects.csv, for messages
+};
+
+// One cycles.csv row (version 4, sensors on their own clocks): row k is cycle k, one sensor's cycle.
+struct SensorCycle {
+  double t_s = 0.0;
+  int sensor = 0;  // index into Recording::sensors
 };
 
 // One targets.csv row.
@@ -82,17 +107,29 @@ struct Recording {
   // Version 3: false where the dataset holds no ego motion (ego.csv's speed and yaw rate are 0
   // placeholders); replay then neither compares radial speeds nor classes targets by them.
   bool ego_motion_known = true;
+  Clock clock = Clock::shared;           // version 4
   std::vector<RecordingSensor> sensors;
   std::vector<RecordingObject> objects;
   nlohmann::json source = nlohmann::json::object();  // free-form provenance (generator, seed, ...)
-  std::vector<EgoSample> ego;                           // one per cycle
+  std::vector<EgoSample> ego;                           // one per cycle (shared clock), else the ego log
+  std::vector<SensorCycle> cycles;                      // per_sensor clock: every sensor cycle, in time order
   std::vector<std::vector<AnnotatedBox>> boxes;         // per object, time-ordered
   std::vector<RecordedTarget> targets;                  // in file order (cycle-ordered)
   std::uint64_t checksum = 0;                           // FNV-1a 64 over the four files
   // A streamed recording (recording_stream.hpp) holds no rows: its cycle count, from the header pass.
   int streamed_cycles = 0;
 
-  int cycle_count() const { return ego.empty() ? streamed_cycles : static_cast<int>(ego.size()); }
+  int cycle_count() const;
+  // Cycle k's time and sensor (-1: every sensor fires in it, a shared clock); rows in memory only.
+  double cycle_t_s(int k) const;
+  int cycle_sensor(int k) const;
+  // The ego's row at cycle k: ego.csv's row k (shared clock) or the ego log interpolated to the
+  // cycle's time (per_sensor: linear, the yaw along the shorter way).
+  EgoSample ego_at_cycle(int k) const;
+  // The sensor's nominal cycle time: its own (per_sensor clock) or the recording's.
+  double sensor_cycle_time_s(std::size_t sensor) const;
+  // The sensors' cycles in all: cycles × sensors on a shared clock, the cycles listed on their own.
+  long long sensor_cycle_count() const;
   bool all_sensors_report(ListLevel level) const;
   int sensor_index(const std::string& id) const;  // -1 if unknown
 };

@@ -70,9 +70,9 @@ bool EgoRowReader::DegreeYawCheck::add(const EgoSample& previous, const EgoSampl
   return turning >= 5 && 2 * degree_like > turning;
 }
 
-EgoRowReader::EgoRowReader(const fs::path& path, double cycle_time_s)
+EgoRowReader::EgoRowReader(const fs::path& path, EgoLogSpacing spacing)
     : csv_(path.string(), {"t_s", "x_m", "y_m", "yaw_rad", "speed_mps", "yaw_rate_radps"}),
-      cycle_time_s_(cycle_time_s),
+      spacing_(spacing),
       t_(csv_.column("t_s")),
       x_(csv_.column("x_m")),
       y_(csv_.column("y_m")),
@@ -93,10 +93,15 @@ bool EgoRowReader::next(EgoSample& s) {
     csv_.fail(t_, fmt::format("time {} s does not follow the previous row's {} s (times must increase)", s.t_s,
                               previous_->t_s));
   }
-  if (cycle_time_s_ > 0.0 && previous_ && s.t_s - previous_->t_s > 1.5 * cycle_time_s_) {
+  if (spacing_.cycle_time_s > 0.0 && previous_ && s.t_s - previous_->t_s > 1.5 * spacing_.cycle_time_s) {
     csv_.fail(t_, fmt::format("gap of {:.6f} s after the previous row (cycle time {} s): the ego log must have "
                               "one row per sensor cycle",
-                              s.t_s - previous_->t_s, cycle_time_s_));
+                              s.t_s - previous_->t_s, spacing_.cycle_time_s));
+  }
+  if (spacing_.max_step_s > 0.0 && previous_ && s.t_s - previous_->t_s > spacing_.max_step_s) {
+    csv_.fail(t_, fmt::format("gap of {:.6f} s after the previous row: the ego log is interpolated to the sensors' "
+                              "cycles over at most {} s",
+                              s.t_s - previous_->t_s, spacing_.max_step_s));
   }
   if (!previous_ && std::abs(s.yaw_rad) > 2.0 * std::numbers::pi) {
     csv_.fail(yaw_, "yaw beyond ±2π in the first row: is it in degrees?");
@@ -167,6 +172,49 @@ void BoxRowReader::finish() const {
   }
 }
 
+CycleRowReader::CycleRowReader(const fs::path& path, const Recording& header)
+    : csv_(path.string(), {"t_s", "sensor"}),
+      header_(header),
+      t_(csv_.column("t_s")),
+      s_(csv_.column("sensor")),
+      last_of_sensor_s_(header.sensors.size(), -std::numeric_limits<double>::infinity()),
+      line_of_sensor_(header.sensors.size(), 0) {}
+
+bool CycleRowReader::next(SensorCycle& cycle) {
+  if (!csv_.next()) return false;
+  cycle.t_s = number_within(csv_, t_, limits::kMaxTime_s, "s");
+  cycle.sensor = header_.sensor_index(csv_.text(s_));
+  if (cycle.sensor < 0) csv_.fail(s_, fmt::format("sensor '{}' is not listed in recording.json", csv_.text(s_)));
+  if (cycle.t_s < last_t_s_) {
+    csv_.fail(t_, fmt::format("time {} s precedes the previous row's {} s: rows must be in time order", cycle.t_s, last_t_s_));
+  }
+  const auto s = static_cast<std::size_t>(cycle.sensor);
+  if (cycle.t_s <= last_of_sensor_s_[s]) {
+    csv_.fail(t_, fmt::format("sensor '{}' has two cycles at {} s (line {}): a sensor's cycle times strictly increase",
+                              header_.sensors[s].id, cycle.t_s, line_of_sensor_[s]));
+  }
+  last_t_s_ = last_of_sensor_s_[s] = cycle.t_s;
+  line_of_sensor_[s] = csv_.line();
+  return true;
+}
+
+void CycleRowReader::check_within_ego_log(double first_s, double last_s) const {
+  if (last_t_s_ < first_s - kEgoExtrapolationMargin_s || last_t_s_ > last_s + kEgoExtrapolationMargin_s) {
+    csv_.fail(t_, fmt::format("cycle at {} s lies beyond the ego log's {} to {} s by more than {} s (the ego is "
+                              "interpolated, not extrapolated)",
+                              last_t_s_, first_s, last_s, kEgoExtrapolationMargin_s));
+  }
+}
+
+void CycleRowReader::finish() const {
+  if (std::isinf(last_t_s_)) csv_.fail_line("no cycles: sensors on their own clocks list every cycle here");
+  for (std::size_t s = 0; s < header_.sensors.size(); ++s) {
+    if (line_of_sensor_[s] == 0) {
+      throw InputError(csv_.path(), "", fmt::format("sensor '{}' of recording.json has no cycles", header_.sensors[s].id));
+    }
+  }
+}
+
 TargetRowReader::TargetRowReader(const fs::path& path, const Recording& header, int cycle_count)
     : csv_(path.string(), {"t_s", "cycle", "sensor", "range_m", "azimuth_rad", "range_rate_mps", "amplitude_db"}),
       header_(header),
@@ -192,7 +240,8 @@ bool TargetRowReader::read_row(Row& row) {
   target.t_s = csv_.number(t_);
   const long long cycle = csv_.integer(k_);
   if (cycle < 0 || cycle >= cycle_count_) {
-    csv_.fail(k_, fmt::format("cycle {} is outside the ego log's cycles 0..{}", cycle, cycle_count_ - 1));
+    csv_.fail(k_, fmt::format("cycle {} is outside {}'s cycles 0..{}", cycle,
+                              header_.clock == Clock::per_sensor ? "cycles.csv" : "the ego log", cycle_count_ - 1));
   }
   target.cycle = static_cast<int>(cycle);
   if (target.cycle < previous_cycle_) {
@@ -233,12 +282,19 @@ bool TargetRowReader::next_pending() {
   return pending_.has_value();
 }
 
-void TargetRowReader::read_cycle(int cycle, double t_s, std::vector<RecordedTarget>& out) {
+void TargetRowReader::read_cycle(int cycle, double t_s, int sensor, std::vector<RecordedTarget>& out) {
+  const char* clock_file = header_.clock == Clock::per_sensor ? "cycles.csv" : "ego.csv";
   while (next_pending() && pending_->target.cycle == cycle) {
     if (std::abs(pending_->target.t_s - t_s) > kRecordingTimeTolerance_s) {
       throw InputError(csv_.path(), fmt::format("line {}, column 't_s'", pending_->line),
-                       fmt::format("time {} s differs from cycle {}'s time {} s in ego.csv", pending_->target.t_s,
-                                   cycle, t_s));
+                       fmt::format("time {} s differs from cycle {}'s time {} s in {}", pending_->target.t_s,
+                                   cycle, t_s, clock_file));
+    }
+    if (sensor >= 0 && pending_->target.sensor != sensor) {
+      throw InputError(csv_.path(), fmt::format("line {}, column 'sensor'", pending_->line),
+                       fmt::format("sensor '{}' in cycle {}, which cycles.csv gives to sensor '{}'",
+                                   header_.sensors[static_cast<std::size_t>(pending_->target.sensor)].id, cycle,
+                                   header_.sensors[static_cast<std::size_t>(sensor)].id));
     }
     out.push_back(pending_->target);
     pending_.reset();
@@ -256,15 +312,19 @@ RecordingStream::RecordingStream(const fs::path& dir)
     : dir_(dir),
       header_([&] {
         Recording header = read_recording_header(dir);
-        header.checksum = recording_checksum(dir);
-        header.streamed_cycles = count_data_rows(dir / "ego.csv");
+        header.checksum = recording_checksum(dir, header.clock);
+        const bool own_clocks = header.clock == Clock::per_sensor;
+        header.streamed_cycles = count_data_rows(dir / (own_clocks ? "cycles.csv" : "ego.csv"));
         return header;
       }()),
-      ego_(dir / "ego.csv", header_.cycle_time_s),
+      ego_(dir / "ego.csv", header_.clock == Clock::per_sensor ? EgoLogSpacing{0.0, kMaxEgoLogStep_s}
+                                                               : EgoLogSpacing{header_.cycle_time_s, 0.0}),
       boxes_(dir / "objects.csv", header_.objects),
       targets_(dir / "targets.csv", header_, header_.cycle_count()) {
+  if (header_.clock == Clock::per_sensor) cycles_.emplace(dir / "cycles.csv", header_);
   // After the readers: they refuse a device or a pipe before anything reads to its end.
   for (const char* file : {"ego.csv", "objects.csv", "targets.csv"}) check_ends_with_line_end(dir / file);
+  if (cycles_) check_ends_with_line_end(dir / "cycles.csv");
 }
 
 }  // namespace rcsim

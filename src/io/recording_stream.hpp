@@ -20,10 +20,17 @@ namespace rcsim {
 // Times in a recording agree when they differ by less than this (files carry 6 decimals).
 inline constexpr double kRecordingTimeTolerance_s = 2e-6;
 
-// ego.csv's (or an ego log's) rows; with cycle_time_s > 0, one row per sensor cycle.
+// What an ego log's spacing must be: one row per sensor cycle (a shared clock: no step above 1.5
+// cycle times), rows at most max_step_s apart (an ego log of sensors on their own clocks), or any.
+struct EgoLogSpacing {
+  double cycle_time_s = 0.0;  // > 0: one row per cycle of this nominal length
+  double max_step_s = 0.0;    // > 0: no step longer
+};
+
+// ego.csv's (or an ego log's) rows, spaced as `spacing` says.
 class EgoRowReader {
  public:
-  EgoRowReader(const std::filesystem::path& path, double cycle_time_s);
+  EgoRowReader(const std::filesystem::path& path, EgoLogSpacing spacing);
   bool next(EgoSample& sample);  // false after the last row (a file with no rows is refused)
 
  private:
@@ -35,7 +42,7 @@ class EgoRowReader {
     bool add(const EgoSample& previous, const EgoSample& row);
   };
   CsvReader csv_;
-  double cycle_time_s_;
+  EgoLogSpacing spacing_;
   int t_, x_, y_, yaw_, v_, w_;
   DegreeYawCheck degree_check_;
   std::optional<EgoSample> previous_;
@@ -66,13 +73,35 @@ class BoxRowReader {
   ReadAhead<Row> ahead_;  // last: its thread starts once the rest is built
 };
 
+// cycles.csv's rows (version 4, sensors on their own clocks): row k is cycle k, `t_s` and
+// `sensor`; rows in time order, each sensor's times strictly increasing, every sensor with a cycle
+// (checked by finish()).
+class CycleRowReader {
+ public:
+  CycleRowReader(const std::filesystem::path& path, const Recording& header);
+  bool next(SensorCycle& cycle);
+  // Refuses the last row read when its time lies beyond the ego log's [first_s, last_s] by more
+  // than kEgoExtrapolationMargin_s.
+  void check_within_ego_log(double first_s, double last_s) const;
+  void finish() const;
+
+ private:
+  CsvReader csv_;
+  const Recording& header_;
+  int t_, s_;
+  double last_t_s_ = -std::numeric_limits<double>::infinity();
+  std::vector<double> last_of_sensor_s_;
+  std::vector<int> line_of_sensor_;
+};
+
 // targets.csv's rows, one cycle at a time, cycles in order; parsed and checked ahead on a thread
 // of their own.
 class TargetRowReader {
  public:
   TargetRowReader(const std::filesystem::path& path, const Recording& header, int cycle_count);
-  // Appends the rows of `cycle` (recorded at ego time t_s) to `out`; cycles asked for in order.
-  void read_cycle(int cycle, double t_s, std::vector<RecordedTarget>& out);
+  // Appends the rows of `cycle` (recorded at time t_s; by `sensor` alone, or -1: by every sensor)
+  // to `out`; cycles asked for in order.
+  void read_cycle(int cycle, double t_s, int sensor, std::vector<RecordedTarget>& out);
   void finish();  // refuses rows left over (cycles beyond the ego log)
 
  private:
@@ -102,6 +131,7 @@ class RecordingStream {
   EgoRowReader& ego() { return ego_; }
   BoxRowReader& boxes() { return boxes_; }
   TargetRowReader& targets() { return targets_; }
+  CycleRowReader* cycles() { return cycles_ ? &*cycles_ : nullptr; }  // sensors on their own clocks only
   std::string boxes_path() const { return (dir_ / "objects.csv").string(); }
 
  private:
@@ -110,12 +140,15 @@ class RecordingStream {
   EgoRowReader ego_;
   BoxRowReader boxes_;
   TargetRowReader targets_;
+  std::optional<CycleRowReader> cycles_;
 };
 
 // Reads recording.json alone (no rows, checksum 0).
 Recording read_recording_header(const std::filesystem::path& dir);
 
-// FNV-1a 64 over the four files (schemas/recording.md), read in a fixed buffer.
+// FNV-1a 64 over the four files, and cycles.csv where the sensors run on their own clocks
+// (schemas/recording.md), read in a fixed buffer; the first form reads the clock off recording.json.
 std::uint64_t recording_checksum(const std::filesystem::path& dir);
+std::uint64_t recording_checksum(const std::filesystem::path& dir, Clock clock);
 
 }  // namespace rcsim

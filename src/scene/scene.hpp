@@ -21,6 +21,7 @@ struct MountedSensor {
   std::string id;
   SensorConfig config;
   Pose2 X_VS;  // sensor pose in the ego vehicle frame
+  double cycle_time_s = 0.0;  // a sensor on its own clock (a replayed recording v4): its cycle time; 0: the scene's
 };
 
 struct TimeInterval {
@@ -57,6 +58,10 @@ struct Scene {
   // Cycles k = 0..n-1 at t = k * cycle_time_s, the last one at or before duration_s.
   int cycle_count() const;
   double cycle_time_at(int cycle) const { return cycle * cycle_time_s; }
+  // Sensor i's cycle time: its own (on its own clock) or the scene's.
+  double sensor_cycle_time_s(std::size_t i) const {
+    return sensors.at(i).cycle_time_s > 0.0 ? sensors[i].cycle_time_s : cycle_time_s;
+  }
 };
 
 // A sensor type or model name that names a file (contains '/' or ends in .json), and its path:

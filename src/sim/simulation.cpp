@@ -10,7 +10,7 @@ Simulation::Simulation(const Scene& scene, const SimulationOptions& options) : s
   for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
     models_.emplace_back(scene.sensors[i], scene.effects, options, scene.objects);
     // Each sensor draws from its own stream of the seed: adding a sensor leaves the others' draws alone.
-    states_.emplace_back(models_.back(), reflectors, scene.cycle_time_s, options.seed, i);
+    states_.emplace_back(models_.back(), reflectors, scene.sensor_cycle_time_s(i), options.seed, i);
   }
   culling_ = options.culling && !models_.empty();
   if (culling_) scene_culling_ = SceneCulling(scene, models_.front().culling.radius_m);
@@ -26,7 +26,7 @@ void Simulation::cull_within(double t0_s, double t1_s) {
 
 void Simulation::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }
 
-void Simulation::run_at(double t_s) {
+void Simulation::run_at(double t_s, int only_sensor) {
   snapshot_.t_s = t_s;
   snapshot_.ego = scene_.ego.state_at(t_s);
   // The scene's broad phase: only objects that are present and within some sensor's reach are
@@ -41,7 +41,9 @@ void Simulation::run_at(double t_s) {
     snapshot_.visited[i] = 1;
     snapshot_.objects[i] = scene_.objects[i].trajectory.state_at(t_s);
   }
-  for (std::size_t i = 0; i < models_.size(); ++i) run_sensor_cycle(models_[i], objects_, snapshot_, states_[i]);
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    if (only_sensor < 0 || static_cast<std::size_t>(only_sensor) == i) run_sensor_cycle(models_[i], objects_, snapshot_, states_[i]);
+  }
 }
 
 BodyState Simulation::object_state(std::size_t o) const {

@@ -19,8 +19,9 @@ class Simulation {
   int cycle_count() const { return scene_.cycle_count(); }
   // Computes the scene at cycle k and runs every sensor's cycle; cycles must be run in order.
   void run_cycle(int cycle);
-  // The same at an arbitrary time (replays use the recorded cycle times).
-  void run_at(double t_s);
+  // The same at an arbitrary time (replays use the recorded cycle times); only_sensor >= 0 runs
+  // that sensor's cycle alone (sensors on their own clocks), the others keep their last one.
+  void run_at(double t_s, int only_sensor = -1);
 
   // The last cycle's scene; object states only of the visited objects (object_state has all).
   const SceneSnapshot& snapshot() const { return snapshot_; }

@@ -47,7 +47,7 @@ ReferenceSimulator::ReferenceSimulator(const Scene& scene, const SynthConfig& de
         bodies.push_back(make_body(object.model_name, object.model.length_m, object.model.width_m, lambda_m));
       }
     }
-    trackers_.emplace_back(config.tracker, scene_.cycle_time_s);
+    trackers_.emplace_back(config.tracker, scene_.sensor_cycle_time_s(s));
     noise_rngs_.emplace_back(seed_, kNoiseStream + s);
   }
   last_.resize(scene_.sensors.size());
@@ -81,8 +81,9 @@ std::vector<Echo> ReferenceSimulator::echoes_at(std::size_t sensor, double t_s) 
 
 void ReferenceSimulator::run_cycle(int cycle) { run_at(scene_.cycle_time_at(cycle)); }
 
-void ReferenceSimulator::run_at(double t_s) {
+void ReferenceSimulator::run_at(double t_s, int only_sensor) {
   for (std::size_t s = 0; s < scene_.sensors.size(); ++s) {
+    if (only_sensor >= 0 && static_cast<std::size_t>(only_sensor) != s) continue;
     SensorCycle& out = last_[s];
     out.echoes = echoes_at(s, t_s);                                  // scene => echoes
     out.detections = chains_[s].process(out.echoes, noise_rngs_[s]);  // echoes => detections

@@ -39,7 +39,7 @@ class ReferenceSimulator {
   // Runs cycle k (cycles must be run in order: the trackers carry state).
   void run_cycle(int cycle);
   // The same at an arbitrary time (replays use the recorded cycle times); times increasing.
-  void run_at(double t_s);
+  void run_at(double t_s, int only_sensor = -1);  // only_sensor >= 0: that sensor's cycle alone
   // The state of one sensor after the last run_cycle.
   const SensorCycle& sensor_cycle(std::size_t sensor) const { return last_[sensor]; }
   // The echoes of one sensor at time t (no processing), for tests and the benchmark.

@@ -110,12 +110,12 @@ TEST_F(RecordingStreamFiles, RowsComeInOrderAndTargetsCycleByCycle) {
   EXPECT_FALSE(stream.boxes().next(object, box));
   stream.boxes().finish();
   std::vector<RecordedTarget> targets;
-  stream.targets().read_cycle(0, 0.0, targets);
+  stream.targets().read_cycle(0, 0.0, -1, targets);
   ASSERT_EQ(targets.size(), 2u);
   EXPECT_DOUBLE_EQ(targets[1].range_m, 16.0);
-  stream.targets().read_cycle(1, 0.04, targets);
+  stream.targets().read_cycle(1, 0.04, -1, targets);
   EXPECT_EQ(targets.size(), 2u);  // cycle 1 has none
-  stream.targets().read_cycle(2, 0.08, targets);
+  stream.targets().read_cycle(2, 0.08, -1, targets);
   ASSERT_EQ(targets.size(), 3u);
   EXPECT_EQ(targets[2].cycle, 2);
   EXPECT_EQ(targets[2].id, 1);
@@ -127,8 +127,8 @@ TEST_F(RecordingStreamFiles, TargetsOfACycleSkippedOrNotReadAreRefusedAtFinish) 
   {
     RecordingStream stream(dir);
     std::vector<RecordedTarget> targets;
-    stream.targets().read_cycle(0, 0.0, targets);
-    stream.targets().read_cycle(1, 0.04, targets);
+    stream.targets().read_cycle(0, 0.0, -1, targets);
+    stream.targets().read_cycle(1, 0.04, -1, targets);
     // Stopped before cycle 2: its row (line 4) is left over.
     EXPECT_EQ(refusal_of([&] { stream.targets().finish(); }),
               (dir / "targets.csv").string() + ": line 4, column 'cycle': cycle 2 was not read: cycles must be asked for "
@@ -139,8 +139,8 @@ TEST_F(RecordingStreamFiles, TargetsOfACycleSkippedOrNotReadAreRefusedAtFinish) 
   const fs::path skipped = written();
   RecordingStream stream(skipped);
   std::vector<RecordedTarget> targets;
-  stream.targets().read_cycle(0, 0.0, targets);
-  stream.targets().read_cycle(2, 0.08, targets);  // cycle 1 skipped: its row is not taken for cycle 2
+  stream.targets().read_cycle(0, 0.0, -1, targets);
+  stream.targets().read_cycle(2, 0.08, -1, targets);  // cycle 1 skipped: its row is not taken for cycle 2
   EXPECT_EQ(targets.size(), 2u);
   EXPECT_NE(refusal_of([&] { stream.targets().finish(); }).find("line 4, column 'cycle': cycle 1 was not read"),
             std::string::npos);
@@ -149,13 +149,13 @@ TEST_F(RecordingStreamFiles, TargetsOfACycleSkippedOrNotReadAreRefusedAtFinish) 
 TEST_F(RecordingStreamFiles, AnEgoLogWithoutCycleTimeTakesAnySpacingButNeedsARow) {
   const fs::path log = dir_ / "ego_log.csv";
   std::ofstream(log) << "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n0,0,0,0,0,0\n0.5,1,0,0,2,0\n3.0,6,0,0,2,0\n";
-  EgoRowReader any_spacing(log, 0.0);
+  EgoRowReader any_spacing(log, EgoLogSpacing{});
   int rows = 0;
   for (EgoSample s; any_spacing.next(s);) ++rows;
   EXPECT_EQ(rows, 3);
   // With a cycle time of 0.04 s, 0.5 s is a gap (more than 1.5 cycles).
   EXPECT_EQ(refusal_of([&] {
-              EgoRowReader per_cycle(log, 0.04);
+              EgoRowReader per_cycle(log, EgoLogSpacing{0.04});
               for (EgoSample s; per_cycle.next(s);) {
               }
             }),
@@ -163,7 +163,7 @@ TEST_F(RecordingStreamFiles, AnEgoLogWithoutCycleTimeTakesAnySpacingButNeedsARow
                            "ego log must have one row per sensor cycle");
   std::ofstream(log, std::ios::trunc) << "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
   EXPECT_EQ(refusal_of([&] {
-              EgoRowReader empty(log, 0.0);
+              EgoRowReader empty(log, EgoLogSpacing{});
               EgoSample s;
               empty.next(s);
             }),

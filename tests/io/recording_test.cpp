@@ -114,9 +114,9 @@ TEST_F(RecordingFiles, VersionTwoDeclaresRawDetectionsAndVersionOneStaysReadable
   std::string bad_level = header;
   bad_level.replace(bad_level.find("\"detections\""), 12, "\"plots\"");
   expect_refused("recording.json", bad_level, "plots");
-  std::string v4 = header;
-  v4.replace(v4.find("\"version\": 2"), 12, "\"version\": 4");
-  expect_refused("recording.json", v4, "versions 1 to 3");
+  std::string v5 = header;
+  v5.replace(v5.find("\"version\": 2"), 12, "\"version\": 5");
+  expect_refused("recording.json", v5, "versions 1 to 4");
 }
 
 // Optional per-target columns: RCS, SNR and elevation, written only where given, read back.

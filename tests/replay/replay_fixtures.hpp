@@ -1,6 +1,7 @@
 #pragma once
 // Scenes and model-made recordings for the harness tests.
 #include <filesystem>
+#include <vector>
 
 #include "app/cli/run_rcsim.hpp"
 #include "replay/run/model_recording.hpp"
@@ -38,6 +39,37 @@ inline Scene two_cars_scene(double duration_s = 3.0) {
   add_object(scene, "left", "passenger_car", {sample(0.0, 25.0, 1.6, kPi, 4.0)});
   add_object(scene, "right", "passenger_car", {sample(0.0, 25.0, -1.6, kPi, 4.0)});
   return scene;
+}
+
+// The recording with its sensors on their own clocks (recording v4): sensor s keeps the cycles k
+// with k % stride[s] == phase[s] (its cycle time stride[s] times the shared one), its targets
+// renumbered into the cycles kept; the ego log keeps every ego_stride-th row and the last.
+inline Recording on_own_clocks(const Recording& shared, const std::vector<int>& stride, const std::vector<int>& phase,
+                               int ego_stride) {
+  Recording own = shared;
+  own.clock = Clock::per_sensor;
+  own.cycles.clear();
+  own.targets.clear();
+  own.ego.clear();
+  for (std::size_t s = 0; s < own.sensors.size(); ++s) own.sensors[s].cycle_time_s = shared.cycle_time_s * stride[s];
+  std::size_t cursor = 0;
+  for (int k = 0; k < shared.cycle_count(); ++k) {
+    const EgoSample& e = shared.ego[static_cast<std::size_t>(k)];
+    if (k % ego_stride == 0 || k + 1 == shared.cycle_count()) own.ego.push_back(e);
+    const std::size_t first = cursor;
+    while (cursor < shared.targets.size() && shared.targets[cursor].cycle == k) ++cursor;
+    for (std::size_t s = 0; s < own.sensors.size(); ++s) {
+      if (k % stride[s] != phase[s]) continue;
+      const int cycle = static_cast<int>(own.cycles.size());
+      own.cycles.push_back({e.t_s, static_cast<int>(s)});
+      for (std::size_t i = first; i < cursor; ++i) {
+        if (shared.targets[i].sensor != static_cast<int>(s)) continue;
+        own.targets.push_back(shared.targets[i]);
+        own.targets.back().cycle = cycle;
+      }
+    }
+  }
+  return own;
 }
 
 }  // namespace rcsim::testing

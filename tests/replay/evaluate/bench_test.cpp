@@ -74,7 +74,7 @@ TEST(BenchRun, ReferenceAgainstItselfWithTheSameSeedHasNoError) {
   {
     ReferenceSource source(scene, 11);
     for (int k = 0; k < rec.cycle_count(); ++k) {
-      source.run_at(rec.ego[k].t_s - imported.time_offset_s);
+      source.run_at(rec.ego[k].t_s - imported.time_offset_s, -1);
       for (std::size_t s = 0; s < rec.sensors.size(); ++s) {
         std::vector<ComparedTarget> list;
         source.append_targets(s, list);

@@ -70,11 +70,11 @@ TEST_F(StreamingImportTest, CyclesTargetsAndTheSceneAreTheWholeImportsBitForBit)
   EXPECT_TRUE(stream.recording().targets.empty());  // the header only
   EXPECT_DOUBLE_EQ(stream.imported().time_offset_s, kStart_s);
   EXPECT_NEAR(stream.imported().duration_s, 9.9, 1e-9);  // 99 cycles of 0.1 s
-  int cycle = -1, expected = 0;
+  int cycle = -1, expected = 0, sensor = 0;
   double t_rec_s = 0.0;
   std::vector<RecordedTarget> targets;
   std::size_t targets_seen = 0;
-  while (stream.next_cycle(cycle, t_rec_s, targets)) {
+  while (stream.next_cycle(cycle, t_rec_s, sensor, targets)) {
     ASSERT_EQ(cycle, expected);
     EXPECT_EQ(t_rec_s, whole.ego[static_cast<std::size_t>(cycle)].t_s);
     EXPECT_EQ(targets.size(), cycle == 3 ? 2u : cycle == 50 ? 1u : 0u) << cycle;
@@ -93,7 +93,7 @@ TEST_F(StreamingImportTest, CyclesTargetsAndTheSceneAreTheWholeImportsBitForBit)
   }
   EXPECT_EQ(expected, kCycles);
   EXPECT_EQ(targets_seen, 3u);
-  EXPECT_FALSE(stream.next_cycle(cycle, t_rec_s, targets));  // and stays at the end
+  EXPECT_FALSE(stream.next_cycle(cycle, t_rec_s, sensor, targets));  // and stays at the end
   // Three spans, by hand: [0 - 0.05, 0.9 + 0.05], [2.0 - 0.05, 2.9 + 0.05], [6.0 - 0.05, 6.9 + 0.05].
   const std::vector<TimeInterval>& presence = stream.scene().objects[0].presence;
   ASSERT_EQ(presence.size(), 3u);
@@ -115,10 +115,10 @@ TEST_F(StreamingImportTest, CyclesTargetsAndTheSceneAreTheWholeImportsBitForBit)
 TEST_F(StreamingImportTest, TheWindowStepsFourSecondsAndForgetsWhatLiesASecondBehind) {
   StreamingImport stream(written(gappy_recording()), testing::library(), ImportOptions{});
   EXPECT_FALSE(stream.take_moved_window().has_value());  // nothing replayed yet
-  int cycle = 0;
+  int cycle = 0, sensor = 0;
   double t_rec_s = 0.0;
   std::vector<RecordedTarget> targets;
-  ASSERT_TRUE(stream.next_cycle(cycle, t_rec_s, targets));
+  ASSERT_TRUE(stream.next_cycle(cycle, t_rec_s, sensor, targets));
   const auto first = stream.take_moved_window();
   ASSERT_TRUE(first.has_value());
   EXPECT_DOUBLE_EQ(first->first, 0.0);
@@ -126,10 +126,10 @@ TEST_F(StreamingImportTest, TheWindowStepsFourSecondsAndForgetsWhatLiesASecondBe
   EXPECT_FALSE(stream.take_moved_window().has_value());  // taken once
   // Cycles up to 4.0 s lie in it; cycle 41 (4.1 s) moves it to [4.1, 8.1].
   for (int k = 1; k <= 40; ++k) {
-    ASSERT_TRUE(stream.next_cycle(cycle, t_rec_s, targets));
+    ASSERT_TRUE(stream.next_cycle(cycle, t_rec_s, sensor, targets));
     EXPECT_FALSE(stream.take_moved_window().has_value()) << k;
   }
-  ASSERT_TRUE(stream.next_cycle(cycle, t_rec_s, targets));
+  ASSERT_TRUE(stream.next_cycle(cycle, t_rec_s, sensor, targets));
   EXPECT_EQ(cycle, 41);
   const auto second = stream.take_moved_window();
   ASSERT_TRUE(second.has_value());
@@ -142,7 +142,7 @@ TEST_F(StreamingImportTest, TheWindowStepsFourSecondsAndForgetsWhatLiesASecondBe
   // ... but at the next step, cycle 82 (8.2 s > 8.1 s): 72 of the 100 samples lie before 7.2 s,
   // the ego keeps the last at or before it (7.1 or 7.2 s, as the written times round).
   std::optional<std::pair<double, double>> third;
-  while (!third && stream.next_cycle(cycle, t_rec_s, targets)) third = stream.take_moved_window();
+  while (!third && stream.next_cycle(cycle, t_rec_s, sensor, targets)) third = stream.take_moved_window();
   ASSERT_TRUE(third.has_value());
   EXPECT_EQ(cycle, 82);
   EXPECT_NEAR(third->second, 12.2, 1e-9);
@@ -157,11 +157,11 @@ TEST_F(StreamingImportTest, AnEgoLogWithoutRowsAndTargetsBeyondItAreRefusedNamin
     // Line 5, after the three targets: a row of cycle 100, one beyond the ego log.
     std::ofstream(dir / "targets.csv", std::ios::app) << "110.000000,100,front,30.0000,0.010000,0.0000,10.000\n";
     StreamingImport stream(dir, testing::library(), ImportOptions{});
-    int cycle = 0;
+    int cycle = 0, sensor = 0;
     double t_rec_s = 0.0;
     std::vector<RecordedTarget> targets;
     try {
-      while (stream.next_cycle(cycle, t_rec_s, targets)) {
+      while (stream.next_cycle(cycle, t_rec_s, sensor, targets)) {
       }
       ADD_FAILURE() << "a target beyond the ego log was streamed";
     } catch (const InputError& e) {

@@ -26,11 +26,11 @@ TEST(SimulatedSource, ModelOptionsCompareTracksWithTheGivenSeed) {
 TEST(SimulatedSource, TheModelReportsAfterConfirmation) {
   const Scene scene = pole_ahead();
   ModelSource source(scene, model_options(1, Fidelity::full));
-  source.run_at(0.0);
+  source.run_at(0.0, -1);
   std::vector<ComparedTarget> targets;
   source.append_targets(0, targets);
   EXPECT_TRUE(targets.empty());  // tentative: nothing reported yet (4-hit confirmation, paper III-E)
-  for (int k = 1; k <= 3; ++k) source.run_at(k * scene.cycle_time_s);
+  for (int k = 1; k <= 3; ++k) source.run_at(k * scene.cycle_time_s, -1);
   source.append_targets(0, targets);
   ASSERT_EQ(targets.size(), 1u);
   EXPECT_NEAR(targets[0].range_m, 10.0, 0.3);
@@ -41,7 +41,7 @@ TEST(SimulatedSource, TheReferenceReportsThePole) {
   const Scene scene = pole_ahead();
   ReferenceSource source(scene, 5);
   std::vector<ComparedTarget> targets;
-  for (int k = 0; k <= 4; ++k) source.run_at(k * scene.cycle_time_s);
+  for (int k = 0; k <= 4; ++k) source.run_at(k * scene.cycle_time_s, -1);
   source.append_targets(0, targets);
   ASSERT_FALSE(targets.empty());
   EXPECT_NEAR(targets[0].range_m, 10.0, 0.5);
