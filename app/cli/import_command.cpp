@@ -10,26 +10,48 @@
 #include "io/recording.hpp"
 #include "replay/import/dataset_importer.hpp"
 #include "replay/import/importer.hpp"
+#include "replay/profile/sensor_clocks.hpp"
 
 namespace rcsim::cli {
 
 namespace {
 
+// The recording with each sensor on the clock its static world's shift shows (sensor_clocks.hpp),
+// each clock said in one line.
+Recording on_estimated_clocks(const Recording& keyframed, const std::string& raw_dir) {
+  Recording named = keyframed;
+  named.dir = raw_dir;  // refusals name the dataset
+  const std::vector<replay::profile::SensorClock> clocks = replay::profile::estimate_sensor_clocks(named);
+  for (const auto& c : clocks) {
+    std::cerr << fmt::format("rcsim import: {}: its own clock, period {:.1f} ms ({} of {} steps timed, residual {:.1f} ms RMS, "
+                             "{} skipping frames); keyframes minus frames {:+.1f} to {:+.1f} ms\n",
+                             c.sensor, 1e3 * c.period_s, c.steps_matched, c.steps, 1e3 * c.step_residual_rms_s, c.steps_skipping,
+                             1e3 * c.offset_min_s, 1e3 * c.offset_max_s);
+  }
+  return replay::profile::on_estimated_clocks(keyframed, clocks);
+}
+
 void import_dataset(const std::string& dataset, const std::string& raw_dir, const std::string& output,
-                    const replay::DatasetImportOptions& options) {
+                    const replay::DatasetImportOptions& options, const std::string& sensor_clocks) {
   const replay::DatasetImporter& importer = replay::find_dataset_importer(dataset);
   check_output_directory(std::filesystem::absolute(output).lexically_normal(), "recording.json");  // before the work
-  const replay::DatasetRecording imported = importer.import(raw_dir, options);
+  replay::DatasetRecording imported = importer.import(raw_dir, options);
   for (const auto& warning : imported.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
+  if (sensor_clocks == "estimated") imported.recording = on_estimated_clocks(imported.recording, raw_dir);
   write_recording(output, imported.recording, imported.extra_files);
   const Recording& rec = imported.recording;
-  std::cout << fmt::format("{}: {} cycles, {} sensor{}, {} objects, {} targets; written to {}\n", rec.name,
-                           rec.cycle_count(), rec.sensors.size(), rec.sensors.size() == 1 ? "" : "s",
+  std::cout << fmt::format("{}: {} {}, {} sensor{}, {} objects, {} targets; written to {}\n", rec.name, rec.cycle_count(),
+                           rec.clock == Clock::per_sensor ? "sensor cycles on their own clocks" : "cycles",
+                           rec.sensors.size(), rec.sensors.size() == 1 ? "" : "s",
                            rec.objects.size(), rec.targets.size(), output);
 }
 
 void write_scene_of(const std::string& recording_dir, const std::string& output, const ImportArgs& import) {
   const Recording recording = read_recording(recording_dir);
+  if (recording.clock == Clock::per_sensor) {
+    std::cerr << fmt::format("rcsim: warning: {}: the sensors' own clocks are not part of a scene: it runs every sensor "
+                             "every {} s\n", recording_dir, recording.cycle_time_s);
+  }
   const replay::ImportedScene scene = replay::import_recording(recording, ModelLibrary::builtin(), import_options(import));
   for (const auto& warning : scene.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
   replay::write_scene_file(output, scene);
@@ -58,6 +80,7 @@ void add_import_command(CLI::App& app) {
     std::string dataset;
     std::string ego_log;
     std::string frames;
+    std::string sensor_clocks = "keyframe";
     ImportArgs import;
   };
   auto args = std::make_shared<Args>();
@@ -78,10 +101,16 @@ void add_import_command(CLI::App& app) {
                   "default all (a fit set and a held-out set are two imports)")
       ->type_name("LIST")
       ->needs(from);
+  cmd->add_option("--sensor-clocks", args->sensor_clocks,
+                  "(--from aimotive) keyframe: every radar frame stamped with its keyframe's time, as the dataset gives "
+                  "it; estimated: each radar on its own clock, timed by the static world's shift (recording v4)")
+      ->check(CLI::IsMember({"keyframe", "estimated"}))
+      ->type_name("WORD")
+      ->needs(from);
   add_import_options(*cmd, args->import);
   cmd->callback([args] {
     if (!args->dataset.empty()) {
-      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log, args->frames});
+      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log, args->frames}, args->sensor_clocks);
       return;
     }
     // The old spelling of `rcsim scene`: still works, and says so.

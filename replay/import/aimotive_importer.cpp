@@ -519,7 +519,13 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
                 {"sequence", rec.name},
                 {"first_timestamp_ns", frames.front().timestamp_ns},
                 {"amplitude_db", "power - noise (SNR) of each detection"},
-                {"ego_motion", ego_report}};
+                {"ego_motion", ego_report},
+                // Where the radars' own frame times are not (schemas/recording.md, version 4).
+                {"sensor_clocks",
+                 {{"method", "keyframe: the radar files carry no time stamp of their own (one file per keyframe), so every "
+                             "frame is stamped with its keyframe's time; the radars run at about 18 Hz, unsynchronised, so a "
+                             "frame's true time lies up to half a radar period from it. rcsim import --sensor-clocks "
+                             "estimated times each radar's own clock by the static world's shift"}}}};
   return out;
 }
 

@@ -85,6 +85,7 @@ DetectionPool pool_detections(const std::vector<const Recording*>& recordings) {
     // One pooled cycle per sensor and cycle: every sensor's in each cycle of a shared clock, the
     // one sensor's of a cycle on its own clock.
     const bool own_clocks = r->clock == Clock::per_sensor;
+    std::vector<int> cycles_of_sensor(r->sensors.size(), 0);
     for (int k = 0; k < r->cycle_count(); ++k) {
       for (int s = 0; s < static_cast<int>(r->sensors.size()); ++s) {
         if (own_clocks && r->cycle_sensor(k) != s) continue;
@@ -92,6 +93,7 @@ DetectionPool pool_detections(const std::vector<const Recording*>& recordings) {
         const RecordingSensor& sensor = r->sensors[static_cast<std::size_t>(s)];
         PooledCycle& cycle = pool.cycles.emplace_back();
         cycle.recording = pool.recordings, cycle.sensor = s, cycle.cycle = k, cycle.t_s = e.t_s;
+        cycle.sensor_cycle = cycles_of_sensor[static_cast<std::size_t>(s)]++;
         cycle.X_WV = {e.x_m, e.y_m, e.yaw_rad}, cycle.X_VS = {sensor.x_m, sensor.y_m, sensor.yaw_rad};
       }
     }

@@ -25,6 +25,7 @@ inline double range_rate_of(const PooledDetection& d) { return d.range_rate_mps;
 // One sensor's detections of one cycle.
 struct PooledCycle {
   int recording = 0, sensor = 0, cycle = 0;
+  int sensor_cycle = 0;    // the sensor's own count of its cycles (its clock's: cycle itself on a shared clock)
   double t_s = 0.0;
   Pose2 X_WV;              // the ego in the world at the cycle (ego.csv)
   Pose2 X_VS;              // the sensor's mounting

@@ -1,7 +1,9 @@
 #include "replay/profile/frame_matching.hpp"
 
 #include <cmath>
+#include <map>
 #include <optional>
+#include <utility>
 
 #include "common/quantile.hpp"
 
@@ -53,7 +55,8 @@ std::optional<FramePair> match_frames(const PooledCycle& a, const PooledCycle& b
     dt_i.push_back((p - rotate(turn_rad, pb[index])).dot(v) / v.squaredNorm());
   }
   best_dt_s = median(dt_i);
-  FramePair pair{best_dt_s, {}, {}};
+  FramePair pair;
+  pair.dt_s = best_dt_s;
   for (std::size_t i = 0; i < pa.size(); ++i) {
     std::size_t index = 0;
     const Vec2 q = predicted(pa[i], best_dt_s);
@@ -69,16 +72,43 @@ std::optional<FramePair> match_frames(const PooledCycle& a, const PooledCycle& b
 
 }  // namespace
 
+std::optional<double> fundamental_period(const std::vector<double>& dt_s) {
+  const double shortest = quantile(dt_s, 0.05);
+  for (double t = 1.05 * shortest; t >= 0.2 * shortest; t -= 1e-4) {
+    std::vector<double> errors;
+    for (const double d : dt_s) errors.push_back(std::abs(d / t - std::max(1.0, std::round(d / t))));
+    if (quantile(errors, 0.9) >= 0.1) continue;
+    // The steps' whole multiples k fit at t; the period is their least-squares one, sum(k d) / sum(k^2)
+    // over the steps within a tenth of a period of theirs (the search's t is only the first that fits:
+    // up to 5 % long).
+    double kd = 0.0, kk = 0.0;
+    for (const double d : dt_s) {
+      const double k = std::max(1.0, std::round(d / t));
+      if (std::abs(d / t - k) >= 0.1) continue;
+      kd += k * d, kk += k * k;
+    }
+    return kd / kk;
+  }
+  return std::nullopt;
+}
+
 std::vector<FramePair> match_consecutive_cycles(const DetectionPool& pool, double threshold_db, const ViewLimits& view) {
   std::vector<FramePair> pairs;
   if (pool.snapshots) return pairs;
-  for (std::size_t i = 0; i + 1 < pool.cycles.size(); ++i) {
-    // The same sensor's next cycle: the pool holds a recording's cycles sensor after sensor.
-    for (std::size_t j = i + 1; j < pool.cycles.size(); ++j) {
-      const PooledCycle &a = pool.cycles[i], &b = pool.cycles[j];
-      if (b.recording != a.recording || b.cycle > a.cycle + 1) break;
-      if (b.sensor != a.sensor || b.cycle != a.cycle + 1 || !a.valid_fit || !b.valid_fit) continue;
-      if (auto pair = match_frames(a, b, b.t_s - a.t_s, threshold_db, view)) pairs.push_back(std::move(*pair));
+  // Each cycle with the same sensor's next one (the pool holds them in time order).
+  std::map<std::pair<int, int>, std::size_t> previous;  // (recording, sensor) -> its latest cycle so far
+  for (std::size_t j = 0; j < pool.cycles.size(); ++j) {
+    const PooledCycle& b = pool.cycles[j];
+    const auto key = std::pair{b.recording, b.sensor};
+    const auto found = previous.find(key);
+    const std::size_t i = found == previous.end() ? j : found->second;
+    previous[key] = j;
+    if (i == j) continue;  // the sensor's first cycle
+    const PooledCycle& a = pool.cycles[i];
+    if (b.sensor_cycle != a.sensor_cycle + 1 || !a.valid_fit || !b.valid_fit) continue;
+    if (auto pair = match_frames(a, b, b.t_s - a.t_s, threshold_db, view)) {
+      pair->recording = a.recording, pair->sensor = a.sensor, pair->cycle = a.cycle, pair->next_cycle = b.cycle;
+      pairs.push_back(std::move(*pair));
     }
   }
   return pairs;

@@ -2,6 +2,7 @@
 // Stationary detections of one sensor matched from a cycle to its next after the ego's motion
 // (docs/sensor-profiles.md: "stationary targets matched frame to frame after ego motion"): the
 // time between the cycles, the range noise and the re-detection rate that `profile derive` reads.
+#include <optional>
 #include <vector>
 
 #include "replay/profile/detection_pool.hpp"
@@ -17,6 +18,7 @@ struct Redetection {
 // Two consecutive cycles of one sensor, matched.
 struct FramePair {
   double dt_s = 0.0;  // the time the static world's shift shows
+  int recording = 0, sensor = 0, cycle = 0, next_cycle = 0;  // whose cycles, in the pool's numbering
   std::vector<std::pair<double, double>> range_residuals;  // (range m later - predicted, SNR margin dB later)
   std::vector<Redetection> redetections;
 };
@@ -27,5 +29,9 @@ struct ViewLimits {
 
 // Every pair of consecutive cycles of one sensor with at least 5 matches; none for single frames.
 std::vector<FramePair> match_consecutive_cycles(const DetectionPool& pool, double threshold_db, const ViewLimits& view);
+
+// The largest cycle time of which every measured step is a whole multiple (within 10 % of it), as
+// the least-squares period of the steps that fit it; none where no period fits 90 % of them.
+std::optional<double> fundamental_period(const std::vector<double>& dt_s);
 
 }  // namespace rcsim::replay::profile

@@ -49,27 +49,6 @@ double rms(const std::vector<double>& x) {
   return std::sqrt(s / static_cast<double>(x.size()));
 }
 
-// The largest cycle time of which every measured step is a whole multiple (within 10 % of it).
-std::optional<double> fundamental_period(const std::vector<double>& dt_s) {
-  const double shortest = quantile(dt_s, 0.05);
-  for (double t = 1.05 * shortest; t >= 0.2 * shortest; t -= 1e-4) {
-    std::vector<double> errors;
-    for (const double d : dt_s) errors.push_back(std::abs(d / t - std::max(1.0, std::round(d / t))));
-    if (quantile(errors, 0.9) >= 0.1) continue;
-    // The steps' whole multiples k fit at t; the period is their least-squares one, sum(k d) / sum(k^2)
-    // over the steps within a tenth of a period of theirs (the search's t is only the first that fits:
-    // up to 5 % long).
-    double kd = 0.0, kk = 0.0;
-    for (const double d : dt_s) {
-      const double k = std::max(1.0, std::round(d / t));
-      if (std::abs(d / t - k) >= 0.1) continue;
-      kd += k * d, kk += k * k;
-    }
-    return kd / kk;
-  }
-  return std::nullopt;
-}
-
 // The radial speed's noise: a quantised speed's step / sqrt(12), else the stationary fit's residual
 // near the threshold and (the quietest sensor's) far above it.
 std::vector<DerivedValue> range_rate_noise(const DetectionPool& pool, double threshold_db, std::vector<DerivationFigure>& figures) {

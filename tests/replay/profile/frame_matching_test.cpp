@@ -29,7 +29,7 @@ std::vector<Vec2> posts() {
 // 20 + i dB (stationary); posts with seen[i] false are missed; range_offset_m adds to post 0's range.
 PooledCycle cycle_at(int k, const std::vector<bool>& seen, double range_offset_m = 0.0, int sensor = 0, int recording = 0) {
   PooledCycle c;
-  c.recording = recording, c.sensor = sensor, c.cycle = k, c.t_s = 0.05 * k;
+  c.recording = recording, c.sensor = sensor, c.cycle = k, c.sensor_cycle = k, c.t_s = 0.05 * k;
   c.X_WV = {0.5 * k, 0.0, 0.0};
   c.v_S_S = Vec2(kSpeed_mps, 0.0);
   c.valid_fit = true;
@@ -96,11 +96,33 @@ TEST(ProfileFrameMatching, OnlyPostsWellInsideTheViewCountAsRedetections) {
   EXPECT_EQ(near[0].range_residuals.size(), 12u);  // the residuals take every match
 }
 
+// The largest period of which the steps are whole multiples: 55 ms from steps of one and two
+// periods with 1-ms noise, its least-squares value; none when the steps share no period.
+TEST(ProfileFrameMatching, TheFundamentalPeriodOfStepsSkippingFrames) {
+  const std::vector<double> steps_s{0.055, 0.056, 0.054, 0.110, 0.055, 0.109, 0.055, 0.055, 0.111, 0.054, 0.056};
+  // sum(k d) / sum(k^2) with k = 1, 1, 1, 2, 1, 2, 1, 1, 2, 1, 1: 1.155 / 21.
+  const std::optional<double> period_s = fundamental_period(steps_s);
+  ASSERT_TRUE(period_s.has_value());
+  EXPECT_NEAR(*period_s, 1.155 / 21.0, 1e-12);
+  EXPECT_FALSE(fundamental_period({0.05, 0.0731, 0.0889, 0.0613, 0.0517, 0.0977, 0.0703, 0.0571, 0.0823, 0.0659}).has_value());
+}
+
 TEST(ProfileFrameMatching, WhatIsNeverPaired) {
   // Two sensors, cycles held sensor after sensor: each paired with its own next cycle only.
   DetectionPool two;
   two.cycles = {cycle_at(0, kAll, 0.0, 0), cycle_at(0, kAll, 0.0, 1), cycle_at(1, kAll, 0.0, 0), cycle_at(1, kAll, 0.0, 1)};
   EXPECT_EQ(match_consecutive_cycles(two, kThreshold_db, kView).size(), 2u);
+  // Sensors on their own clocks (recording v4): the cycles numbered across both sensors, each
+  // sensor's next cycle by its own count; the pair says whose cycles it joined.
+  DetectionPool own = two;
+  for (std::size_t i = 0; i < own.cycles.size(); ++i) own.cycles[i].cycle = static_cast<int>(i);
+  const std::vector<FramePair> own_pairs = match_consecutive_cycles(own, kThreshold_db, kView);
+  ASSERT_EQ(own_pairs.size(), 2u);
+  EXPECT_EQ(own_pairs[0].sensor, 0);
+  EXPECT_EQ(own_pairs[0].cycle, 0);
+  EXPECT_EQ(own_pairs[0].next_cycle, 2);
+  EXPECT_EQ(own_pairs[1].next_cycle, 3);
+  EXPECT_NEAR(own_pairs[1].dt_s, 0.05, 1e-9);
   // Single frames: none.
   DetectionPool snapshots = two;
   snapshots.snapshots = true;
