@@ -54,7 +54,7 @@ std::string percent_of(long long part, long long whole) {
 
 // The figures that tell the annotated objects from the unmodelled world, and the latency and
 // merge-artefact figures judged against the scene geometry (docs/metrics.md).
-void print_class_figures(const replay::ReplaySummary& s, std::size_t sensors, bool snapshots) {
+void print_class_figures(const replay::ReplaySummary& s, bool snapshots) {
   long long in_view = 0, detected_recorded = 0, detected_simulated = 0;
   for (const auto& o : s.objects) {
     in_view += o.cycles_in_view;
@@ -65,7 +65,7 @@ void print_class_figures(const replay::ReplaySummary& s, std::size_t sensors, bo
                            "of {} object-sensor cycles in view\n",
                            s.classes.object[0], s.classes.object[1], s.gospa_object_mean_m, s.ospa_object_mean_m,
                            percent_of(detected_recorded, in_view), percent_of(detected_simulated, in_view), in_view);
-  const double sensor_cycles = std::max(1.0, static_cast<double>(s.cycles) * static_cast<double>(sensors));
+  const double sensor_cycles = std::max(1.0, static_cast<double>(s.sensor_cycles));
   std::string distances;
   for (const char* q : {"background_range", "background_azimuth"}) {
     const replay::QuantityDistance* d = find_distance(s, q);
@@ -200,7 +200,7 @@ void print_figures(const Recording& recording, const replay::ReplaySummary& summ
       summary.merge_artefacts_recorded, summary.merge_artefacts_simulated,
       summary.latency_recorded_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_recorded_s),
       summary.latency_simulated_s < 0 ? std::string("-") : fmt::format("{:.3f} s", summary.latency_simulated_s));
-  print_class_figures(summary, recording.sensors.size(), recording.timeline == Timeline::snapshots);
+  print_class_figures(summary, recording.timeline == Timeline::snapshots);
 }
 
 // The verdict of one run among `verdicts`, if it was judged.
@@ -295,8 +295,9 @@ void store_and_print(replay::ReportDatabase& db, ReplayArgs& args, const Recordi
     const auto* verdict = verdict_of(verdicts, writer.run_id());
     std::cout << fmt::format("run {}: {}: {}; stored in {}\n", writer.run_id(), recording.name, verdict_word(verdict),
                              args.db_path);
-    std::cout << fmt::format("  {} cycles, {} sensor{}, {}; {}\n", summary.cycles, recording.sensors.size(),
-                           recording.sensors.size() == 1 ? "" : "s", label.level,
+    std::cout << fmt::format("  {} {}, {} sensor{}, {}; {}\n", summary.cycles,
+                             recording.clock == Clock::per_sensor ? "sensor cycles on their own clocks" : "cycles",
+                             recording.sensors.size(), recording.sensors.size() == 1 ? "" : "s", label.level,
                              label.text());
     if (verdict != nullptr) print_run_verdict(std::cout, *verdicts, *verdict);
     print_figures(recording, summary, replay::compared_level(label.level, label.fidelity));

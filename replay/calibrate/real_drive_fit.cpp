@@ -109,7 +109,7 @@ RealDriveFigures real_drive_figures(const Recording& recording, const ReplaySumm
   f.object_pairs = summary.object_pairs_matched;
   f.residual_range_rms_m = summary.residual_object_range_rms_m;
   f.residual_azimuth_rms_rad = summary.residual_object_azimuth_rms_rad;
-  const double sensor_cycles = std::max(1.0, static_cast<double>(summary.cycles) * static_cast<double>(recording.sensors.size()));
+  const double sensor_cycles = std::max(1.0, static_cast<double>(summary.sensor_cycles));
   f.background_per_cycle_recorded = static_cast<double>(summary.classes.background[0]) / sensor_cycles;
   f.background_per_cycle_simulated = static_cast<double>(summary.classes.background[1]) / sensor_cycles;
   for (const QuantityDistance& d : summary.distances) {

@@ -22,10 +22,20 @@ std::string run_information_table(const RunData& run) {
   out += kv("recording_dir", "recording directory", i.recording_dir, "", true);
   out += kv("checksum", "recording checksum (FNV-1a 64)", i.recording_checksum, "", true);
   out += kv("seed", "seed", std::to_string(i.seed), "");
-  out += kv("cycles", "cycles", std::to_string(i.cycles),
-            fmt::format("x {} sensor{}", run.sensors.size(), run.sensors.size() == 1 ? "" : "s"));
-  out += kv("cycle_time", "cycle time", num(i.cycle_time_s, 4), "s");
-  out += kv("duration", "duration", num(i.cycle_time_s * i.cycles, 1), "s");
+  if (run.on_own_clocks()) {
+    // Each cycle is one sensor's (recording v4): the duration from the cycles' own times.
+    double first_s = INFINITY, last_s = -INFINITY;
+    for (const SensorTotals& t : run.sensor_totals) first_s = std::min(first_s, t.first_t_s), last_s = std::max(last_s, t.last_t_s);
+    out += kv("cycles", "cycles", std::to_string(i.cycles),
+              fmt::format("of {} sensor{}, each on its own clock", run.sensors.size(), run.sensors.size() == 1 ? "" : "s"));
+    out += kv("cycle_time", "annotation step", num(i.cycle_time_s, 4), "s");
+    out += kv("duration", "duration", num(last_s - first_s, 1), "s");
+  } else {
+    out += kv("cycles", "cycles", std::to_string(i.cycles),
+              fmt::format("x {} sensor{}", run.sensors.size(), run.sensors.size() == 1 ? "" : "s"));
+    out += kv("cycle_time", "cycle time", num(i.cycle_time_s, 4), "s");
+    out += kv("duration", "duration", num(i.cycle_time_s * i.cycles, 1), "s");
+  }
   out += kv("level", "compared level", i.level, "", true);
   out += kv("rcsim_version", "rcsim version", i.rcsim_version, "", true);
   out += kv("created", "stored", i.created_utc, "UTC", true);
@@ -279,7 +289,10 @@ std::string comparison_table(const std::vector<RunData>& runs, const std::map<st
     return l.calibration + (l.calibration_checksum.empty() ? "" : " #" + l.calibration_checksum.substr(0, 8));
   });
   row("seed", [](const RunData& r) { return std::to_string(r.info.seed); });
-  row("cycles x sensors", [](const RunData& r) { return fmt::format("{} x {}", r.info.cycles, r.sensors.size()); });
+  row("cycles x sensors", [](const RunData& r) {
+    return r.on_own_clocks() ? fmt::format("{} on their own clocks", r.sensor_cycles())
+                             : fmt::format("{} x {}", r.info.cycles, r.sensors.size());
+  });
   row("targets recorded", summary([](const RunSummary& s) { return std::to_string(s.targets_recorded); }));
   row("targets simulated", summary([](const RunSummary& s) { return std::to_string(s.targets_simulated); }));
   row("targets matched", summary([](const RunSummary& s) { return std::to_string(s.targets_matched); }));

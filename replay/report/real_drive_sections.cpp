@@ -269,7 +269,7 @@ std::string background_section(ReportDatabase& db, const RunData& run) {
     return "<p>This run was stored before report schema v3: it has no background figures. Replay it again.</p>";
   }
   const RunSummary::Classes& k = *run.summary->classes;
-  const double sensor_cycles = std::max<double>(1.0, static_cast<double>(run.summary->cycles * run.sensors.size()));
+  const double sensor_cycles = std::max<double>(1.0, static_cast<double>(run.sensor_cycles()));
   std::string out = R"(<p class="hint">Targets on no annotated box whose radial speed, compensated for the ego )"
                     R"(motion, is near zero: guard rails, signs, the road. The model holds only what the scene holds, )"
                     R"(so a recording's background is what it leaves out.</p>)";

@@ -299,6 +299,7 @@ ReplaySummary compare_cycles(const Recording& rec, const ImportedScene& imported
 
   ReplaySummary summary;
   summary.cycles = rec.cycle_count();
+  summary.sensor_cycles = rec.sensor_cycle_count();
   acc.finish(summary);
   latency.finish(summary);
   objects.finish(summary);

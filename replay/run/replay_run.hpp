@@ -110,6 +110,9 @@ struct QuantityDistance {
 
 struct ReplaySummary {
   int cycles = 0;
+  // The sensors' cycles compared: cycles × sensors on a shared clock, the cycles themselves with
+  // sensors on their own clocks (recording v4, where each cycle is one sensor's).
+  long long sensor_cycles = 0;
   long long targets_recorded = 0, targets_simulated = 0, targets_matched = 0;
   double gospa_mean_m = 0.0, ospa_mean_m = 0.0;
   double gospa_localisation_mean_mp = 0.0, gospa_missed_mean_mp = 0.0, gospa_false_mean_mp = 0.0;

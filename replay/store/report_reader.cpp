@@ -12,6 +12,17 @@
 
 namespace rcsim::replay::report {
 
+std::int64_t RunData::sensor_cycles() const {
+  if (sensor_totals.empty()) return static_cast<std::int64_t>(info.cycles) * static_cast<std::int64_t>(sensors.size());
+  std::int64_t cycles = 0;
+  for (const SensorTotals& t : sensor_totals) cycles += t.cycles;
+  return cycles;
+}
+
+bool RunData::on_own_clocks() const {
+  return sensor_cycles() != static_cast<std::int64_t>(info.cycles) * static_cast<std::int64_t>(sensors.size());
+}
+
 std::string RunData::sensor_label(int sensor) const {
   for (const auto& s : sensors) {
     if (s.sensor == sensor) return s.id;
@@ -224,7 +235,9 @@ void read_sensor_totals(SQLite::Database& db, std::int64_t run_id, RunData& run)
     if (added) {
       t.sensor = c.sensor;
       t.gospa_max_m = c.gospa_m;
+      t.first_t_s = c.t_s;
     }
+    t.last_t_s = c.t_s;
     ++t.cycles;
     t.recorded += c.n_recorded;
     t.simulated += c.n_simulated;

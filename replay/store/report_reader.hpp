@@ -87,6 +87,7 @@ struct SensorTotals {
   std::int64_t cycles = 0, recorded = 0, simulated = 0, assigned = 0;
   double gospa_mean_m = 0.0, gospa_max_m = 0.0, ospa_mean_m = 0.0;
   std::int64_t merge_recorded = 0, merge_simulated = 0, merge_matched = 0;
+  double first_t_s = 0.0, last_t_s = 0.0;  // its first and last cycle's recording time
 };
 
 // One annotated object and sensor over the run (object_figures), with its bins of range.
@@ -116,6 +117,10 @@ struct RunData {
   std::vector<ObjectRangeBin> object_ranges;  // by object, sensor, range
 
   std::string sensor_label(int sensor) const;  // its id, or "#N"
+  // The sensors' cycles compared: counted per sensor where the cycles are stored (sensors on their
+  // own clocks have cycles of one sensor each), else cycles × sensors.
+  std::int64_t sensor_cycles() const;
+  bool on_own_clocks() const;  // each cycle one sensor's (recording v4)
   std::string object_label(int object) const;
 };
 

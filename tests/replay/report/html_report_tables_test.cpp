@@ -43,6 +43,22 @@ TEST(HtmlReportTables, SummaryShowsValuesWithTheirUnits) {
   EXPECT_NE(summary_table(damaged).find("damaged database"), std::string::npos);
 }
 
+// Sensors on their own clocks (recording v4): 250 cycles, 150 the front's and 100 the rear's; the
+// duration from their own first and last times, not cycles × the annotation's step.
+TEST(HtmlReportTables, ARunOnOwnClocksCountsEachSensorsCyclesAndItsOwnDuration) {
+  RunData run = hand_run();
+  run.sensors.push_back({1, "rear", "srr24", Pose2{-1.0, 0.0, kPi}, kPi / 4, 50.0, ""});
+  run.sensor_totals = {{0, 150, 0, 0, 0, 0.0, 0.0, 0.0, 0, 0, 0, 0.013, 8.213}, {1, 100, 0, 0, 0, 0.0, 0.0, 0.0, 0, 0, 0, 0.0, 9.9}};
+  EXPECT_TRUE(run.on_own_clocks());
+  EXPECT_EQ(run.sensor_cycles(), 250);
+  const std::string html = run_information_table(run);
+  EXPECT_NE(html.find("of 2 sensors, each on its own clock"), std::string::npos) << html;
+  EXPECT_NE(html.find(R"(data-key="duration">9.9</td>)"), std::string::npos) << html;
+  EXPECT_NE(html.find("annotation step"), std::string::npos) << html;
+  EXPECT_FALSE(hand_run().on_own_clocks());  // 250 cycles x 1 sensor
+  EXPECT_NE(run_information_table(hand_run()).find("x 1 sensor"), std::string::npos);
+}
+
 TEST(HtmlReportTables, SensorRowsCarryTheirTotalsAndAnglesInDegrees) {
   const std::string html = sensor_table(hand_run());
   EXPECT_NE(html.find("<td>front&amp;left</td>"), std::string::npos) << html;

@@ -55,6 +55,8 @@ TEST_F(ReplayOwnClocks, EverySensorAtEverySharedCycleGivesTheSharedClocksFigures
   EXPECT_EQ(on_own.rows, on_shared.rows);
   EXPECT_EQ(on_own_streamed.rows, on_shared.rows);
   EXPECT_EQ(b.cycles, 2 * a.cycles);  // a cycle is one sensor's now
+  EXPECT_EQ(a.sensor_cycles, 2 * a.cycles);
+  EXPECT_EQ(b.sensor_cycles, a.sensor_cycles);
   for (const ReplaySummary* s : {&b, &c}) {
     EXPECT_EQ(s->targets_recorded, a.targets_recorded);
     EXPECT_EQ(s->targets_simulated, a.targets_simulated);
