@@ -50,6 +50,7 @@ TEST(RealDriveFit, FiguresByHandFromASummary) {
   rec.objects = {{"car", "passenger_car", 4.6, 1.8}, {"van", "passenger_car", 5.0, 2.0}};
   ReplaySummary s;
   s.cycles = 10;
+  s.sensor_cycles = 10;  // one sensor
   // car: 40 recorded, 50 simulated (1.25); van: 30 against 15 (0.5, outside [0.67, 1.5]).
   s.objects = {{0, 0, 10, 8, 9, 40, 50}, {0, 1, 10, 10, 5, 30, 15}};
   s.object_ranges = {{0, 0, 0.0, 20.0, 10, 8, 9}, {0, 1, 0.0, 20.0, 10, 10, 5}};
