@@ -81,6 +81,7 @@ void add_import_command(CLI::App& app) {
     std::string ego_log;
     std::string frames;
     std::string sensor_clocks = "keyframe";
+    std::string mapping;
     ImportArgs import;
   };
   auto args = std::make_shared<Args>();
@@ -101,6 +102,12 @@ void add_import_command(CLI::App& app) {
                   "default all (a fit set and a held-out set are two imports)")
       ->type_name("LIST")
       ->needs(from);
+  cmd->add_option("--mapping", args->mapping,
+                  "(--from mcap) the mapping file: which topic is which radar (with its mounting and profile), the "
+                  "ego motion and the annotated boxes (schemas/mcap-mapping.md)")
+      ->check(CLI::ExistingFile)
+      ->type_name("FILE")
+      ->needs(from);
   cmd->add_option("--sensor-clocks", args->sensor_clocks,
                   "(--from aimotive) keyframe: every radar frame stamped with its keyframe's time, as the dataset gives "
                   "it; estimated: each radar on its own clock, timed by the static world's shift (recording v4)")
@@ -110,7 +117,8 @@ void add_import_command(CLI::App& app) {
   add_import_options(*cmd, args->import);
   cmd->callback([args] {
     if (!args->dataset.empty()) {
-      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log, args->frames}, args->sensor_clocks);
+      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log, args->frames, args->mapping},
+                     args->sensor_clocks);
       return;
     }
     // The old spelling of `rcsim scene`: still works, and says so.

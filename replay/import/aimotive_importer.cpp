@@ -439,6 +439,7 @@ nlohmann::json choose_ego(const fs::path& sequence, const DatasetImportOptions& 
 }  // namespace
 
 DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOptions& options) {
+  if (!options.mapping.empty()) throw InputError("--mapping", "", "maps the topics of an MCAP log (--from mcap)");
   if (!options.frames.empty()) {
     throw InputError("--frames", "",
                      "an aiMotive sequence is one drive and is imported whole: --frames chooses frames of a dataset of "

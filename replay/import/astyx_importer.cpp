@@ -615,6 +615,7 @@ nlohmann::json astyx_source(const std::string& dataset_name, const std::vector<i
 }  // namespace astyx
 
 DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOptions& options) {
+  if (!options.mapping.empty()) throw InputError("--mapping", "", "maps the topics of an MCAP log (--from mcap)");
   if (!options.ego_log.empty()) {
     throw InputError("--ego-log", "",
                      "Astyx frames are single snapshots without a clock: no ego log can cover them (the demo frames' "

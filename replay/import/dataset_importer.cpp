@@ -6,6 +6,7 @@
 #include "common/input_error.hpp"
 #include "replay/import/aimotive_importer.hpp"
 #include "replay/import/astyx_importer.hpp"
+#include "replay/import/mcap_importer.hpp"
 
 namespace rcsim::replay {
 
@@ -13,6 +14,7 @@ const std::vector<DatasetImporter>& dataset_importers() {
   static const std::vector<DatasetImporter> importers{
       {"aimotive", "aiMotive Multimodal Dataset sequence (radar detections, 3D boxes, calibration)", import_aimotive},
       {"astyx", "Astyx HiRes2019 frames (imaging radar point clouds, 3D boxes; snapshots, --frames)", import_astyx},
+      {"mcap", "an MCAP log (ROS 2 bag): radar_msgs/RadarScan, nav_msgs/Odometry, foxglove.SceneUpdate; --mapping", import_mcap},
   };
   return importers;
 }

@@ -27,6 +27,9 @@ struct DatasetImportOptions {
   // dataset ("0-199", "0,4", "0-9,20"; parse_frame_list); empty: all. Only importers of such
   // datasets take it (astyx); the others refuse it.
   std::string frames = {};
+  // --mapping: which topic of a log is which radar, the ego, the boxes (--from mcap,
+  // schemas/mcap-mapping.md); the others refuse it.
+  std::filesystem::path mapping = {};
 };
 
 // One item of a --frames list: a frame number (first == last) or a range first-last.

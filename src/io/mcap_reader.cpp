@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <lz4frame.h>
+#include <zstd.h>
 
 #include "common/input_error.hpp"
 
@@ -212,8 +214,8 @@ void Reader::read_records(const std::string& bytes, std::uint64_t base_offset, b
           const std::uint64_t uncompressed_size = c.u64();
           const std::uint32_t crc = c.u32();
           const std::string compression = c.string();
-          const std::string records = c.bytes(c.u64());
-          if (!compression.empty()) fail(where, offset, fmt::format("compression '{}' is not read (only uncompressed chunks)", compression));
+          const std::string stored = c.bytes(c.u64());
+          const std::string records = decompressed(stored, compression, uncompressed_size, where, offset);
           if (records.size() != uncompressed_size) {
             fail(where, offset, fmt::format("{} bytes of records where it says {}", records.size(), uncompressed_size));
           }
@@ -230,6 +232,42 @@ void Reader::read_records(const std::string& bytes, std::uint64_t base_offset, b
       fail(where, offset, "its content ends before its fields do");
     }
   }
+}
+
+std::string Reader::decompressed(const std::string& stored, const std::string& compression, std::uint64_t size,
+                                 const std::string& where, std::uint64_t offset) const {
+  if (compression.empty()) return stored;
+  if (size > kMaxChunkBytes) {
+    fail(where, offset, fmt::format("{} bytes uncompressed exceed the limit of {} bytes", size, kMaxChunkBytes));
+  }
+  std::string out(size, '\0');
+  if (compression == "zstd") {
+    const std::size_t n = ZSTD_decompress(out.data(), out.size(), stored.data(), stored.size());
+    if (ZSTD_isError(n) != 0) fail(where, offset, fmt::format("zstd: {}", ZSTD_getErrorName(n)));
+    if (n != size) fail(where, offset, fmt::format("zstd gave {} bytes where it says {}", n, size));
+    return out;
+  }
+  if (compression == "lz4") {
+    LZ4F_dctx* context = nullptr;
+    if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION)) != 0) fail(where, offset, "lz4: no context");
+    std::size_t written = 0, read = 0, hint = 1;
+    while (hint != 0 && read < stored.size()) {
+      std::size_t out_bytes = out.size() - written, in_bytes = stored.size() - read;
+      hint = LZ4F_decompress(context, out.data() + written, &out_bytes, stored.data() + read, &in_bytes, nullptr);
+      if (LZ4F_isError(hint) != 0) {
+        const std::string error = LZ4F_getErrorName(hint);
+        LZ4F_freeDecompressionContext(context);
+        fail(where, offset, "lz4: " + error);
+      }
+      written += out_bytes, read += in_bytes;
+      if (out_bytes == 0 && in_bytes == 0) break;  // no progress: the output is full or the input cut
+    }
+    LZ4F_freeDecompressionContext(context);
+    if (hint != 0) fail(where, offset, fmt::format("lz4: the frame does not decode to the {} bytes it says ({} decoded)", size, written));
+    if (written != size) fail(where, offset, fmt::format("lz4 gave {} bytes where it says {}", written, size));
+    return out;
+  }
+  fail(where, offset, fmt::format("compression '{}' is not read (zstd, lz4 or none)", compression));
 }
 
 }  // namespace rcsim::mcap

@@ -3,8 +3,9 @@
 // the summary's CRC-32 where the file gives one, and each chunk's; then visits the messages in
 // file order, each with its channel and schema, one chunk in memory at a time. A damaged file (a
 // bad CRC, a record longer than what is left, a truncated chunk, a message on a channel never
-// announced) is refused naming the file, the record and its byte offset. Chunks compressed with
-// zstd or lz4 are refused, naming the compression, until the importer needs them.
+// announced) is refused naming the file, the record and its byte offset. Chunks may be
+// uncompressed or compressed with zstd or lz4 (the LZ4 frame format), decompressed by Debian's
+// libzstd and liblz4; another compression is refused, naming it.
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -58,6 +59,10 @@ class Reader {
  private:
   [[noreturn]] void fail(const std::string& where, std::uint64_t offset, const std::string& what) const;
   void check_summary_crc();
+  // A chunk's records from its stored bytes: as they are, or zstd / lz4 decompressed to exactly
+  // `size` bytes (at most 1 GiB); anything else is refused naming the chunk.
+  std::string decompressed(const std::string& stored, const std::string& compression, std::uint64_t size,
+                           const std::string& where, std::uint64_t offset) const;
   void read_records(const std::string& bytes, std::uint64_t base_offset, bool in_chunk, const Visit& visit);
 
   std::filesystem::path path_;

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <lz4frame.h>
 #include <sstream>
 #include <string>
+#include <zstd.h>
 
 #include "common/input_error.hpp"
 #include "refusal.hpp"
@@ -110,6 +112,91 @@ TEST_F(McapReader, ARecordLongerThanTheFileOrAMessageOnAnUnknownChannelIsNamed) 
   for (int i = 0; i < 8; ++i) too_long[message_at + 1 + static_cast<std::size_t>(i)] = i == 5 ? 1 : 0;
   EXPECT_EQ(read_back(too_long), "a.mcap: Message at byte " + std::to_string(message_at) +
                                      ": its length 1099511627776 runs past the end of the file");
+}
+
+// A file whose one chunk holds a schema, a channel and two messages, its records stored as
+// `compress` makes them under the name `compression`, with the records' CRC-32.
+template <typename Compress>
+std::string file_with_chunk(const std::string& compression, Compress compress) {
+  std::string records;
+  const auto record = [](std::string& out, mcap::Opcode op, const std::string& content) {
+    mcap::put_u8(out, static_cast<std::uint8_t>(op));
+    mcap::put_u64(out, content.size());
+    out += content;
+  };
+  std::string schema, channel;
+  mcap::put_u16(schema, 1);
+  mcap::put_string(schema, "rcsim.Test");
+  mcap::put_string(schema, "jsonschema");
+  mcap::put_u32(schema, 2);
+  schema += "{}";
+  record(records, mcap::Opcode::schema, schema);
+  mcap::put_u16(channel, 1);
+  mcap::put_u16(channel, 1);
+  mcap::put_string(channel, "/a");
+  mcap::put_string(channel, "json");
+  mcap::put_u32(channel, 0);  // no metadata
+  record(records, mcap::Opcode::channel, channel);
+  for (int i = 0; i < 2; ++i) {
+    std::string message;
+    mcap::put_u16(message, 1);
+    mcap::put_u32(message, static_cast<std::uint32_t>(i));
+    mcap::put_u64(message, static_cast<std::uint64_t>(i));
+    mcap::put_u64(message, static_cast<std::uint64_t>(i));
+    message += R"({"k": )" + std::to_string(i) + "}";
+    record(records, mcap::Opcode::message, message);
+  }
+  const std::string stored = compress(records);
+  std::string chunk;
+  mcap::put_u64(chunk, 0);
+  mcap::put_u64(chunk, 1);
+  mcap::put_u64(chunk, records.size());
+  mcap::put_u32(chunk, mcap::crc32_of(records));
+  mcap::put_string(chunk, compression);
+  mcap::put_u64(chunk, stored.size());
+  chunk += stored;
+  std::string bytes(reinterpret_cast<const char*>(mcap::kMagic), 8), header, data_end, footer;
+  mcap::put_string(header, "");
+  mcap::put_string(header, "hand");
+  record(bytes, mcap::Opcode::header, header);
+  record(bytes, mcap::Opcode::chunk, chunk);
+  mcap::put_u32(data_end, 0);
+  record(bytes, mcap::Opcode::data_end, data_end);
+  mcap::put_u64(footer, 0);
+  mcap::put_u64(footer, 0);
+  mcap::put_u32(footer, 0);
+  record(bytes, mcap::Opcode::footer, footer);
+  return bytes + std::string(reinterpret_cast<const char*>(mcap::kMagic), 8);
+}
+
+std::string zstd_of(const std::string& in) {
+  std::string out(ZSTD_compressBound(in.size()), '\0');
+  out.resize(ZSTD_compress(out.data(), out.size(), in.data(), in.size(), 3));
+  return out;
+}
+
+std::string lz4_of(const std::string& in) {
+  std::string out(LZ4F_compressFrameBound(in.size(), nullptr), '\0');
+  out.resize(LZ4F_compressFrame(out.data(), out.size(), in.data(), in.size(), nullptr));
+  return out;
+}
+
+TEST_F(McapReader, ZstdAndLz4ChunksReadAsTheUncompressed) {
+  const auto same = [](const std::string& in) { return in; };
+  EXPECT_EQ(read_back(file_with_chunk("", same)), "read 2");
+  EXPECT_EQ(read_back(file_with_chunk("zstd", zstd_of)), "read 2");
+  EXPECT_EQ(read_back(file_with_chunk("lz4", lz4_of)), "read 2");
+}
+
+TEST_F(McapReader, AnUnknownOrDamagedCompressionIsNamed) {
+  const auto same = [](const std::string& in) { return in; };
+  EXPECT_EQ(read_back(file_with_chunk("brotli", same)), "a.mcap: Chunk at byte 29: compression 'brotli' is not read (zstd, lz4 or none)");
+  // zstd that is not: the library's own words.
+  EXPECT_NE(read_back(file_with_chunk("zstd", same)).find("Chunk at byte 29: zstd: "), std::string::npos);
+  // A zstd frame cut short, an lz4 frame cut short.
+  const auto cut = [](auto compress) { return [compress](const std::string& in) { const std::string c = compress(in); return c.substr(0, c.size() - 6); }; };
+  EXPECT_NE(read_back(file_with_chunk("zstd", cut(zstd_of))).find("Chunk at byte 29: zstd"), std::string::npos);
+  EXPECT_NE(read_back(file_with_chunk("lz4", cut(lz4_of))).find("Chunk at byte 29: lz4"), std::string::npos);
 }
 
 }  // namespace rcsim::mcap_reader_test

@@ -1,0 +1,380 @@
+#include "replay/import/mcap_importer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "common/angles.hpp"
+#include "common/input_error.hpp"
+#include "common/json_reader.hpp"
+#include "common/limits.hpp"
+#include "common/list_level.hpp"
+#include "common/quantile.hpp"
+#include "common/text_file.hpp"
+#include "io/mcap_reader.hpp"
+#include "io/ros2_messages.hpp"
+#include "model/model_library.hpp"
+
+namespace rcsim::replay {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The mapping file (schemas/mcap-mapping.md).
+struct MappedSensor {
+  RecordingSensor sensor;
+  std::string topic;
+  std::optional<double> cycle_time_s;
+};
+
+struct Mapping {
+  std::string name;
+  std::vector<MappedSensor> sensors;
+  std::string ego_topic, objects_topic;
+  std::map<std::string, std::string> classes;  // the log's class name -> an object model
+  std::optional<double> annotation_step_s;
+};
+
+Mapping read_mapping(const fs::path& path) {
+  const std::string file = path.string();
+  const nlohmann::json json = parse_json_text(read_text_file(path), file);
+  const JsonField root(json, file, "");
+  root.expect_format("rcsim-mcap-mapping", 1);
+  root.expect_only({"format", "version", "name", "sensors", "ego", "objects", "annotation_step_s"});
+  Mapping m;
+  if (root.has("name")) m.name = root.string("name");
+  for (const JsonField& s : root.array("sensors")) {
+    s.expect_only({"id", "topic", "type", "x_m", "y_m", "yaw_rad", "reports", "cycle_time_s"});
+    using namespace limits;
+    MappedSensor mapped{{s.string("id"), s.string("type"), s.number_within("x_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"),
+                         s.number_within("y_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"), s.angle_rad("yaw_rad", kMaxMountYaw_rad)},
+                        s.string("topic"),
+                        std::nullopt};
+    if (s.has("reports")) {
+      const std::string reports = s.string("reports");
+      if (reports != "tracks" && reports != "detections") s.fail("reports", "must be \"tracks\" or \"detections\", got \"" + reports + "\"");
+      mapped.sensor.reports = reports == "tracks" ? ListLevel::tracks : ListLevel::detections;
+    } else {
+      mapped.sensor.reports = ListLevel::detections;  // a RadarScan holds raw returns
+    }
+    if (s.has("cycle_time_s")) {
+      mapped.cycle_time_s = s.number_within("cycle_time_s", 0.0, kMaxCycleTime_s, "s");
+      require_positive(s, "cycle_time_s", *mapped.cycle_time_s);
+    }
+    if (mapped.sensor.id.empty()) s.fail("id", "must not be empty");
+    for (const MappedSensor& other : m.sensors) {
+      if (other.sensor.id == mapped.sensor.id) s.fail("id", fmt::format("sensor '{}' is listed twice", mapped.sensor.id));
+      if (other.topic == mapped.topic) s.fail("topic", fmt::format("topic '{}' is mapped twice", mapped.topic));
+    }
+    m.sensors.push_back(std::move(mapped));
+  }
+  if (m.sensors.empty()) root.fail("sensors", "map at least one radar's topic");
+  const JsonField ego = root.member("ego");
+  ego.expect_only({"topic"});
+  m.ego_topic = ego.string("topic");
+  if (const auto objects = root.optional_member("objects")) {
+    objects->expect_only({"topic", "classes"});
+    m.objects_topic = objects->string("topic");
+    if (const auto classes = objects->optional_member("classes")) {
+      if (!classes->json().is_object()) objects->fail("classes", "must map the log's class names to object models");
+      for (const auto& [from, to] : classes->json().items()) {
+        if (!to.is_string()) objects->fail("classes." + from, "must name an object model (rcsim models)");
+        m.classes[from] = to.get<std::string>();
+      }
+    }
+  }
+  if (root.has("annotation_step_s")) {
+    m.annotation_step_s = root.number_within("annotation_step_s", 0.0, limits::kMaxCycleTime_s, "s");
+    require_positive(root, "annotation_step_s", *m.annotation_step_s);
+  }
+  return m;
+}
+
+// One sensor cycle as logged: its stamp and its returns.
+struct LoggedCycle {
+  std::int64_t t_ns = 0;
+  int sensor = 0;
+  std::vector<ros2::RadarReturn> returns;
+};
+
+struct LoggedBox {
+  std::int64_t t_ns = 0;
+  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, length_m = 0.0, width_m = 0.0;
+  std::optional<double> speed_mps;
+};
+
+struct LoggedObject {
+  std::string id, log_class;
+  std::vector<LoggedBox> boxes;
+};
+
+// What the log holds on the mapped topics, in log order.
+struct LoggedDrive {
+  std::vector<LoggedCycle> cycles;
+  std::vector<std::pair<std::int64_t, ros2::Odometry>> ego;
+  std::vector<LoggedObject> objects;
+  std::map<std::string, std::size_t> object_index;
+  std::set<std::string> topics_seen;
+  std::string profile, library;
+};
+
+double number_of(const nlohmann::json& j, const char* key) {
+  if (!j.is_object() || !j.contains(key) || !j.at(key).is_number()) throw std::invalid_argument(fmt::format("{}: not a number", key));
+  const double v = j.at(key).get<double>();
+  if (!std::isfinite(v)) throw std::invalid_argument(fmt::format("{}: not finite", key));
+  return v;
+}
+
+// A foxglove.SceneUpdate's entities: each entity's first cube as a box at the entity's time.
+void add_scene_update(const std::string& text, LoggedDrive& drive) {
+  const nlohmann::json update = nlohmann::json::parse(text);
+  if (!update.is_object() || !update.contains("entities") || !update.at("entities").is_array()) {
+    throw std::invalid_argument("entities: not an array");
+  }
+  for (const nlohmann::json& e : update.at("entities")) {
+    if (!e.contains("id") || !e.at("id").is_string()) throw std::invalid_argument("entities[].id: not a string");
+    if (!e.contains("cubes") || !e.at("cubes").is_array() || e.at("cubes").empty()) continue;  // not a box
+    const nlohmann::json& cube = e.at("cubes").front();
+    const nlohmann::json& pose = cube.at("pose");
+    const nlohmann::json& q = pose.at("orientation");
+    LoggedBox box;
+    const nlohmann::json& stamp = e.at("timestamp");
+    box.t_ns = static_cast<std::int64_t>(number_of(stamp, "sec")) * 1'000'000'000 + static_cast<std::int64_t>(number_of(stamp, "nsec"));
+    box.x_m = number_of(pose.at("position"), "x");
+    box.y_m = number_of(pose.at("position"), "y");
+    box.yaw_rad = ros2::yaw_of_quaternion(number_of(q, "x"), number_of(q, "y"), number_of(q, "z"), number_of(q, "w"));
+    box.length_m = number_of(cube.at("size"), "x");
+    box.width_m = number_of(cube.at("size"), "y");
+    std::string log_class;
+    if (e.contains("metadata") && e.at("metadata").is_array()) {
+      for (const nlohmann::json& kv : e.at("metadata")) {
+        const std::string key = kv.value("key", ""), value = kv.value("value", "");
+        if (key == "class") log_class = value;
+        if (key == "speed_mps") box.speed_mps = std::stod(value);
+      }
+    }
+    const std::string id = e.at("id").get<std::string>();
+    auto [it, added] = drive.object_index.try_emplace(id, drive.objects.size());
+    if (added) drive.objects.push_back({id, log_class, {}});
+    LoggedObject& object = drive.objects[it->second];
+    if (object.log_class.empty()) object.log_class = log_class;
+    object.boxes.push_back(box);
+  }
+}
+
+LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
+  mcap::Reader reader(log);
+  LoggedDrive drive;
+  drive.profile = reader.summary().profile, drive.library = reader.summary().library;
+  std::map<std::string, int> sensor_of_topic;
+  for (std::size_t s = 0; s < mapping.sensors.size(); ++s) sensor_of_topic[mapping.sensors[s].topic] = static_cast<int>(s);
+  reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& channel, const mcap::Schema* schema) {
+    const auto sensor = sensor_of_topic.find(channel.topic);
+    const bool is_ego = channel.topic == mapping.ego_topic, is_objects = channel.topic == mapping.objects_topic;
+    if (sensor == sensor_of_topic.end() && !is_ego && !is_objects) return;
+    drive.topics_seen.insert(channel.topic);
+    const std::string schema_name = schema != nullptr ? schema->name : std::string("(none)");
+    const std::string where = fmt::format("topic '{}', message {} at log time {} ns", channel.topic, m.sequence, m.log_time_ns);
+    const auto expect = [&](std::string_view name, std::string_view encoding) {
+      if (schema_name != name || channel.message_encoding != encoding) {
+        throw InputError(log.string(), where,
+                         fmt::format("schema '{}' in '{}': the mapping takes {} in '{}' on this topic", schema_name,
+                                     channel.message_encoding, name, encoding));
+      }
+    };
+    try {
+      if (sensor != sensor_of_topic.end()) {
+        expect(ros2::kRadarScanSchema, "cdr");
+        ros2::RadarScan scan = ros2::decode_radar_scan(m.data);
+        drive.cycles.push_back({scan.header.stamp.ns(), sensor->second, std::move(scan.returns)});
+      } else if (is_ego) {
+        expect(ros2::kOdometrySchema, "cdr");
+        const ros2::Odometry o = ros2::decode_odometry(m.data);
+        drive.ego.emplace_back(o.header.stamp.ns(), o);
+      } else {
+        expect("foxglove.SceneUpdate", "json");
+        add_scene_update(m.data, drive);
+      }
+    } catch (const ros2::CdrError& e) {
+      throw InputError(log.string(), where, e.what());
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(log.string(), where, fmt::format("not a foxglove.SceneUpdate: {}", e.what()));
+    } catch (const std::logic_error& e) {  // a field missing or not a number (std::stod too)
+      throw InputError(log.string(), where, fmt::format("not a foxglove.SceneUpdate: {}", e.what()));
+    }
+  });
+  for (const MappedSensor& s : mapping.sensors) {
+    if (!drive.topics_seen.count(s.topic)) {
+      std::vector<std::string> topics;
+      for (const auto& [id, c] : reader.channels()) topics.push_back(c.topic);
+      throw InputError(log.string(), s.topic, fmt::format("no messages on sensor '{}''s topic (the log's topics: {})", s.sensor.id,
+                                                          fmt::join(topics, ", ")));
+    }
+  }
+  if (!drive.topics_seen.count(mapping.ego_topic)) throw InputError(log.string(), mapping.ego_topic, "no messages on the ego topic");
+  return drive;
+}
+
+double seconds_since(std::int64_t t_ns, std::int64_t t0_ns) { return static_cast<double>(t_ns - t0_ns) * 1e-9; }
+
+// The median step of increasing times (s); `fallback` where there are fewer than two.
+double median_step_s(const std::vector<double>& t_s, double fallback) {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < t_s.size(); ++i) steps.push_back(t_s[i] - t_s[i - 1]);
+  return steps.empty() ? fallback : median(steps);
+}
+
+void add_ego(const LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec) {
+  auto ego = drive.ego;
+  std::stable_sort(ego.begin(), ego.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < ego.size(); ++i) {
+    const auto& [t_ns, o] = ego[i];
+    if (i > 0 && t_ns == ego[i - 1].first) {
+      throw InputError(log.string(), mapping.ego_topic, fmt::format("two odometry messages stamped {} ns", t_ns));
+    }
+    const double yaw_rad = ros2::yaw_of_quaternion(o.qx, o.qy, o.qz, o.qw);
+    rec.ego.push_back({seconds_since(t_ns, t0_ns), o.x_m, o.y_m, yaw_rad, o.vx_mps, o.wz_radps});
+    if (i > 0 && rec.ego.back().t_s - rec.ego[i - 1].t_s > kMaxEgoLogStep_s) {
+      throw InputError(log.string(), mapping.ego_topic,
+                       fmt::format("{:.3f} s without odometry after {:.6f} s (at most {} s are interpolated)",
+                                   rec.ego.back().t_s - rec.ego[i - 1].t_s, rec.ego[i - 1].t_s, kMaxEgoLogStep_s));
+    }
+  }
+  // The yaw unwrapped, so that interpolation never turns the long way (ego.csv allows any yaw).
+  for (std::size_t i = 1; i < rec.ego.size(); ++i) {
+    rec.ego[i].yaw_rad = rec.ego[i - 1].yaw_rad + angle_difference_rad(rec.ego[i].yaw_rad, rec.ego[i - 1].yaw_rad);
+  }
+}
+
+void add_cycles(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec) {
+  std::stable_sort(drive.cycles.begin(), drive.cycles.end(), [](const LoggedCycle& a, const LoggedCycle& b) {
+    return a.t_ns != b.t_ns ? a.t_ns < b.t_ns : a.sensor < b.sensor;
+  });
+  std::vector<std::vector<double>> times(rec.sensors.size());
+  const double first_ego_s = rec.ego.front().t_s, last_ego_s = rec.ego.back().t_s;
+  for (const LoggedCycle& c : drive.cycles) {
+    const double t_s = seconds_since(c.t_ns, t0_ns);
+    const auto s = static_cast<std::size_t>(c.sensor);
+    const std::string& topic = mapping.sensors[s].topic;
+    if (!times[s].empty() && t_s <= times[s].back()) {
+      throw InputError(log.string(), topic, fmt::format("two scans stamped {:.9f} s after the log's start", t_s));
+    }
+    if (t_s < first_ego_s - kEgoExtrapolationMargin_s || t_s > last_ego_s + kEgoExtrapolationMargin_s) {
+      throw InputError(log.string(), topic,
+                       fmt::format("a scan at {:.6f} s lies beyond the odometry's {:.6f} to {:.6f} s by more than {} s", t_s,
+                                   first_ego_s, last_ego_s, kEgoExtrapolationMargin_s));
+    }
+    times[s].push_back(t_s);
+    const int cycle = static_cast<int>(rec.cycles.size());
+    rec.cycles.push_back({t_s, c.sensor});
+    for (const ros2::RadarReturn& r : c.returns) {
+      RecordedTarget t;
+      t.t_s = t_s, t.cycle = cycle, t.sensor = c.sensor;
+      // The planar model's range: the slant range over the ground.
+      t.range_m = static_cast<double>(r.range) * std::cos(static_cast<double>(r.elevation));
+      t.azimuth_rad = r.azimuth, t.elevation_rad = r.elevation;
+      t.range_rate_mps = r.doppler_velocity, t.amplitude_db = r.amplitude;
+      if (!std::isfinite(t.range_m) || t.range_m < 0.0 || t.range_m > limits::kMaxRange_m ||
+          std::abs(t.azimuth_rad) > limits::kMaxAzimuth_rad || std::abs(t.range_rate_mps) > limits::kMaxSpeed_mps ||
+          !std::isfinite(t.amplitude_db) || std::abs(t.amplitude_db) > limits::kMaxLevel_dB || std::abs(t.elevation_rad) > 1.58) {
+        throw InputError(log.string(), topic,
+                         fmt::format("a return at {:.6f} s beyond the limits of schemas/limits.md (range {}, azimuth {}, "
+                                     "elevation {}, doppler_velocity {}, amplitude {})",
+                                     t_s, r.range, r.azimuth, r.elevation, r.doppler_velocity, r.amplitude));
+      }
+      rec.targets.push_back(t);
+    }
+  }
+  for (std::size_t s = 0; s < rec.sensors.size(); ++s) {
+    const MappedSensor& mapped = mapping.sensors[s];
+    rec.sensors[s].cycle_time_s = mapped.cycle_time_s.value_or(median_step_s(times[s], 0.05));
+    if (!(rec.sensors[s].cycle_time_s > 0.0 && rec.sensors[s].cycle_time_s <= limits::kMaxCycleTime_s)) {
+      throw InputError(log.string(), mapped.topic, fmt::format("the scans' median step {} s is no cycle time", rec.sensors[s].cycle_time_s));
+    }
+  }
+}
+
+void add_objects(const LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec,
+                 std::vector<double>& annotation_times_s) {
+  const ModelLibrary& library = ModelLibrary::builtin();
+  rec.boxes.clear();
+  for (const LoggedObject& o : drive.objects) {
+    const auto mapped = mapping.classes.find(o.log_class);
+    const std::string model = mapped != mapping.classes.end() ? mapped->second : o.log_class;
+    if (!library.contains(model)) {
+      throw InputError(log.string(), mapping.objects_topic,
+                       fmt::format("entity '{}' has class '{}', no object model (rcsim models); map it in the mapping's "
+                                   "objects.classes", o.id, o.log_class));
+    }
+    std::vector<double> lengths, widths;
+    std::vector<AnnotatedBox> boxes;
+    for (const LoggedBox& b : o.boxes) {
+      lengths.push_back(b.length_m), widths.push_back(b.width_m);
+      boxes.push_back({seconds_since(b.t_ns, t0_ns), b.x_m, b.y_m, wrap_angle_rad(b.yaw_rad), b.speed_mps.value_or(0.0), 0});
+      annotation_times_s.push_back(boxes.back().t_s);
+    }
+    std::stable_sort(boxes.begin(), boxes.end(), [](const AnnotatedBox& a, const AnnotatedBox& b) { return a.t_s < b.t_s; });
+    for (std::size_t i = 1; i < boxes.size(); ++i) {
+      if (boxes[i].t_s <= boxes[i - 1].t_s) {
+        throw InputError(log.string(), mapping.objects_topic, fmt::format("entity '{}' twice at {:.6f} s", o.id, boxes[i].t_s));
+      }
+    }
+    // Without speed_mps: the speed along the heading from the neighbouring boxes (central differences).
+    for (std::size_t i = 0; i < boxes.size() && boxes.size() >= 2; ++i) {
+      if (o.boxes[0].speed_mps) break;
+      const AnnotatedBox& a = boxes[i == 0 ? 0 : i - 1];
+      const AnnotatedBox& b = boxes[i + 1 == boxes.size() ? i : i + 1];
+      const Vec2 v_W((b.x_m - a.x_m) / (b.t_s - a.t_s), (b.y_m - a.y_m) / (b.t_s - a.t_s));
+      boxes[i].speed_mps = speed_along_heading_mps(v_W, boxes[i].yaw_rad);
+    }
+    rec.objects.push_back({o.id, model, median(lengths), median(widths),
+                           nlohmann::json{{"log_class", o.log_class}}});
+    rec.boxes.push_back(std::move(boxes));
+  }
+}
+
+}  // namespace
+
+DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& options) {
+  if (options.mapping.empty()) {
+    throw InputError(log.string(), "--mapping", "an MCAP log needs a mapping file: which topic is which radar, the ego, the boxes "
+                                                "(schemas/mcap-mapping.md)");
+  }
+  if (!options.ego_log.empty()) throw InputError(log.string(), "--ego-log", "an MCAP log carries its ego motion (the mapping's ego topic)");
+  if (!options.frames.empty()) throw InputError(log.string(), "--frames", "takes the frames of a dataset of single frames (--from astyx)");
+  const Mapping mapping = read_mapping(options.mapping);
+  LoggedDrive drive = read_log(log, mapping);
+  // The recording's clock: seconds since the earliest stamp of the mapped topics.
+  std::int64_t t0_ns = drive.ego.front().first;
+  for (const auto& [t_ns, o] : drive.ego) t0_ns = std::min(t0_ns, t_ns);
+  for (const LoggedCycle& c : drive.cycles) t0_ns = std::min(t0_ns, c.t_ns);
+  for (const LoggedObject& o : drive.objects) {
+    for (const LoggedBox& b : o.boxes) t0_ns = std::min(t0_ns, b.t_ns);
+  }
+  DatasetRecording out;
+  Recording& rec = out.recording;
+  rec.name = mapping.name.empty() ? log.stem().string() : mapping.name;
+  rec.clock = Clock::per_sensor;
+  for (const MappedSensor& s : mapping.sensors) rec.sensors.push_back(s.sensor);
+  add_ego(drive, t0_ns, log, mapping, rec);
+  add_cycles(drive, t0_ns, log, mapping, rec);
+  std::vector<double> annotation_times_s;
+  add_objects(drive, t0_ns, log, mapping, rec, annotation_times_s);
+  std::sort(annotation_times_s.begin(), annotation_times_s.end());
+  annotation_times_s.erase(std::unique(annotation_times_s.begin(), annotation_times_s.end()), annotation_times_s.end());
+  rec.cycle_time_s = mapping.annotation_step_s.value_or(median_step_s(annotation_times_s, rec.sensors.front().cycle_time_s));
+  rec.description = fmt::format("MCAP log {}: {} radar{} on their own clocks, {} annotated objects", log.filename().string(),
+                                rec.sensors.size(), rec.sensors.size() == 1 ? "" : "s", rec.objects.size());
+  rec.source = {{"importer", "rcsim import --from mcap"},
+                {"log", log.filename().string()},
+                {"mapping", options.mapping.filename().string()},
+                {"first_timestamp_ns", t0_ns},
+                {"profile", drive.profile},
+                {"library", drive.library}};
+  return out;
+}
+
+}  // namespace rcsim::replay

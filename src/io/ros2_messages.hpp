@@ -1,0 +1,61 @@
+#pragma once
+// ROS 2 messages as MCAP logs carry them (message encoding "cdr": OMG CDR, the XCDR1 rules ROS 2's
+// middlewares use), read for `rcsim import --from mcap`: radar_msgs/msg/RadarScan (a radar's
+// detections of one cycle) and nav_msgs/msg/Odometry (the ego). Little- and big-endian
+// encapsulations both read; a message that ends before its fields do, or holds a count beyond
+// what is left, is refused (CdrError naming the field).
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rcsim::ros2 {
+
+struct CdrError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// builtin_interfaces/Time: seconds and nanoseconds since the epoch.
+struct Time {
+  std::int32_t sec = 0;
+  std::uint32_t nanosec = 0;
+  std::int64_t ns() const { return std::int64_t{sec} * 1'000'000'000 + nanosec; }
+};
+
+struct Header {
+  Time stamp;
+  std::string frame_id;
+};
+
+// radar_msgs/msg/RadarReturn: one detection; range the slant distance, angles in the sensor frame
+// (azimuth positive to the left, elevation up), the radial speed negative when approaching.
+struct RadarReturn {
+  float range = 0.0f, azimuth = 0.0f, elevation = 0.0f, doppler_velocity = 0.0f, amplitude = 0.0f;
+};
+
+struct RadarScan {
+  Header header;
+  std::vector<RadarReturn> returns;
+};
+
+// nav_msgs/msg/Odometry, the parts rcsim reads: the pose in the header's frame, the twist in the
+// child frame (the vehicle's).
+struct Odometry {
+  Header header;
+  std::string child_frame_id;
+  double x_m = 0.0, y_m = 0.0, z_m = 0.0;
+  double qx = 0.0, qy = 0.0, qz = 0.0, qw = 1.0;
+  double vx_mps = 0.0, vy_mps = 0.0, wz_radps = 0.0;
+};
+
+inline constexpr std::string_view kRadarScanSchema = "radar_msgs/msg/RadarScan";
+inline constexpr std::string_view kOdometrySchema = "nav_msgs/msg/Odometry";
+
+RadarScan decode_radar_scan(std::string_view cdr);
+Odometry decode_odometry(std::string_view cdr);
+
+// The yaw of a quaternion (rotation about z, ZYX convention), rad in (-pi, pi].
+double yaw_of_quaternion(double qx, double qy, double qz, double qw);
+
+}  // namespace rcsim::ros2

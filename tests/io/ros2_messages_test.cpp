@@ -1,0 +1,108 @@
+// ROS 2 messages in CDR (src/io/ros2_messages.hpp), byte by byte as the XCDR1 rules lay them out:
+// the encapsulation header, then every primitive aligned to its size counted from after it.
+#include "io/ros2_messages.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace rcsim::ros2::ros2_messages_test {
+namespace {
+
+// Little-endian bytes of a value.
+template <typename T>
+std::string le(T value) {
+  std::string bytes(sizeof(T), '\0');
+  std::memcpy(bytes.data(), &value, sizeof(T));
+  return bytes;
+}
+template <typename T>
+std::string be(T value) {
+  std::string bytes = le(value);
+  return std::string(bytes.rbegin(), bytes.rend());
+}
+
+// A RadarScan stamped 12 s + 500 ns in frame "fl" with one return, laid out by hand:
+// header 4 | sec 4 | nanosec 4 | frame_id: count 3 ("fl\0") + 1 pad | returns: count 1 | 5 floats.
+std::string scan_bytes(bool little) {
+  const auto put = [little](auto v) { return little ? le(v) : be(v); };
+  std::string b = little ? std::string("\x00\x01\x00\x00", 4) : std::string("\x00\x00\x00\x00", 4);
+  b += put(std::int32_t{12}) + put(std::uint32_t{500});
+  b += put(std::uint32_t{3}) + std::string("fl\0", 3) + std::string(1, '\0');  // pad to 4
+  b += put(std::uint32_t{1});
+  for (const float f : {25.5f, 0.25f, -0.03125f, -4.0f, 17.0f}) b += put(f);
+  return b;
+}
+
+TEST(Ros2Messages, ARadarScanByHandInBothByteOrders) {
+  for (const bool little : {true, false}) {
+    const std::string bytes = scan_bytes(little);
+    ASSERT_EQ(bytes.size(), 4u + 8u + 8u + 4u + 20u);
+    const RadarScan scan = decode_radar_scan(bytes);
+    EXPECT_EQ(scan.header.stamp.ns(), 12'000'000'500LL);
+    EXPECT_EQ(scan.header.frame_id, "fl");
+    ASSERT_EQ(scan.returns.size(), 1u);
+    EXPECT_EQ(scan.returns[0].range, 25.5f);
+    EXPECT_EQ(scan.returns[0].azimuth, 0.25f);
+    EXPECT_EQ(scan.returns[0].elevation, -0.03125f);
+    EXPECT_EQ(scan.returns[0].doppler_velocity, -4.0f);
+    EXPECT_EQ(scan.returns[0].amplitude, 17.0f);
+  }
+}
+
+TEST(Ros2Messages, DamagedScansAreRefusedNamingTheField) {
+  const std::string bytes = scan_bytes(true);
+  const auto refusal = [](const std::string& b) {
+    try {
+      decode_radar_scan(b);
+    } catch (const CdrError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refusal(bytes.substr(0, bytes.size() - 2)).find("returns: 1 element(s) of 20 bytes or more, but 18 bytes are left"),
+            std::string::npos)
+      << refusal(bytes.substr(0, bytes.size() - 2));
+  std::string many = bytes;
+  many.replace(20, 4, le(std::uint32_t{1'000'000}));  // the returns' count, beyond what is left
+  EXPECT_NE(refusal(many).find("returns: 1000000 element(s)"), std::string::npos) << refusal(many);
+  EXPECT_NE(refusal(std::string("\x00\x07\x00\x00", 4)).find("not plain CDR"), std::string::npos);
+  EXPECT_NE(refusal(std::string("\x00\x01", 2)).find("encapsulation header"), std::string::npos);
+  std::string late = bytes;
+  late.replace(8, 4, le(std::uint32_t{1'000'000'000}));
+  EXPECT_NE(refusal(late).find("nanosec"), std::string::npos);
+}
+
+// Odometry: doubles aligned to 8 from after the header; the covariances skipped.
+TEST(Ros2Messages, OdometryByHand) {
+  std::string b("\x00\x01\x00\x00", 4);
+  b += le(std::int32_t{3}) + le(std::uint32_t{0});
+  b += le(std::uint32_t{5}) + std::string("odom\0", 5);  // to byte 21
+  b += std::string(3, '\0');                             // to 24 (4-aligned counted from 4)
+  b += le(std::uint32_t{10}) + std::string("base_link\0", 10);  // to 38
+  b += std::string(6, '\0');                                    // to 44 (8-aligned counted from 4)
+  const double yaw = 0.5;
+  for (const double v : {10.0, -2.0, 0.0, 0.0, 0.0, std::sin(yaw / 2), std::cos(yaw / 2)}) b += le(v);
+  for (int i = 0; i < 36; ++i) b += le(0.0);
+  for (const double v : {29.5, 0.1, 0.0, 0.0, 0.0, 0.02}) b += le(v);
+  for (int i = 0; i < 36; ++i) b += le(0.0);
+  Odometry o;
+  try {
+    o = decode_odometry(b);
+  } catch (const CdrError& e) {
+    FAIL() << e.what();
+  }
+  EXPECT_EQ(o.header.frame_id, "odom");
+  EXPECT_EQ(o.child_frame_id, "base_link");
+  EXPECT_EQ(o.x_m, 10.0);
+  EXPECT_EQ(o.y_m, -2.0);
+  EXPECT_NEAR(yaw_of_quaternion(o.qx, o.qy, o.qz, o.qw), yaw, 1e-15);
+  EXPECT_EQ(o.vx_mps, 29.5);
+  EXPECT_EQ(o.wz_radps, 0.02);
+  EXPECT_THROW(decode_odometry(b.substr(0, b.size() - 8)), CdrError);
+}
+
+}  // namespace
+}  // namespace rcsim::ros2::ros2_messages_test

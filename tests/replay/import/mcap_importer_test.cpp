@@ -1,0 +1,223 @@
+// `rcsim import --from mcap` (replay/import/mcap_importer.hpp) on logs written by the format's own
+// writer (@mcap/core) with ROS 2's CDR (@foxglove/cdr): tests/tools/mcap/write_ros2_log.js turns a
+// recording into radar_msgs/RadarScan, nav_msgs/Odometry and foxglove.SceneUpdate messages, and
+// the import must give the recording back: the same targets (float32, as the messages carry them),
+// boxes within 1 mm, the times exact; uncompressed, zstd and lz4 chunks alike. Damaged logs and
+// mappings are refused naming what is wrong. Skips, saying so, without Node.js and the tool.
+#include "replay/import/mcap_importer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <tuple>
+
+#include "app/cli/run_rcsim.hpp"
+#include "common/input_error.hpp"
+#include "io/recording.hpp"
+#include "refusal.hpp"
+#include "replay/import/dataset_importer.hpp"
+#include "replay/profile/sensor_clocks.hpp"
+#include "scratch_dir.hpp"
+#include "test_support.hpp"
+
+namespace rcsim::replay::mcap_importer_test {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::refusal_of;
+
+const fs::path kTool = fs::path(RCSIM_SOURCE_DIR) / "tests" / "tools" / "mcap";
+
+bool tool_installed() {
+  return std::system("command -v node > /dev/null 2>&1") == 0 && fs::exists(kTool / "node_modules" / "@mcap" / "core") &&
+         fs::exists(kTool / "node_modules" / "@foxglove" / "rosmsg2-serialization");
+}
+
+std::string bytes_of(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class McapImport : public testing::ScratchDirTest {
+ protected:
+  McapImport() : ScratchDirTest("mcap_import") {}
+  void SetUp() override {
+    ScratchDirTest::SetUp();
+    if (!tool_installed()) GTEST_SKIP() << "the MCAP test tool is not installed (scripts/test-tools.sh: Node.js and npm ci in tests/tools/mcap)";
+  }
+  // The recording in `dir` as a ROS 2 log (and its mapping file), written by the test tool.
+  fs::path log_of(const fs::path& dir, const std::string& compression, const std::string& name) {
+    const fs::path log = dir_ / (name + ".mcap");
+    mapping_ = dir_ / (name + ".mapping.json");
+    const auto written = rcsim::testing::run_shell_command("node " + (kTool / "write_ros2_log.js").string() + " " + dir.string() +
+                                                           " " + log.string() + " --compression " + compression +
+                                                           " --mapping " + mapping_.string() + " --chunk-bytes 16384");
+    EXPECT_EQ(written.exit_code, 0) << written.output;
+    return log;
+  }
+  Recording imported(const fs::path& log) {
+    DatasetImportOptions options;
+    options.mapping = mapping_;
+    write_recording(dir_ / "back", import_mcap(log, options).recording);
+    return read_recording(dir_ / "back");
+  }
+  fs::path mapping_;
+};
+
+// Per (sensor, time in µs): the targets as (range, azimuth, range rate, amplitude, elevation).
+using Target = std::tuple<double, double, double, double, double>;
+std::map<std::pair<int, long long>, std::vector<Target>> cycles_of(const Recording& r) {
+  std::map<std::pair<int, long long>, std::vector<Target>> out;
+  for (int k = 0; k < r.cycle_count(); ++k) {
+    const int only = r.cycle_sensor(k);
+    for (int s = 0; s < static_cast<int>(r.sensors.size()); ++s) {
+      if (only < 0 || only == s) out[{s, std::llround(r.cycle_t_s(k) * 1e6)}];
+    }
+  }
+  for (const RecordedTarget& t : r.targets) {
+    const double el = std::isnan(t.elevation_rad) ? 0.0 : t.elevation_rad;
+    out[{t.sensor, std::llround(t.t_s * 1e6)}].emplace_back(t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db, el);
+  }
+  return out;
+}
+
+// The imported recording holds the original's drive: every sensor cycle at its time with its
+// targets (to float32 and the files' decimals), the ego rows, the boxes within 1 mm.
+void expect_same_drive(const Recording& original, const Recording& back) {
+  EXPECT_EQ(back.clock, Clock::per_sensor);
+  ASSERT_EQ(back.sensors.size(), original.sensors.size());
+  for (std::size_t s = 0; s < back.sensors.size(); ++s) {
+    EXPECT_EQ(back.sensors[s].id, original.sensors[s].id);
+    EXPECT_EQ(back.sensors[s].type, original.sensors[s].type);
+    EXPECT_NEAR(back.sensors[s].x_m, original.sensors[s].x_m, 1e-9);
+  }
+  const auto a = cycles_of(original), b = cycles_of(back);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [key, targets] : a) {
+    const auto it = b.find(key);
+    ASSERT_NE(it, b.end()) << "sensor " << key.first << " at " << key.second << " us";
+    ASSERT_EQ(it->second.size(), targets.size()) << key.second;
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      const auto& [r0, az0, rr0, a0, el0] = targets[i];
+      const auto& [r1, az1, rr1, a1, el1] = it->second[i];
+      EXPECT_NEAR(r1, r0, 1e-4 + 1e-7 * r0);  // float32 slant range, over the cosine
+      EXPECT_NEAR(az1, az0, 1e-6);
+      EXPECT_NEAR(rr1, rr0, 1e-4);
+      EXPECT_NEAR(a1, a0, 1e-3);
+      EXPECT_NEAR(el1, el0, 1e-6);
+    }
+  }
+  ASSERT_EQ(back.ego.size(), original.ego.size());
+  for (std::size_t i = 0; i < back.ego.size(); ++i) {
+    EXPECT_NEAR(back.ego[i].t_s, original.ego[i].t_s, 1e-9);
+    EXPECT_NEAR(back.ego[i].x_m, original.ego[i].x_m, 1e-4);
+    EXPECT_NEAR(back.ego[i].yaw_rad, original.ego[i].yaw_rad, 1e-6);
+    EXPECT_NEAR(back.ego[i].speed_mps, original.ego[i].speed_mps, 1e-4);
+  }
+  ASSERT_EQ(back.objects.size(), original.objects.size());
+  for (std::size_t o = 0; o < back.objects.size(); ++o) {
+    const auto found = std::find_if(original.objects.begin(), original.objects.end(),
+                                    [&](const RecordingObject& x) { return x.id == back.objects[o].id; });
+    ASSERT_NE(found, original.objects.end()) << back.objects[o].id;
+    const auto& boxes = original.boxes[static_cast<std::size_t>(found - original.objects.begin())];
+    EXPECT_EQ(back.objects[o].object_class, found->object_class);
+    EXPECT_NEAR(back.objects[o].length_m, found->length_m, 1e-3);
+    ASSERT_EQ(back.boxes[o].size(), boxes.size()) << found->id;
+    for (std::size_t k = 0; k < boxes.size(); ++k) {
+      EXPECT_NEAR(back.boxes[o][k].t_s, boxes[k].t_s, 1e-9);
+      EXPECT_NEAR(back.boxes[o][k].x_m, boxes[k].x_m, 1e-3);
+      EXPECT_NEAR(back.boxes[o][k].y_m, boxes[k].y_m, 1e-3);
+      EXPECT_NEAR(back.boxes[o][k].yaw_rad, boxes[k].yaw_rad, 1e-6);
+      EXPECT_NEAR(back.boxes[o][k].speed_mps, boxes[k].speed_mps, 1e-4);
+    }
+  }
+}
+
+TEST_F(McapImport, ASyntheticDriveComesBackFromAZstdLog) {
+  const fs::path dir = testing::kBundledRecordings / "two_in_one_cell";
+  const Recording original = read_recording(dir);
+  const Recording back = imported(log_of(dir, "zstd", "synthetic"));
+  expect_same_drive(original, back);
+  EXPECT_NEAR(back.sensors[0].cycle_time_s, 0.04, 1e-9);  // the scans' median step
+  EXPECT_NEAR(back.cycle_time_s, 0.04, 1e-9);              // the boxes'
+}
+
+TEST_F(McapImport, UncompressedAndLz4ChunksReadAlike) {
+  const fs::path dir = testing::kBundledRecordings / "front_approach";
+  const Recording original = read_recording(dir);
+  expect_same_drive(original, imported(log_of(dir, "none", "plain")));
+  expect_same_drive(original, imported(log_of(dir, "lz4", "lz4")));
+}
+
+// The aiMotive drive as a ROS 2 log gives the recording `import --from aimotive` gives, and the
+// radars on their own (estimated) clocks keep them.
+TEST_F(McapImport, TheAimotiveDriveAsARos2LogGivesTheSameRecording) {
+  if (!fs::exists(testing::kAimotiveRaw)) {
+    std::cout << "skipped: no real data at " << testing::kAimotiveRaw << '\n';
+    GTEST_SKIP();
+  }
+  const Recording keyframed = find_dataset_importer("aimotive").import(testing::kAimotiveRaw, {}).recording;
+  write_recording(dir_ / "aimotive", keyframed);
+  expect_same_drive(read_recording(dir_ / "aimotive"), imported(log_of(dir_ / "aimotive", "lz4", "aimotive")));
+  const Recording own = profile::on_estimated_clocks(keyframed, profile::estimate_sensor_clocks(keyframed));
+  write_recording(dir_ / "aimotive_own", own);
+  const Recording back = imported(log_of(dir_ / "aimotive_own", "zstd", "aimotive_own"));
+  expect_same_drive(read_recording(dir_ / "aimotive_own"), back);
+  EXPECT_NEAR(back.sensors[0].cycle_time_s, own.sensors[0].cycle_time_s, 0.06);  // one or two periods a step
+}
+
+TEST_F(McapImport, WhatIsNotThereOrNotAsMappedIsRefusedByName) {
+  const fs::path dir = testing::kBundledRecordings / "standstill_1m";
+  const fs::path log = log_of(dir, "zstd", "log");
+  DatasetImportOptions options;
+  // No mapping.
+  EXPECT_NE(refusal_of([&] { import_mcap(log, options); }).find("--mapping"), std::string::npos);
+  // A topic the log does not have, the others listed.
+  std::string mapping = bytes_of(mapping_);
+  mapping.replace(mapping.find("/radar/front_left/scan"), 22, "/radar/front_lft/scan");
+  const fs::path wrong = write_file("wrong.json", mapping);
+  options.mapping = wrong;
+  std::string m = refusal_of([&] { import_mcap(log, options); });
+  EXPECT_NE(m.find("/radar/front_lft/scan"), std::string::npos) << m;
+  EXPECT_NE(m.find("the log's topics: "), std::string::npos) << m;
+  // The ego topic mapped as a radar's: its schema named.
+  mapping = bytes_of(mapping_);
+  mapping.replace(mapping.find("/radar/front_left/scan"), 22, "/odom");
+  mapping.replace(mapping.find("\"topic\": \"/odom\"", mapping.find("\"ego\"")), 16, "\"topic\": \"/annotations\"");
+  options.mapping = write_file("swapped.json", mapping);
+  m = refusal_of([&] { import_mcap(log, options); });
+  EXPECT_NE(m.find("schema 'nav_msgs/msg/Odometry' in 'cdr': the mapping takes radar_msgs/msg/RadarScan"), std::string::npos) << m;
+  // A mapping of another format.
+  options.mapping = write_file("bad.json", R"({"format": "rcsim-recording", "version": 1})");
+  EXPECT_NE(refusal_of([&] { import_mcap(log, options); }).find("bad.json"), std::string::npos);
+}
+
+TEST_F(McapImport, DamagedLogsAreRefusedNamingTheRecordAndOffset) {
+  const fs::path dir = testing::kBundledRecordings / "standstill_1m";
+  const fs::path log = log_of(dir, "none", "log");
+  DatasetImportOptions options;
+  options.mapping = mapping_;
+  const std::string bytes = bytes_of(log);
+  // Cut in the middle: the end magic is gone.
+  const fs::path cut = write_file("cut.mcap", bytes.substr(0, bytes.size() / 2));
+  std::string m = refusal_of([&] { import_mcap(cut, options); });
+  EXPECT_NE(m.find("cut.mcap"), std::string::npos) << m;
+  // A byte flipped inside the first chunk's records: its CRC no longer holds.
+  std::string flipped = bytes;
+  const std::size_t chunk = flipped.find('\x06', 8 + 9);  // the first chunk's opcode after the header
+  ASSERT_NE(chunk, std::string::npos);
+  flipped[chunk + 200] = static_cast<char>(flipped[chunk + 200] ^ 0x5a);
+  m = refusal_of([&] { import_mcap(write_file("flipped.mcap", flipped), options); });
+  EXPECT_NE(m.find("flipped.mcap"), std::string::npos) << m;
+  EXPECT_NE(m.find("Chunk at byte "), std::string::npos) << m;
+  EXPECT_NE(m.find("CRC-32"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace rcsim::replay::mcap_importer_test
