@@ -17,6 +17,7 @@
 #include "fuzz/aimotive_targets.hpp"
 #include "fuzz/astyx_targets.hpp"
 #include "fuzz/recording_targets.hpp"
+#include "fuzz/mcap_targets.hpp"
 #include "fuzz/store_targets.hpp"
 #include "fuzz/udp_targets.hpp"
 #include "fuzz/world_targets.hpp"
@@ -31,7 +32,7 @@ const std::map<std::string, void (*)(Input)>& entry_points() {
   static const std::map<std::string, void (*)(Input)> entries{
       {"scene", fuzz_scene},         {"object_model", fuzz_object_model}, {"sensor_config", fuzz_sensor_config},
       {"recording", fuzz_recording}, {"calibration", fuzz_calibration},   {"aimotive", fuzz_aimotive},
-      {"astyx", fuzz_astyx},
+      {"astyx", fuzz_astyx},         {"mcap", fuzz_mcap},
       {"udp_datagram", fuzz_udp_datagrams}, {"udp_control", fuzz_udp_control},
       {"report_database", fuzz_report_database}, {"campaign_manifest", fuzz_campaign_manifest}};
   return entries;
@@ -206,6 +207,32 @@ TEST(FuzzBases, TheCampaignManifestSeedsPlan) {
     EXPECT_NO_THROW(script = plan_campaign_manifest(text)) << entry.path();
     EXPECT_NE(script.find("#SBATCH --array=0-1"), std::string::npos) << script;
   }
+}
+
+// The seed log imports: 10 radar cycles at 20 Hz, 3 returns each, the ego at 10 Hz, one car; the
+// seed with another schema on the radar's topic is refused naming it.
+TEST(FuzzBases, TheMcapSeedsImportOrAreRefusedByName) {
+  const auto seeds = mcap_seeds();
+  ASSERT_EQ(seeds.size(), 2u);
+  const fs::path dir = fresh_dir("mcap_seed");
+  write_file(dir / "mapping.json", kMcapMapping);
+  replay::DatasetImportOptions options;
+  options.mapping = dir / "mapping.json";
+  write_file(dir / "drive.mcap", {reinterpret_cast<const char*>(seeds[0].second.data()), seeds[0].second.size()});
+  const Recording rec = replay::import_mcap(dir / "drive.mcap", options).recording;
+  EXPECT_EQ(rec.cycle_count(), 10);
+  EXPECT_EQ(rec.targets.size(), 30u);
+  EXPECT_EQ(rec.ego.size(), 5u);
+  ASSERT_EQ(rec.objects.size(), 1u);
+  EXPECT_NEAR(rec.sensors[0].cycle_time_s, 0.05, 1e-9);
+  write_file(dir / "wrong.mcap", {reinterpret_cast<const char*>(seeds[1].second.data()), seeds[1].second.size()});
+  try {
+    replay::import_mcap(dir / "wrong.mcap", options);
+    ADD_FAILURE() << "another schema on the radar's topic was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("schema 'sensor_msgs/msg/PointCloud2'"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(fuzz_mcap(Input(seeds[0].second.data(), seeds[0].second.size())));
 }
 
 TEST(FuzzSupport, SectionsSplitOnTheSeparatorLine) {
