@@ -6,6 +6,8 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <Eigen/Geometry>
+#include <simdjson.h>
 
 #include "common/angles.hpp"
 #include "common/input_error.hpp"
@@ -17,6 +19,7 @@
 #include "io/mcap_reader.hpp"
 #include "io/ros2_messages.hpp"
 #include "model/model_library.hpp"
+#include "replay/import/foxglove_messages.hpp"
 
 namespace rcsim::replay {
 namespace {
@@ -28,6 +31,8 @@ struct MappedSensor {
   RecordingSensor sensor;
   std::string topic;
   std::optional<double> cycle_time_s;
+  // A foxglove.PointCloud's fields that hold the radial speed and the amplitude.
+  std::string range_rate_field = "range_rate", amplitude_field = "amplitude";
 };
 
 struct Mapping {
@@ -47,12 +52,19 @@ Mapping read_mapping(const fs::path& path) {
   Mapping m;
   if (root.has("name")) m.name = root.string("name");
   for (const JsonField& s : root.array("sensors")) {
-    s.expect_only({"id", "topic", "type", "x_m", "y_m", "yaw_rad", "reports", "cycle_time_s"});
+    s.expect_only({"id", "topic", "type", "x_m", "y_m", "yaw_rad", "reports", "cycle_time_s", "fields"});
     using namespace limits;
     MappedSensor mapped{{s.string("id"), s.string("type"), s.number_within("x_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"),
                          s.number_within("y_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"), s.angle_rad("yaw_rad", kMaxMountYaw_rad)},
                         s.string("topic"),
-                        std::nullopt};
+                        std::nullopt,
+                        "range_rate",
+                        "amplitude"};
+    if (const auto fields = s.optional_member("fields")) {
+      fields->expect_only({"range_rate", "amplitude"});
+      if (fields->has("range_rate")) mapped.range_rate_field = fields->string("range_rate");
+      if (fields->has("amplitude")) mapped.amplitude_field = fields->string("amplitude");
+    }
     if (s.has("reports")) {
       const std::string reports = s.string("reports");
       if (reports != "tracks" && reports != "detections") s.fail("reports", "must be \"tracks\" or \"detections\", got \"" + reports + "\"");
@@ -100,15 +112,14 @@ struct LoggedCycle {
   std::vector<ros2::RadarReturn> returns;
 };
 
-struct LoggedBox {
-  std::int64_t t_ns = 0;
-  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, length_m = 0.0, width_m = 0.0;
-  std::optional<double> speed_mps;
-};
-
+// An object's boxes as logged (an hour of a busy road holds millions: kept compact), their stamps
+// beside them until the recording's clock is known.
 struct LoggedObject {
   std::string id, log_class;
-  std::vector<LoggedBox> boxes;
+  std::vector<AnnotatedBox> boxes;  // t_s not yet set
+  std::vector<std::int64_t> t_ns;
+  std::vector<float> lengths_m, widths_m;
+  bool speed_missing = false;  // some box without speed_mps: all speeds from the positions
 };
 
 // What the log holds on the mapped topics, in log order.
@@ -121,54 +132,50 @@ struct LoggedDrive {
   std::string profile, library;
 };
 
-double number_of(const nlohmann::json& j, const char* key) {
-  if (!j.is_object() || !j.contains(key) || !j.at(key).is_number()) throw std::invalid_argument(fmt::format("{}: not a number", key));
-  const double v = j.at(key).get<double>();
-  if (!std::isfinite(v)) throw std::invalid_argument(fmt::format("{}: not finite", key));
-  return v;
+// Every box of a foxglove.SceneUpdate into its object's boxes.
+void add_scene_update(simdjson::ondemand::parser& parser, const std::string& text, LoggedDrive& drive) {
+  foxglove::for_each_scene_box(parser, text, [&](const foxglove::SceneBox& b) {
+    auto [it, added] = drive.object_index.try_emplace(std::string(b.id), drive.objects.size());
+    if (added) drive.objects.push_back({std::string(b.id), std::string(b.log_class), {}, {}, {}, {}, false});
+    LoggedObject& object = drive.objects[it->second];
+    if (object.log_class.empty()) object.log_class = b.log_class;
+    object.boxes.push_back({0.0, b.x_m, b.y_m, b.yaw_rad, b.speed_mps.value_or(0.0), 0});
+    object.t_ns.push_back(b.t_ns);
+    object.lengths_m.push_back(static_cast<float>(b.length_m));
+    object.widths_m.push_back(static_cast<float>(b.width_m));
+    object.speed_missing = object.speed_missing || !b.speed_mps;
+  });
 }
 
-// A foxglove.SceneUpdate's entities: each entity's first cube as a box at the entity's time.
-void add_scene_update(const std::string& text, LoggedDrive& drive) {
-  const nlohmann::json update = nlohmann::json::parse(text);
-  if (!update.is_object() || !update.contains("entities") || !update.at("entities").is_array()) {
-    throw std::invalid_argument("entities: not an array");
+// A radar's foxglove.PointCloud as a scan: each point (x, y, z in the cloud's frame, moved by its
+// pose into the radar's) a return with the mapped range-rate and amplitude fields.
+ros2::RadarScan scan_of_point_cloud(simdjson::ondemand::parser& parser, const std::string& text, const MappedSensor& sensor) {
+  const foxglove::PointCloud cloud =
+      foxglove::decode_point_cloud(parser, text, {"x", "y", "z", sensor.range_rate_field, sensor.amplitude_field});
+  ros2::RadarScan scan;
+  scan.header.stamp.sec = static_cast<std::int32_t>(cloud.t_ns / 1'000'000'000);
+  scan.header.stamp.nanosec = static_cast<std::uint32_t>(cloud.t_ns % 1'000'000'000);
+  const Eigen::Quaterniond q(cloud.orientation[3], cloud.orientation[0], cloud.orientation[1], cloud.orientation[2]);
+  const Eigen::Vector3d t(cloud.position[0], cloud.position[1], cloud.position[2]);
+  for (const std::vector<double>& p : cloud.points) {
+    const Eigen::Vector3d p_S = q.normalized() * Eigen::Vector3d(p[0], p[1], p[2]) + t;
+    const double ground_m = std::hypot(p_S.x(), p_S.y());
+    ros2::RadarReturn r;
+    r.range = static_cast<float>(p_S.norm());
+    r.azimuth = static_cast<float>(std::atan2(p_S.y(), p_S.x()));
+    r.elevation = static_cast<float>(std::atan2(p_S.z(), ground_m));
+    r.doppler_velocity = static_cast<float>(p[3]);
+    r.amplitude = static_cast<float>(p[4]);
+    scan.returns.push_back(r);
   }
-  for (const nlohmann::json& e : update.at("entities")) {
-    if (!e.contains("id") || !e.at("id").is_string()) throw std::invalid_argument("entities[].id: not a string");
-    if (!e.contains("cubes") || !e.at("cubes").is_array() || e.at("cubes").empty()) continue;  // not a box
-    const nlohmann::json& cube = e.at("cubes").front();
-    const nlohmann::json& pose = cube.at("pose");
-    const nlohmann::json& q = pose.at("orientation");
-    LoggedBox box;
-    const nlohmann::json& stamp = e.at("timestamp");
-    box.t_ns = static_cast<std::int64_t>(number_of(stamp, "sec")) * 1'000'000'000 + static_cast<std::int64_t>(number_of(stamp, "nsec"));
-    box.x_m = number_of(pose.at("position"), "x");
-    box.y_m = number_of(pose.at("position"), "y");
-    box.yaw_rad = ros2::yaw_of_quaternion(number_of(q, "x"), number_of(q, "y"), number_of(q, "z"), number_of(q, "w"));
-    box.length_m = number_of(cube.at("size"), "x");
-    box.width_m = number_of(cube.at("size"), "y");
-    std::string log_class;
-    if (e.contains("metadata") && e.at("metadata").is_array()) {
-      for (const nlohmann::json& kv : e.at("metadata")) {
-        const std::string key = kv.value("key", ""), value = kv.value("value", "");
-        if (key == "class") log_class = value;
-        if (key == "speed_mps") box.speed_mps = std::stod(value);
-      }
-    }
-    const std::string id = e.at("id").get<std::string>();
-    auto [it, added] = drive.object_index.try_emplace(id, drive.objects.size());
-    if (added) drive.objects.push_back({id, log_class, {}});
-    LoggedObject& object = drive.objects[it->second];
-    if (object.log_class.empty()) object.log_class = log_class;
-    object.boxes.push_back(box);
-  }
+  return scan;
 }
 
 LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
   mcap::Reader reader(log);
   LoggedDrive drive;
   drive.profile = reader.summary().profile, drive.library = reader.summary().library;
+  simdjson::ondemand::parser json_parser;
   std::map<std::string, int> sensor_of_topic;
   for (std::size_t s = 0; s < mapping.sensors.size(); ++s) sensor_of_topic[mapping.sensors[s].topic] = static_cast<int>(s);
   reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& channel, const mcap::Schema* schema) {
@@ -178,17 +185,20 @@ LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
     drive.topics_seen.insert(channel.topic);
     const std::string schema_name = schema != nullptr ? schema->name : std::string("(none)");
     const std::string where = fmt::format("topic '{}', message {} at log time {} ns", channel.topic, m.sequence, m.log_time_ns);
-    const auto expect = [&](std::string_view name, std::string_view encoding) {
+    const auto expect = [&](std::string_view name, std::string_view encoding, std::string_view or_else = "") {
       if (schema_name != name || channel.message_encoding != encoding) {
         throw InputError(log.string(), where,
-                         fmt::format("schema '{}' in '{}': the mapping takes {} in '{}' on this topic", schema_name,
-                                     channel.message_encoding, name, encoding));
+                         fmt::format("schema '{}' in '{}': the mapping takes {} in '{}'{} on this topic", schema_name,
+                                     channel.message_encoding, name, encoding, or_else));
       }
     };
     try {
       if (sensor != sensor_of_topic.end()) {
-        expect(ros2::kRadarScanSchema, "cdr");
-        ros2::RadarScan scan = ros2::decode_radar_scan(m.data);
+        // A RadarScan in CDR, or a foxglove.PointCloud in JSON.
+        const bool cloud = schema_name == "foxglove.PointCloud" && channel.message_encoding == "json";
+        if (!cloud) expect(ros2::kRadarScanSchema, "cdr", " or foxglove.PointCloud in 'json'");
+        ros2::RadarScan scan = cloud ? scan_of_point_cloud(json_parser, m.data, mapping.sensors[static_cast<std::size_t>(sensor->second)])
+                                     : ros2::decode_radar_scan(m.data);
         drive.cycles.push_back({scan.header.stamp.ns(), sensor->second, std::move(scan.returns)});
       } else if (is_ego) {
         expect(ros2::kOdometrySchema, "cdr");
@@ -196,14 +206,14 @@ LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
         drive.ego.emplace_back(o.header.stamp.ns(), o);
       } else {
         expect("foxglove.SceneUpdate", "json");
-        add_scene_update(m.data, drive);
+        add_scene_update(json_parser, m.data, drive);
       }
     } catch (const ros2::CdrError& e) {
       throw InputError(log.string(), where, e.what());
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(log.string(), where, fmt::format("not a foxglove.SceneUpdate: {}", e.what()));
+    } catch (const simdjson::simdjson_error& e) {
+      throw InputError(log.string(), where, fmt::format("not a {}: {}", schema_name, e.what()));
     } catch (const std::logic_error& e) {  // a field missing or not a number (std::stod too)
-      throw InputError(log.string(), where, fmt::format("not a foxglove.SceneUpdate: {}", e.what()));
+      throw InputError(log.string(), where, fmt::format("not a {}: {}", schema_name, e.what()));
     }
   });
   for (const MappedSensor& s : mapping.sensors) {
@@ -288,6 +298,7 @@ void add_cycles(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, con
       rec.targets.push_back(t);
     }
   }
+  drive.cycles = {};  // the targets hold them now: memory back
   for (std::size_t s = 0; s < rec.sensors.size(); ++s) {
     const MappedSensor& mapped = mapping.sensors[s];
     rec.sensors[s].cycle_time_s = mapped.cycle_time_s.value_or(median_step_s(times[s], 0.05));
@@ -297,11 +308,11 @@ void add_cycles(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, con
   }
 }
 
-void add_objects(const LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec,
+void add_objects(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec,
                  std::vector<double>& annotation_times_s) {
   const ModelLibrary& library = ModelLibrary::builtin();
   rec.boxes.clear();
-  for (const LoggedObject& o : drive.objects) {
+  for (LoggedObject& o : drive.objects) {
     const auto mapped = mapping.classes.find(o.log_class);
     const std::string model = mapped != mapping.classes.end() ? mapped->second : o.log_class;
     if (!library.contains(model)) {
@@ -309,12 +320,10 @@ void add_objects(const LoggedDrive& drive, std::int64_t t0_ns, const fs::path& l
                        fmt::format("entity '{}' has class '{}', no object model (rcsim models); map it in the mapping's "
                                    "objects.classes", o.id, o.log_class));
     }
-    std::vector<double> lengths, widths;
-    std::vector<AnnotatedBox> boxes;
-    for (const LoggedBox& b : o.boxes) {
-      lengths.push_back(b.length_m), widths.push_back(b.width_m);
-      boxes.push_back({seconds_since(b.t_ns, t0_ns), b.x_m, b.y_m, wrap_angle_rad(b.yaw_rad), b.speed_mps.value_or(0.0), 0});
-      annotation_times_s.push_back(boxes.back().t_s);
+    std::vector<AnnotatedBox> boxes = std::move(o.boxes);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      boxes[i].t_s = seconds_since(o.t_ns[i], t0_ns);
+      annotation_times_s.push_back(boxes[i].t_s);
     }
     std::stable_sort(boxes.begin(), boxes.end(), [](const AnnotatedBox& a, const AnnotatedBox& b) { return a.t_s < b.t_s; });
     for (std::size_t i = 1; i < boxes.size(); ++i) {
@@ -324,14 +333,15 @@ void add_objects(const LoggedDrive& drive, std::int64_t t0_ns, const fs::path& l
     }
     // Without speed_mps: the speed along the heading from the neighbouring boxes (central differences).
     for (std::size_t i = 0; i < boxes.size() && boxes.size() >= 2; ++i) {
-      if (o.boxes[0].speed_mps) break;
+      if (!o.speed_missing) break;
       const AnnotatedBox& a = boxes[i == 0 ? 0 : i - 1];
       const AnnotatedBox& b = boxes[i + 1 == boxes.size() ? i : i + 1];
       const Vec2 v_W((b.x_m - a.x_m) / (b.t_s - a.t_s), (b.y_m - a.y_m) / (b.t_s - a.t_s));
       boxes[i].speed_mps = speed_along_heading_mps(v_W, boxes[i].yaw_rad);
     }
-    rec.objects.push_back({o.id, model, median(lengths), median(widths),
-                           nlohmann::json{{"log_class", o.log_class}}});
+    const auto median_of = [](const std::vector<float>& v) { return median(std::vector<double>(v.begin(), v.end())); };
+    rec.objects.push_back({o.id, model, median_of(o.lengths_m), median_of(o.widths_m), nlohmann::json{{"log_class", o.log_class}}});
+    o.t_ns = {}, o.lengths_m = {}, o.widths_m = {};  // done with: memory back
     rec.boxes.push_back(std::move(boxes));
   }
 }
@@ -352,7 +362,7 @@ DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& op
   for (const auto& [t_ns, o] : drive.ego) t0_ns = std::min(t0_ns, t_ns);
   for (const LoggedCycle& c : drive.cycles) t0_ns = std::min(t0_ns, c.t_ns);
   for (const LoggedObject& o : drive.objects) {
-    for (const LoggedBox& b : o.boxes) t0_ns = std::min(t0_ns, b.t_ns);
+    for (const std::int64_t t_ns : o.t_ns) t0_ns = std::min(t0_ns, t_ns);
   }
   DatasetRecording out;
   Recording& rec = out.recording;

@@ -194,20 +194,51 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
   }
 }
 
-void write_file(const fs::path& path, const std::string& text) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) throw InputError(path.string(), "", std::string("cannot create file: ") + std::strerror(errno));
-  std::size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-    if (n < 0) {
-      ::close(fd);
-      throw InputError(path.string(), "", std::string("write failed: ") + std::strerror(errno));
-    }
-    written += static_cast<std::size_t>(n);
+// A new file written through a 1 MiB buffer (an hour's recording never sits in memory as text),
+// synced to disk when closed.
+class FileOut {
+ public:
+  explicit FileOut(const fs::path& path) : path_(path), fd_(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644)) {
+    if (fd_ < 0) throw InputError(path.string(), "", std::string("cannot create file: ") + std::strerror(errno));
   }
-  ::fsync(fd);
-  ::close(fd);
+  FileOut(const FileOut&) = delete;
+  FileOut& operator=(const FileOut&) = delete;
+  ~FileOut() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  // Where rows are formatted; each row_done() writes the buffer out once it holds 1 MiB.
+  std::string& text() { return buffer_; }
+  auto out() { return std::back_inserter(buffer_); }
+  void row_done() {
+    if (buffer_.size() >= kFlushBytes) flush();
+  }
+  void close() {
+    flush();
+    ::fsync(fd_);
+    ::close(fd_);
+    fd_ = -1;
+  }
+
+ private:
+  static constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
+  void flush() {
+    std::size_t written = 0;
+    while (written < buffer_.size()) {
+      const ssize_t n = ::write(fd_, buffer_.data() + written, buffer_.size() - written);
+      if (n < 0) throw InputError(path_.string(), "", std::string("write failed: ") + std::strerror(errno));
+      written += static_cast<std::size_t>(n);
+    }
+    buffer_.clear();
+  }
+  fs::path path_;
+  int fd_;
+  std::string buffer_;
+};
+
+void write_file(const fs::path& path, const std::string& text) {
+  FileOut file(path);
+  file.text() = text;
+  file.close();
 }
 
 // Whether a version 3 field differs from its default (then the recording is written as version 3).
@@ -428,39 +459,45 @@ void check_writable(const Recording& rec) {
   }
 }
 
-std::string ego_csv(const Recording& rec) {
-  std::string ego = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
+void write_ego_csv(const fs::path& path, const Recording& rec) {
+  FileOut ego(path);
+  ego.text() = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
   for (const auto& e : rec.ego) {
-    fmt::format_to(std::back_inserter(ego), "{:.6f},{:.4f},{:.4f},{:.6f},{:.4f},{:.6f}\n", e.t_s, e.x_m, e.y_m,
-                   e.yaw_rad, e.speed_mps, e.yaw_rate_radps);
+    fmt::format_to(ego.out(), "{:.6f},{:.4f},{:.4f},{:.6f},{:.4f},{:.6f}\n", e.t_s, e.x_m, e.y_m, e.yaw_rad, e.speed_mps,
+                   e.yaw_rate_radps);
+    ego.row_done();
   }
-  return ego;
+  ego.close();
 }
 
-std::string cycles_csv(const Recording& rec) {
-  std::string cycles = "t_s,sensor\n";
+void write_cycles_csv(const fs::path& path, const Recording& rec) {
+  FileOut cycles(path);
+  cycles.text() = "t_s,sensor\n";
   for (const auto& c : rec.cycles) {
-    fmt::format_to(std::back_inserter(cycles), "{:.6f},{}\n", c.t_s, csv_field(rec.sensors.at(static_cast<std::size_t>(c.sensor)).id));
+    fmt::format_to(cycles.out(), "{:.6f},{}\n", c.t_s, csv_field(rec.sensors.at(static_cast<std::size_t>(c.sensor)).id));
+    cycles.row_done();
   }
-  return cycles;
+  cycles.close();
 }
 
-std::string objects_csv(const Recording& rec) {
+void write_objects_csv(const fs::path& path, const Recording& rec) {
   // Rows in time order, objects in recording order within one time.
   std::vector<std::pair<std::size_t, const AnnotatedBox*>> rows;
   for (std::size_t i = 0; i < rec.boxes.size(); ++i) {
     for (const auto& b : rec.boxes[i]) rows.emplace_back(i, &b);
   }
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second->t_s < b.second->t_s; });
-  std::string objects = "t_s,object,x_m,y_m,yaw_rad,speed_mps\n";
+  FileOut objects(path);
+  objects.text() = "t_s,object,x_m,y_m,yaw_rad,speed_mps\n";
   for (const auto& [i, b] : rows) {
-    fmt::format_to(std::back_inserter(objects), "{:.6f},{},{:.4f},{:.4f},{:.6f},{:.4f}\n", b->t_s,
-                   csv_field(rec.objects[i].id), b->x_m, b->y_m, b->yaw_rad, b->speed_mps);
+    fmt::format_to(objects.out(), "{:.6f},{},{:.4f},{:.4f},{:.6f},{:.4f}\n", b->t_s, csv_field(rec.objects[i].id), b->x_m,
+                   b->y_m, b->yaw_rad, b->speed_mps);
+    objects.row_done();
   }
-  return objects;
+  objects.close();
 }
 
-std::string targets_csv(const Recording& rec) {
+void write_targets_csv(const fs::path& path, const Recording& rec) {
   // The id column only when the sensors report track ids (raw detections have none).
   const bool ids = std::any_of(rec.targets.begin(), rec.targets.end(), [](const RecordedTarget& t) { return t.id >= 0; });
   // The optional columns only where some target has the value.
@@ -477,20 +514,21 @@ std::string targets_csv(const Recording& rec) {
                                   "some targets only");
     }
   }
-  std::string targets = ids ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db"
-                            : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db";
-  targets += std::string(rcs ? ",rcs_dbsm" : "") + (snr ? ",snr_db" : "") + (elevation ? ",elevation_rad" : "") + "\n";
+  FileOut targets(path);
+  targets.text() = ids ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db"
+                       : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db";
+  targets.text() += std::string(rcs ? ",rcs_dbsm" : "") + (snr ? ",snr_db" : "") + (elevation ? ",elevation_rad" : "") + "\n";
   for (const auto& t : rec.targets) {
-    fmt::format_to(std::back_inserter(targets), "{:.6f},{},{},", t.t_s, t.cycle, csv_field(rec.sensors[t.sensor].id));
-    if (ids) fmt::format_to(std::back_inserter(targets), "{},", t.id);
-    fmt::format_to(std::back_inserter(targets), "{:.4f},{:.6f},{:.4f},{:.3f}", t.range_m, t.azimuth_rad,
-                   t.range_rate_mps, t.amplitude_db);
-    if (rcs) fmt::format_to(std::back_inserter(targets), ",{:.3f}", t.rcs_dbsm);
-    if (snr) fmt::format_to(std::back_inserter(targets), ",{:.3f}", t.snr_db);
-    if (elevation) fmt::format_to(std::back_inserter(targets), ",{:.6f}", t.elevation_rad);
-    targets += '\n';
+    fmt::format_to(targets.out(), "{:.6f},{},{},", t.t_s, t.cycle, csv_field(rec.sensors[t.sensor].id));
+    if (ids) fmt::format_to(targets.out(), "{},", t.id);
+    fmt::format_to(targets.out(), "{:.4f},{:.6f},{:.4f},{:.3f}", t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db);
+    if (rcs) fmt::format_to(targets.out(), ",{:.3f}", t.rcs_dbsm);
+    if (snr) fmt::format_to(targets.out(), ",{:.3f}", t.snr_db);
+    if (elevation) fmt::format_to(targets.out(), ",{:.6f}", t.elevation_rad);
+    targets.text() += '\n';
+    targets.row_done();
   }
-  return targets;
+  targets.close();
 }
 
 }  // namespace
@@ -512,10 +550,10 @@ void write_recording(const fs::path& dir, const Recording& rec, const std::map<s
   fs::create_directory(temp);
   try {
     write_file(temp / "recording.json", header_text(rec));
-    write_file(temp / "ego.csv", ego_csv(rec));
-    write_file(temp / "objects.csv", objects_csv(rec));
-    write_file(temp / "targets.csv", targets_csv(rec));
-    if (rec.clock == Clock::per_sensor) write_file(temp / "cycles.csv", cycles_csv(rec));
+    write_ego_csv(temp / "ego.csv", rec);
+    write_objects_csv(temp / "objects.csv", rec);
+    write_targets_csv(temp / "targets.csv", rec);
+    if (rec.clock == Clock::per_sensor) write_cycles_csv(temp / "cycles.csv", rec);
     for (const auto& [file, content] : extra_files) write_file(temp / fs::path(file).filename(), content);
 
     // A directory cannot be renamed over a non-empty one: move the old one aside first.

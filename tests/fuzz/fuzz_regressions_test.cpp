@@ -213,7 +213,7 @@ TEST(FuzzBases, TheCampaignManifestSeedsPlan) {
 // seed with another schema on the radar's topic is refused naming it.
 TEST(FuzzBases, TheMcapSeedsImportOrAreRefusedByName) {
   const auto seeds = mcap_seeds();
-  ASSERT_EQ(seeds.size(), 2u);
+  ASSERT_EQ(seeds.size(), 3u);
   const fs::path dir = fresh_dir("mcap_seed");
   write_file(dir / "mapping.json", kMcapMapping);
   replay::DatasetImportOptions options;
@@ -233,6 +233,12 @@ TEST(FuzzBases, TheMcapSeedsImportOrAreRefusedByName) {
     EXPECT_NE(std::string(e.what()).find("schema 'sensor_msgs/msg/PointCloud2'"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(fuzz_mcap(Input(seeds[0].second.data(), seeds[0].second.size())));
+  // The point-cloud seed: the same 30 returns; the middle point of the first cycle 16.3 m ahead.
+  write_file(dir / "cloud.mcap", {reinterpret_cast<const char*>(seeds[2].second.data()), seeds[2].second.size()});
+  const Recording clouds = replay::import_mcap(dir / "cloud.mcap", options).recording;
+  EXPECT_EQ(clouds.targets.size(), 30u);
+  EXPECT_NEAR(clouds.targets[1].range_m, 20.0 - 3.7, 1e-5);
+  EXPECT_NEAR(clouds.targets[1].azimuth_rad, 0.0, 1e-7);
 }
 
 TEST(FuzzSupport, SectionsSplitOnTheSeparatorLine) {

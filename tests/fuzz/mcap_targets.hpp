@@ -87,19 +87,48 @@ inline std::string scene_update(std::int64_t t_ns) {
          R"({"x": 4.5, "y": 1.8, "z": 1.5}}]}]})";
 }
 
+// The same three points as a foxglove.PointCloud (float32 x, y, z, range_rate, amplitude).
+inline std::string point_cloud(std::int64_t t_ns, double ego_x_m) {
+  std::string data;
+  for (int i = 0; i < 3; ++i) {
+    for (const float v : {static_cast<float>(20.0 - ego_x_m - 3.7), static_cast<float>(-0.6 + 0.6 * i), 0.2f, -1.0f, 30.0f}) {
+      char raw[4];
+      std::memcpy(raw, &v, 4);
+      data.append(raw, 4);
+    }
+  }
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string base64;
+  for (std::size_t i = 0; i < data.size(); i += 3) {  // 60 bytes: whole groups of 3
+    const std::uint32_t v = (static_cast<std::uint8_t>(data[i]) << 16) | (static_cast<std::uint8_t>(data[i + 1]) << 8) |
+                            static_cast<std::uint8_t>(data[i + 2]);
+    for (int k = 3; k >= 0; --k) base64 += kAlphabet[(v >> (6 * k)) & 63];
+  }
+  std::string fields;
+  for (int j = 0; j < 5; ++j) {
+    static const char* kNames[] = {"x", "y", "z", "range_rate", "amplitude"};
+    fields += std::string(j == 0 ? "" : ", ") + R"({"name": ")" + kNames[j] + R"(", "offset": )" + std::to_string(4 * j) + R"(, "type": 7})";
+  }
+  return R"({"timestamp": {"sec": )" + std::to_string(t_ns / 1'000'000'000) + R"(, "nsec": )" + std::to_string(t_ns % 1'000'000'000) +
+         R"(}, "frame_id": "front", "pose": {"position": {"x": 0, "y": 0, "z": 0}, "orientation": {"x": 0, "y": 0, "z": 0, "w": 1}}, )"
+         R"("point_stride": 20, "fields": [)" + fields + R"(], "data": ")" + base64 + R"("})";
+}
+
 }  // namespace mcap_seed
 
-// Logs of 10 radar cycles at 20 Hz, odometry at 10 Hz and boxes at 10 Hz; one with the radar's
-// topic under another schema, one with the messages in one chunk each.
+// Logs of 10 radar cycles at 20 Hz, odometry at 10 Hz and boxes at 10 Hz: the radar's as
+// RadarScan, as foxglove.PointCloud, and under another schema.
 inline std::vector<std::pair<std::string, std::vector<std::uint8_t>>> mcap_seeds() {
   std::vector<std::pair<std::string, std::vector<std::uint8_t>>> seeds;
-  for (const bool wrong_schema : {false, true}) {
+  for (const int kind : {0, 1, 2}) {  // RadarScan, another schema, PointCloud
+    const bool wrong_schema = kind == 1, cloud = kind == 2;
     std::ostringstream out;
     mcap::Writer writer(out, "ros2");
-    const auto scan = writer.add_schema(wrong_schema ? "sensor_msgs/msg/PointCloud2" : "radar_msgs/msg/RadarScan", "ros2msg", "");
+    const auto scan = cloud ? writer.add_schema("foxglove.PointCloud", "jsonschema", "{}")
+                            : writer.add_schema(wrong_schema ? "sensor_msgs/msg/PointCloud2" : "radar_msgs/msg/RadarScan", "ros2msg", "");
     const auto odom = writer.add_schema("nav_msgs/msg/Odometry", "ros2msg", "");
     const auto scene = writer.add_schema("foxglove.SceneUpdate", "jsonschema", "{}");
-    const auto scan_channel = writer.add_channel("/radar/front/scan", "cdr", scan);
+    const auto scan_channel = writer.add_channel("/radar/front/scan", cloud ? "json" : "cdr", scan);
     const auto odom_channel = writer.add_channel("/odom", "cdr", odom);
     const auto scene_channel = writer.add_channel("/annotations", "json", scene);
     const std::int64_t t0_ns = 1'700'000'000'000'000'000;
@@ -109,11 +138,13 @@ inline std::vector<std::pair<std::string, std::vector<std::uint8_t>>> mcap_seeds
         writer.write_message(odom_channel, static_cast<std::uint64_t>(t_ns), mcap_seed::odometry(t_ns, 0.05 * k));
         writer.write_message(scene_channel, static_cast<std::uint64_t>(t_ns), mcap_seed::scene_update(t_ns));
       }
-      writer.write_message(scan_channel, static_cast<std::uint64_t>(t_ns), mcap_seed::radar_scan(t_ns, 0.05 * k));
+      writer.write_message(scan_channel, static_cast<std::uint64_t>(t_ns),
+                           cloud ? mcap_seed::point_cloud(t_ns, 0.05 * k) : mcap_seed::radar_scan(t_ns, 0.05 * k));
     }
     writer.finish();
     const std::string bytes = out.str();
-    seeds.emplace_back(wrong_schema ? "wrong_schema.mcap" : "drive.mcap", std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    seeds.emplace_back(cloud ? "point_cloud.mcap" : wrong_schema ? "wrong_schema.mcap" : "drive.mcap",
+                       std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
   }
   return seeds;
 }

@@ -52,12 +52,14 @@ class McapImport : public testing::ScratchDirTest {
     if (!tool_installed()) GTEST_SKIP() << "the MCAP test tool is not installed (scripts/test-tools.sh: Node.js and npm ci in tests/tools/mcap)";
   }
   // The recording in `dir` as a ROS 2 log (and its mapping file), written by the test tool.
-  fs::path log_of(const fs::path& dir, const std::string& compression, const std::string& name) {
+  fs::path log_of(const fs::path& dir, const std::string& compression, const std::string& name,
+                  const std::string& detections = "radarscan") {
     const fs::path log = dir_ / (name + ".mcap");
     mapping_ = dir_ / (name + ".mapping.json");
     const auto written = rcsim::testing::run_shell_command("node " + (kTool / "write_ros2_log.js").string() + " " + dir.string() +
                                                            " " + log.string() + " --compression " + compression +
-                                                           " --mapping " + mapping_.string() + " --chunk-bytes 16384");
+                                                           " --mapping " + mapping_.string() + " --chunk-bytes 16384" +
+                                                           " --detections " + detections);
     EXPECT_EQ(written.exit_code, 0) << written.output;
     return log;
   }
@@ -153,6 +155,13 @@ TEST_F(McapImport, UncompressedAndLz4ChunksReadAlike) {
   const Recording original = read_recording(dir);
   expect_same_drive(original, imported(log_of(dir, "none", "plain")));
   expect_same_drive(original, imported(log_of(dir, "lz4", "lz4")));
+}
+
+// The detections as foxglove.PointCloud (JSON, float32 x y z in each radar's frame) instead of
+// RadarScan: the same drive back.
+TEST_F(McapImport, PointCloudDetectionsGiveTheSameDrive) {
+  const fs::path dir = testing::kBundledRecordings / "two_in_one_cell";
+  expect_same_drive(read_recording(dir), imported(log_of(dir, "lz4", "clouds", "pointcloud")));
 }
 
 // The aiMotive drive as a ROS 2 log gives the recording `import --from aimotive` gives, and the

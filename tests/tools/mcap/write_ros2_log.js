@@ -1,11 +1,13 @@
 // node write_ros2_log.js RECORDING_DIR OUT.mcap [--compression none|zstd|lz4] [--mapping OUT.json]
-//   [--chunk-bytes N]
+//   [--chunk-bytes N] [--detections radarscan|pointcloud]
 // Test tool: writes an rcsim recording (schemas/recording.md) as a ROS 2 log, the way a user's
 // drive arrives, with the format's own writer (@mcap/core) and ROS 2's CDR (@foxglove/cdr through
 // @foxglove/rosmsg2-serialization):
 //   /radar/SENSOR/scan  radar_msgs/msg/RadarScan, one per sensor cycle, stamped with its time; each
 //                       return's range the slant range (the recording's horizontal range over the
 //                       cosine of its elevation), float32 as the message has it;
+//   (--detections pointcloud: /radar/SENSOR/points, foxglove.PointCloud (JSON) instead: float32
+//                       fields x, y, z in the radar's frame, range_rate and amplitude);
 //   /odom               nav_msgs/msg/Odometry, one per ego row (pose in "odom", twist in "base_link");
 //   /annotations        foxglove.SceneUpdate (JSON), one per annotation time: a cube per box, its
 //                       class and speed in the entity's metadata.
@@ -96,11 +98,12 @@ function readCsv(file) {
 }
 
 function options(argv) {
-  const o = { compression: "none", mapping: "", chunkBytes: 64 * 1024 };
+  const o = { compression: "none", mapping: "", chunkBytes: 64 * 1024, detections: "radarscan" };
   for (let i = 4; i < argv.length; i += 2) {
     if (argv[i] === "--compression") o.compression = argv[i + 1];
     else if (argv[i] === "--mapping") o.mapping = argv[i + 1];
     else if (argv[i] === "--chunk-bytes") o.chunkBytes = Number(argv[i + 1]);
+    else if (argv[i] === "--detections") o.detections = argv[i + 1];
     else throw new Error(`unknown option ${argv[i]}`);
   }
   return o;
@@ -155,10 +158,14 @@ async function main() {
     data: Buffer.from(JSON.stringify(foxglove.SceneUpdate)) });
   const scanWriter = new MessageWriter(parseMessageDefinition(RADAR_SCAN, { ros2: true }));
   const odomWriter = new MessageWriter(parseMessageDefinition(ODOMETRY, { ros2: true }));
+  const clouds = o.detections === "pointcloud";
+  const cloudSchema = clouds ? await writer.registerSchema({ name: "foxglove.PointCloud", encoding: "jsonschema",
+    data: Buffer.from(JSON.stringify(foxglove.PointCloud)) }) : 0;
+  const topicOf = (id) => (clouds ? `/radar/${id}/points` : `/radar/${id}/scan`);
   const scanChannel = {};
   for (const s of rec.sensors) {
-    scanChannel[s.id] = await writer.registerChannel({ topic: `/radar/${s.id}/scan`, schemaId: scanSchema,
-      messageEncoding: "cdr", metadata: new Map() });
+    scanChannel[s.id] = await writer.registerChannel({ topic: topicOf(s.id), schemaId: clouds ? cloudSchema : scanSchema,
+      messageEncoding: clouds ? "json" : "cdr", metadata: new Map() });
   }
   const odomChannel = await writer.registerChannel({ topic: "/odom", schemaId: odomSchema, messageEncoding: "cdr", metadata: new Map() });
   const sceneChannel = await writer.registerChannel({ topic: "/annotations", schemaId: sceneSchema, messageEncoding: "json",
@@ -166,10 +173,24 @@ async function main() {
 
   // Every message with its time, written in time order (scans, then odometry, then boxes at one time).
   const messages = [];
+  const cloudOf = (ns, frame, returns) => {
+    const data = Buffer.alloc(20 * returns.length);
+    returns.forEach((r, k) => {
+      const ground = r.range * Math.cos(r.elevation);
+      [ground * Math.cos(r.azimuth), ground * Math.sin(r.azimuth), r.range * Math.sin(r.elevation), r.doppler_velocity, r.amplitude]
+        .forEach((v, j) => data.writeFloatLE(v, 20 * k + 4 * j));
+    });
+    const stamp = stampOf(ns);
+    return Buffer.from(JSON.stringify({ timestamp: { sec: stamp.sec, nsec: stamp.nanosec }, frame_id: frame,
+      pose: { position: { x: 0, y: 0, z: 0 }, orientation: { x: 0, y: 0, z: 0, w: 1 } }, point_stride: 20,
+      fields: ["x", "y", "z", "range_rate", "amplitude"].map((name, j) => ({ name, offset: 4 * j, type: 7 })),
+      data: data.toString("base64") }));
+  };
   cycles.forEach((c, i) => {
     const ns = nsOf(c.t);
     messages.push({ ns, order: 0, channelId: scanChannel[c.sensor],
-      data: scanWriter.writeMessage({ header: { stamp: stampOf(ns), frame_id: c.sensor }, returns: returnsOf[i] }) });
+      data: clouds ? cloudOf(ns, c.sensor, returnsOf[i])
+        : scanWriter.writeMessage({ header: { stamp: stampOf(ns), frame_id: c.sensor }, returns: returnsOf[i] }) });
   });
   for (const e of ego) {
     const ns = nsOf(e.t_s);
@@ -208,7 +229,7 @@ async function main() {
   fs.writeFileSync(out, Buffer.concat(chunks));
   if (o.mapping) {
     const mapping = { format: "rcsim-mcap-mapping", version: 1, name: rec.name,
-      sensors: rec.sensors.map((s) => ({ id: s.id, topic: `/radar/${s.id}/scan`, type: s.type, x_m: s.x_m, y_m: s.y_m,
+      sensors: rec.sensors.map((s) => ({ id: s.id, topic: topicOf(s.id), type: s.type, x_m: s.x_m, y_m: s.y_m,
         yaw_rad: s.yaw_rad, reports: s.reports || "tracks" })),
       ego: { topic: "/odom" }, objects: { topic: "/annotations" } };
     fs.writeFileSync(o.mapping, JSON.stringify(mapping, null, 2) + "\n");
