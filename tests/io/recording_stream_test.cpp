@@ -21,13 +21,6 @@ namespace fs = std::filesystem;
 
 using testing::refusal_of;
 
-std::string bytes_of(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 class RecordingStreamFiles : public testing::ScratchDirTest {
  protected:
   RecordingStreamFiles() : ScratchDirTest("recording_stream") {
@@ -61,8 +54,8 @@ TEST_F(RecordingStreamFiles, TheHeaderPassCountsCyclesAndHashesTheFourFiles) {
   EXPECT_EQ(stream.header().cycle_count(), 3);
   EXPECT_EQ(stream.boxes_path(), (dir / "objects.csv").string());
   // FNV-1a 64 of the four files one after the other, chained from the hash of "rcsim-recording/1".
-  const std::string all = bytes_of(dir / "recording.json") + bytes_of(dir / "ego.csv") + bytes_of(dir / "objects.csv") +
-                          bytes_of(dir / "targets.csv");
+  const std::string all = testing::file_bytes(dir / "recording.json") + testing::file_bytes(dir / "ego.csv") + testing::file_bytes(dir / "objects.csv") +
+                          testing::file_bytes(dir / "targets.csv");
   EXPECT_EQ(recording_checksum(dir), fnv1a64(all, fnv1a64("rcsim-recording/1")));
   EXPECT_EQ(stream.header().checksum, recording_checksum(dir));
   EXPECT_EQ(read_recording(dir).checksum, recording_checksum(dir));
@@ -82,7 +75,7 @@ TEST_F(RecordingStreamFiles, TheHeaderPassCountsCyclesAndHashesTheFourFiles) {
 // 12.0): without the line end every writer puts there, it is refused as cut short, not read.
 TEST_F(RecordingStreamFiles, ACsvWhoseLastLineHasNoLineEndIsRefusedAsCutShort) {
   const fs::path dir = written();
-  std::string targets = bytes_of(dir / "targets.csv");
+  std::string targets = testing::file_bytes(dir / "targets.csv");
   ASSERT_EQ(targets.back(), '\n');
   targets.resize(targets.size() - 5);  // "12.000\n" becomes "12"
   std::ofstream(dir / "targets.csv", std::ios::binary | std::ios::trunc) << targets;

@@ -23,13 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::refusal_of;
 
-std::string file_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 class RecordingV4 : public testing::ScratchDirTest {
  protected:
   RecordingV4() : ScratchDirTest("rec_v4") {}
@@ -69,10 +62,10 @@ class RecordingV4 : public testing::ScratchDirTest {
 
 TEST_F(RecordingV4, RoundTripKeepsEachSensorsClockAndWritesVersion4) {
   const fs::path dir = written();
-  const std::string header = file_text(dir / "recording.json");
+  const std::string header = testing::file_bytes(dir / "recording.json");
   EXPECT_NE(header.find("\"version\": 4"), std::string::npos) << header;
   EXPECT_NE(header.find("\"clock\": \"per_sensor\""), std::string::npos) << header;
-  EXPECT_EQ(file_text(dir / "cycles.csv").substr(0, 30), "t_s,sensor\n0.000000,front\n0.01");
+  EXPECT_EQ(testing::file_bytes(dir / "cycles.csv").substr(0, 30), "t_s,sensor\n0.000000,front\n0.01");
   const Recording back = read_recording(dir);
   EXPECT_EQ(back.clock, Clock::per_sensor);
   ASSERT_EQ(back.cycle_count(), static_cast<int>(rec_.cycles.size()));
@@ -95,7 +88,7 @@ TEST_F(RecordingV4, TheChecksumCoversCyclesCsv) {
   const fs::path dir = written();
   const std::uint64_t before = recording_checksum(dir);
   EXPECT_EQ(before, read_recording(dir).checksum);
-  std::string cycles = file_text(dir / "cycles.csv");
+  std::string cycles = testing::file_bytes(dir / "cycles.csv");
   cycles.replace(cycles.find("0.000000,front"), 14, "0.000001,front");
   std::ofstream(dir / "cycles.csv", std::ios::trunc) << cycles;
   EXPECT_NE(recording_checksum(dir), before);
@@ -124,7 +117,7 @@ TEST_F(RecordingV4, ASharedClockRecordingStaysVersion1To3ByteForByte) {
   shared.sensors[0].cycle_time_s = 0.0;
   shared.targets.clear();
   write_recording(dir_ / "s", shared);
-  EXPECT_NE(file_text(dir_ / "s" / "recording.json").find("\"version\": 1"), std::string::npos);
+  EXPECT_NE(testing::file_bytes(dir_ / "s" / "recording.json").find("\"version\": 1"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir_ / "s" / "cycles.csv"));
 }
 
@@ -134,7 +127,7 @@ TEST_F(RecordingV4, CyclesOfAnotherSensorsClockOrOutOfOrderAreRefusedNamingTheLi
     const fs::path copy = dir_ / "copy";
     fs::remove_all(copy);
     fs::copy(dir, copy);
-    std::string text = file_text(copy / file);
+    std::string text = testing::file_bytes(copy / file);
     const auto at = text.find(from);
     EXPECT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
@@ -174,7 +167,7 @@ TEST_F(RecordingV4, CyclesOfAnotherSensorsClockOrOutOfOrderAreRefusedNamingTheLi
 
 TEST_F(RecordingV4, TheClockFieldsAreRefusedWhereTheyDoNotBelong) {
   const fs::path dir = written();
-  const std::string header = file_text(dir / "recording.json");
+  const std::string header = testing::file_bytes(dir / "recording.json");
   const auto with_header = [&](const std::string& from, const std::string& to) {
     std::string text = header;
     const auto at = text.find(from);

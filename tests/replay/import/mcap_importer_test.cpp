@@ -37,13 +37,6 @@ bool tool_installed() {
          fs::exists(kTool / "node_modules" / "@foxglove" / "rosmsg2-serialization");
 }
 
-std::string bytes_of(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 class McapImport : public testing::ScratchDirTest {
  protected:
   McapImport() : ScratchDirTest("mcap_import") {}
@@ -188,7 +181,7 @@ TEST_F(McapImport, WhatIsNotThereOrNotAsMappedIsRefusedByName) {
   // No mapping.
   EXPECT_NE(refusal_of([&] { import_mcap(log, options); }).find("--mapping"), std::string::npos);
   // A topic the log does not have, the others listed.
-  std::string mapping = bytes_of(mapping_);
+  std::string mapping = testing::file_bytes(mapping_);
   mapping.replace(mapping.find("/radar/front_left/scan"), 22, "/radar/front_lft/scan");
   const fs::path wrong = write_file("wrong.json", mapping);
   options.mapping = wrong;
@@ -196,7 +189,7 @@ TEST_F(McapImport, WhatIsNotThereOrNotAsMappedIsRefusedByName) {
   EXPECT_NE(m.find("/radar/front_lft/scan"), std::string::npos) << m;
   EXPECT_NE(m.find("the log's topics: "), std::string::npos) << m;
   // The ego topic mapped as a radar's: its schema named.
-  mapping = bytes_of(mapping_);
+  mapping = testing::file_bytes(mapping_);
   mapping.replace(mapping.find("/radar/front_left/scan"), 22, "/odom");
   mapping.replace(mapping.find("\"topic\": \"/odom\"", mapping.find("\"ego\"")), 16, "\"topic\": \"/annotations\"");
   options.mapping = write_file("swapped.json", mapping);
@@ -212,7 +205,7 @@ TEST_F(McapImport, DamagedLogsAreRefusedNamingTheRecordAndOffset) {
   const fs::path log = log_of(dir, "none", "log");
   DatasetImportOptions options;
   options.mapping = mapping_;
-  const std::string bytes = bytes_of(log);
+  const std::string bytes = testing::file_bytes(log);
   // Cut in the middle: the end magic is gone.
   const fs::path cut = write_file("cut.mcap", bytes.substr(0, bytes.size() / 2));
   std::string m = refusal_of([&] { import_mcap(cut, options); });

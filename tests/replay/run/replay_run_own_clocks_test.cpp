@@ -73,14 +73,9 @@ class ReplayOwnRates : public ReplayOwnClocks {
  protected:
   void SetUp() override {
     ReplayOwnClocks::SetUp();
-    Scene scene = testing::single_sensor_scene(3.0);
+    Scene scene = testing::two_cars_scene(3.0);  // its two radars, not its cars
+    scene.objects.clear();
     scene.ego = Trajectory({testing::sample(0.0, 0.0, 0.0, 0.0, 10.0), testing::sample(3.0, 30.0, 0.0, 0.0, 10.0)});
-    scene.sensors.front().id = "front_left";
-    scene.sensors.front().X_VS = {3.7, 0.7, 0.3};
-    MountedSensor right = scene.sensors.front();
-    right.id = "front_right";
-    right.X_VS = {3.7, -0.7, -0.3};
-    scene.sensors.push_back(right);
     testing::add_object(scene, "parked", "passenger_car", {testing::sample(0.0, 45.0, 0.0, kPi, 0.0)});
     shared_ = testing::model_recording(scene, 5);
     write_recording(dir_ / "own", testing::on_own_clocks(shared_, {1, 3}, {0, 1}, 5));

@@ -23,16 +23,19 @@ const foxglove = require("@foxglove/schemas/jsonschema");
 const zstd = require("@foxglove/wasm-zstd");
 const lz4 = require("lz4js");
 
-const RADAR_SCAN = `std_msgs/Header header
-radar_msgs/RadarReturn[] returns
-================================================================================
+// The definitions a ROS 2 message with a std_msgs/Header appends (the bag's concatenated form).
+const HEADER_DEFINITIONS = `================================================================================
 MSG: std_msgs/Header
 builtin_interfaces/Time stamp
 string frame_id
 ================================================================================
 MSG: builtin_interfaces/Time
 int32 sec
-uint32 nanosec
+uint32 nanosec`;
+
+const RADAR_SCAN = `std_msgs/Header header
+radar_msgs/RadarReturn[] returns
+${HEADER_DEFINITIONS}
 ================================================================================
 MSG: radar_msgs/RadarReturn
 float32 range
@@ -45,14 +48,7 @@ const ODOMETRY = `std_msgs/Header header
 string child_frame_id
 geometry_msgs/PoseWithCovariance pose
 geometry_msgs/TwistWithCovariance twist
-================================================================================
-MSG: std_msgs/Header
-builtin_interfaces/Time stamp
-string frame_id
-================================================================================
-MSG: builtin_interfaces/Time
-int32 sec
-uint32 nanosec
+${HEADER_DEFINITIONS}
 ================================================================================
 MSG: geometry_msgs/PoseWithCovariance
 geometry_msgs/Pose pose

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The MCAP benchmark (issue 33): `rcsim import --from mcap` of a generated two-radar ring-road drive
+# of 1 h (and more), written as a ROS 2 log by the tests' tool (tests/tools/mcap/write_ros2_log.js:
+# RadarScan in CDR or foxglove.PointCloud, Odometry, SceneUpdate boxes; zstd chunks), and
+# `rcsim export --format mcap` of its replay. Times both with /usr/bin/time (wall time and peak
+# resident memory). Needs Node.js and the tool (scripts/test-tools.sh).
+# Usage: scripts/bench-mcap.sh [DURATIONS_S="3600"] [WORK_DIR=/tmp/rcsim-bench-mcap]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+durations=${1:-"3600"}
+work=${2:-/tmp/rcsim-bench-mcap}
+bash scripts/setup.sh build >/dev/null
+bash scripts/test-tools.sh >/dev/null
+mkdir -p "$work"
+grep -m1 "model name" /proc/cpuinfo
+echo "cores: $(nproc), rcsim $(build/bin/rcsim --version 2>/dev/null || echo '?')"
+printf '%-6s %-22s %10s %10s %12s\n' drive step "wall s" "peak MB" "file MB"
+timed() {  # timed LABEL DURATION FILE COMMAND...: one row
+  local label=$1 duration_s=$2 file=$3
+  shift 3
+  /usr/bin/time -o "$work/time.txt" -f "%e %M" "$@" >/dev/null 2>"$work/stderr.txt" || { cat "$work/stderr.txt"; exit 1; }
+  read -r wall_s peak_kib <"$work/time.txt"
+  local size_b=0
+  [ -e "$file" ] && size_b=$(du -sb "$file" | cut -f1)
+  awk -v d="$duration_s" -v l="$label" -v w="$wall_s" -v p="$peak_kib" -v b="$size_b" 'BEGIN {
+    printf "%-6s %-22s %10.2f %10.1f %12.1f\n", d / 3600 " h", l, w, p / 1024, b / 1e6 }'
+}
+for duration_s in $durations; do
+  rec="$work/ring_drive_${duration_s}s"
+  [ -f "$rec/targets.csv" ] || build/bin/rcsim_make_long_recording "$rec" "$duration_s" 1 >/dev/null
+  for detections in radarscan pointcloud; do
+    log="$work/drive_${duration_s}s_${detections}.mcap"
+    [ -f "$log" ] || node --max-old-space-size=8000 tests/tools/mcap/write_ros2_log.js "$rec" "$log" --compression zstd \
+      --detections "$detections" --mapping "$log.mapping.json" >/dev/null
+    rm -rf "$work/imported"
+    timed "import ($detections)" "$duration_s" "$log" build/bin/rcsim import --from mcap "$log" --mapping "$log.mapping.json" -o "$work/imported"
+  done
+  db="$work/report_${duration_s}.sqlite"
+  rm -f "$db"*
+  build/bin/rcsim replay "$work/imported" --db "$db" >/dev/null
+  timed "export --format mcap" "$duration_s" "$work/run.mcap" build/bin/rcsim export "$db" --run 1 --format mcap -o "$work/run.mcap"
+done
