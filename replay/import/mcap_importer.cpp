@@ -308,6 +308,18 @@ void add_cycles(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, con
   }
 }
 
+// Boxes logged without speed_mps: each one's speed along its heading from its neighbours'
+// positions (central differences, one-sided at the ends; times increasing).
+void set_speeds_from_positions(std::vector<AnnotatedBox>& boxes) {
+  if (boxes.size() < 2) return;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const AnnotatedBox& a = boxes[i == 0 ? 0 : i - 1];
+    const AnnotatedBox& b = boxes[i + 1 == boxes.size() ? i : i + 1];
+    const Vec2 v_W((b.x_m - a.x_m) / (b.t_s - a.t_s), (b.y_m - a.y_m) / (b.t_s - a.t_s));
+    boxes[i].speed_mps = speed_along_heading_mps(v_W, boxes[i].yaw_rad);
+  }
+}
+
 void add_objects(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec,
                  std::vector<double>& annotation_times_s) {
   const ModelLibrary& library = ModelLibrary::builtin();
@@ -331,14 +343,7 @@ void add_objects(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, co
         throw InputError(log.string(), mapping.objects_topic, fmt::format("entity '{}' twice at {:.6f} s", o.id, boxes[i].t_s));
       }
     }
-    // Without speed_mps: the speed along the heading from the neighbouring boxes (central differences).
-    for (std::size_t i = 0; i < boxes.size() && boxes.size() >= 2; ++i) {
-      if (!o.speed_missing) break;
-      const AnnotatedBox& a = boxes[i == 0 ? 0 : i - 1];
-      const AnnotatedBox& b = boxes[i + 1 == boxes.size() ? i : i + 1];
-      const Vec2 v_W((b.x_m - a.x_m) / (b.t_s - a.t_s), (b.y_m - a.y_m) / (b.t_s - a.t_s));
-      boxes[i].speed_mps = speed_along_heading_mps(v_W, boxes[i].yaw_rad);
-    }
+    if (o.speed_missing) set_speeds_from_positions(boxes);
     const auto median_of = [](const std::vector<float>& v) { return median(std::vector<double>(v.begin(), v.end())); };
     rec.objects.push_back({o.id, model, median_of(o.lengths_m), median_of(o.widths_m), nlohmann::json{{"log_class", o.log_class}}});
     o.t_ns = {}, o.lengths_m = {}, o.widths_m = {};  // done with: memory back

@@ -225,6 +225,9 @@ TEST(FuzzBases, TheMcapSeedsImportOrAreRefusedByName) {
   EXPECT_EQ(rec.ego.size(), 5u);
   ASSERT_EQ(rec.objects.size(), 1u);
   EXPECT_NEAR(rec.sensors[0].cycle_time_s, 0.05, 1e-9);
+  // No speed_mps in the seed: the parked car's speed from its positions, 0 everywhere.
+  ASSERT_EQ(rec.boxes[0].size(), 5u);
+  for (const AnnotatedBox& b : rec.boxes[0]) EXPECT_NEAR(b.speed_mps, 0.0, 1e-12);
   write_file(dir / "wrong.mcap", {reinterpret_cast<const char*>(seeds[1].second.data()), seeds[1].second.size()});
   try {
     replay::import_mcap(dir / "wrong.mcap", options);
