@@ -20,6 +20,7 @@
 #include "io/ros2_messages.hpp"
 #include "model/model_library.hpp"
 #include "replay/import/foxglove_messages.hpp"
+#include "replay/import/tf_tree.hpp"
 
 namespace rcsim::replay {
 namespace {
@@ -30,15 +31,27 @@ namespace fs = std::filesystem;
 struct MappedSensor {
   RecordingSensor sensor;
   std::string topic;
+  // Mounted as /tf_static says (no x_m, y_m, yaw_rad given): the radar's frame, "" for its
+  // scans' frame_id.
+  bool mounting_from_tf = false;
+  std::string frame;
   std::optional<double> cycle_time_s;
   // A foxglove.PointCloud's fields that hold the radial speed and the amplitude.
   std::string range_rate_field = "range_rate", amplitude_field = "amplitude";
 };
 
+// The ego: an Odometry topic, or the chain of /tf transforms from the vehicle's frame to a world frame.
+struct MappedEgo {
+  std::string topic;
+  std::string world_frame, vehicle_frame, tf_topic = "/tf", tf_static_topic = "/tf_static";
+  bool from_tf() const { return !vehicle_frame.empty(); }
+};
+
 struct Mapping {
   std::string name;
   std::vector<MappedSensor> sensors;
-  std::string ego_topic, objects_topic;
+  MappedEgo ego;
+  std::string objects_topic;
   std::map<std::string, std::string> classes;  // the log's class name -> an object model
   std::optional<double> annotation_step_s;
 };
@@ -52,14 +65,24 @@ Mapping read_mapping(const fs::path& path) {
   Mapping m;
   if (root.has("name")) m.name = root.string("name");
   for (const JsonField& s : root.array("sensors")) {
-    s.expect_only({"id", "topic", "type", "x_m", "y_m", "yaw_rad", "reports", "cycle_time_s", "fields"});
+    s.expect_only({"id", "topic", "type", "x_m", "y_m", "yaw_rad", "frame", "reports", "cycle_time_s", "fields"});
     using namespace limits;
-    MappedSensor mapped{{s.string("id"), s.string("type"), s.number_within("x_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"),
-                         s.number_within("y_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"), s.angle_rad("yaw_rad", kMaxMountYaw_rad)},
-                        s.string("topic"),
-                        std::nullopt,
-                        "range_rate",
-                        "amplitude"};
+    MappedSensor mapped;
+    mapped.sensor.id = s.string("id"), mapped.sensor.type = s.string("type"), mapped.topic = s.string("topic");
+    // The mounting as given, or all of it from /tf_static.
+    const int given = s.has("x_m") + s.has("y_m") + s.has("yaw_rad");
+    if (given == 3) {
+      mapped.sensor.x_m = s.number_within("x_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m");
+      mapped.sensor.y_m = s.number_within("y_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m");
+      mapped.sensor.yaw_rad = s.angle_rad("yaw_rad", kMaxMountYaw_rad);
+      if (s.has("frame")) s.fail("frame", "names the frame whose transform mounts the radar: give it or x_m, y_m, yaw_rad, not both");
+    } else if (given == 0) {
+      mapped.mounting_from_tf = true;
+      if (s.has("frame")) mapped.frame = s.string("frame");
+    } else {
+      s.fail(s.has("x_m") ? (s.has("y_m") ? "yaw_rad" : "y_m") : "x_m",
+             "the mounting takes x_m, y_m and yaw_rad, or none of them to take it from the log's /tf_static");
+    }
     if (const auto fields = s.optional_member("fields")) {
       fields->expect_only({"range_rate", "amplitude"});
       if (fields->has("range_rate")) mapped.range_rate_field = fields->string("range_rate");
@@ -85,8 +108,24 @@ Mapping read_mapping(const fs::path& path) {
   }
   if (m.sensors.empty()) root.fail("sensors", "map at least one radar's topic");
   const JsonField ego = root.member("ego");
-  ego.expect_only({"topic"});
-  m.ego_topic = ego.string("topic");
+  ego.expect_only({"topic", "tf"});
+  if (ego.has("topic") == ego.has("tf")) ego.fail("takes an Odometry \"topic\" or a \"tf\" chain, one of them");
+  if (ego.has("topic")) m.ego.topic = ego.string("topic");
+  if (const auto tf = ego.optional_member("tf")) {
+    tf->expect_only({"world_frame", "vehicle_frame", "topic", "static_topic"});
+    m.ego.world_frame = tf->string("world_frame"), m.ego.vehicle_frame = tf->string("vehicle_frame");
+    if (tf->has("topic")) m.ego.tf_topic = tf->string("topic");
+    if (tf->has("static_topic")) m.ego.tf_static_topic = tf->string("static_topic");
+    if (m.ego.world_frame.empty() || m.ego.vehicle_frame.empty() || m.ego.world_frame == m.ego.vehicle_frame) {
+      tf->fail("vehicle_frame", "the vehicle's frame and the world frame must be two named frames");
+    }
+  }
+  for (std::size_t i = 0; i < m.sensors.size(); ++i) {
+    if (m.sensors[i].mounting_from_tf && !m.ego.from_tf()) {
+      root.fail(fmt::format("sensors[{}]", i), "without x_m, y_m, yaw_rad the mounting comes from /tf_static, which needs the "
+                                               "vehicle's frame: the ego as a \"tf\" chain");
+    }
+  }
   if (const auto objects = root.optional_member("objects")) {
     objects->expect_only({"topic", "classes"});
     m.objects_topic = objects->string("topic");
@@ -122,10 +161,19 @@ struct LoggedObject {
   bool speed_missing = false;  // some box without speed_mps: all speeds from the positions
 };
 
+// One ego pose as logged (an hour at 100 Hz is 360,000: kept compact); a chain of transforms
+// gives poses only, their speeds and yaw rates follow from them.
+struct LoggedEgo {
+  std::int64_t t_ns = 0;
+  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, speed_mps = 0.0, yaw_rate_radps = 0.0;
+};
+
 // What the log holds on the mapped topics, in log order.
 struct LoggedDrive {
   std::vector<LoggedCycle> cycles;
-  std::vector<std::pair<std::int64_t, ros2::Odometry>> ego;
+  std::vector<std::string> scan_frames;  // per sensor: its first scan's frame_id
+  std::vector<LoggedEgo> ego;
+  TfTree tf;
   std::vector<LoggedObject> objects;
   std::map<std::string, std::size_t> object_index;
   std::set<std::string> topics_seen;
@@ -153,6 +201,7 @@ ros2::RadarScan scan_of_point_cloud(simdjson::ondemand::parser& parser, const st
   const foxglove::PointCloud cloud =
       foxglove::decode_point_cloud(parser, text, {"x", "y", "z", sensor.range_rate_field, sensor.amplitude_field});
   ros2::RadarScan scan;
+  scan.header.frame_id = cloud.frame_id;
   scan.header.stamp.sec = static_cast<std::int32_t>(cloud.t_ns / 1'000'000'000);
   scan.header.stamp.nanosec = static_cast<std::uint32_t>(cloud.t_ns % 1'000'000'000);
   const Eigen::Quaterniond q(cloud.orientation[3], cloud.orientation[0], cloud.orientation[1], cloud.orientation[2]);
@@ -178,10 +227,13 @@ LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
   simdjson::ondemand::parser json_parser;
   std::map<std::string, int> sensor_of_topic;
   for (std::size_t s = 0; s < mapping.sensors.size(); ++s) sensor_of_topic[mapping.sensors[s].topic] = static_cast<int>(s);
+  drive.scan_frames.resize(mapping.sensors.size());
+  const MappedEgo& ego = mapping.ego;
   reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& channel, const mcap::Schema* schema) {
     const auto sensor = sensor_of_topic.find(channel.topic);
-    const bool is_ego = channel.topic == mapping.ego_topic, is_objects = channel.topic == mapping.objects_topic;
-    if (sensor == sensor_of_topic.end() && !is_ego && !is_objects) return;
+    const bool is_ego = channel.topic == ego.topic, is_objects = channel.topic == mapping.objects_topic;
+    const bool is_tf = ego.from_tf() && (channel.topic == ego.tf_topic || channel.topic == ego.tf_static_topic);
+    if (sensor == sensor_of_topic.end() && !is_ego && !is_objects && !is_tf) return;
     drive.topics_seen.insert(channel.topic);
     const std::string schema_name = schema != nullptr ? schema->name : std::string("(none)");
     const std::string where = fmt::format("topic '{}', message {} at log time {} ns", channel.topic, m.sequence, m.log_time_ns);
@@ -199,16 +251,23 @@ LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
         if (!cloud) expect(ros2::kRadarScanSchema, "cdr", " or foxglove.PointCloud in 'json'");
         ros2::RadarScan scan = cloud ? scan_of_point_cloud(json_parser, m.data, mapping.sensors[static_cast<std::size_t>(sensor->second)])
                                      : ros2::decode_radar_scan(m.data);
+        std::string& frame = drive.scan_frames[static_cast<std::size_t>(sensor->second)];
+        if (frame.empty()) frame = scan.header.frame_id;
         drive.cycles.push_back({scan.header.stamp.ns(), sensor->second, std::move(scan.returns)});
       } else if (is_ego) {
         expect(ros2::kOdometrySchema, "cdr");
         const ros2::Odometry o = ros2::decode_odometry(m.data);
-        drive.ego.emplace_back(o.header.stamp.ns(), o);
+        drive.ego.push_back({o.header.stamp.ns(), o.x_m, o.y_m, ros2::yaw_of_quaternion(o.qx, o.qy, o.qz, o.qw), o.vx_mps, o.wz_radps});
+      } else if (is_tf) {
+        expect(ros2::kTfMessageSchema, "cdr");
+        drive.tf.add(ros2::decode_tf_message(m.data), channel.topic == ego.tf_static_topic);
       } else {
         expect("foxglove.SceneUpdate", "json");
         add_scene_update(json_parser, m.data, drive);
       }
     } catch (const ros2::CdrError& e) {
+      throw InputError(log.string(), where, e.what());
+    } catch (const TfError& e) {
       throw InputError(log.string(), where, e.what());
     } catch (const simdjson::simdjson_error& e) {
       throw InputError(log.string(), where, fmt::format("not a {}: {}", schema_name, e.what()));
@@ -224,7 +283,12 @@ LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
                                                           fmt::join(topics, ", ")));
     }
   }
-  if (!drive.topics_seen.count(mapping.ego_topic)) throw InputError(log.string(), mapping.ego_topic, "no messages on the ego topic");
+  if (ego.from_tf()) {
+    if (!drive.topics_seen.count(ego.tf_topic)) throw InputError(log.string(), ego.tf_topic, "no transforms: the ego's chain is read from them");
+    drive.tf.finish();
+  } else if (!drive.topics_seen.count(ego.topic)) {
+    throw InputError(log.string(), ego.topic, "no messages on the ego topic");
+  }
   return drive;
 }
 
@@ -237,22 +301,76 @@ double median_step_s(const std::vector<double>& t_s, double fallback) {
   return steps.empty() ? fallback : median(steps);
 }
 
-void add_ego(const LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec) {
-  auto ego = drive.ego;
-  std::stable_sort(ego.begin(), ego.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (std::size_t i = 0; i < ego.size(); ++i) {
-    const auto& [t_ns, o] = ego[i];
-    if (i > 0 && t_ns == ego[i - 1].first) {
-      throw InputError(log.string(), mapping.ego_topic, fmt::format("two odometry messages stamped {} ns", t_ns));
+// The ego as the chain of transforms from the vehicle's frame to the world frame: a pose at each
+// stamp of the chain's densest moving transform; speed along the heading and yaw rate by central
+// differences of the poses (one-sided at the ends).
+void ego_from_tf(LoggedDrive& drive, const fs::path& log, const MappedEgo& ego) {
+  std::vector<std::int64_t> stamps;
+  try {
+    stamps = drive.tf.chain_stamps(ego.vehicle_frame, ego.world_frame);
+    for (const std::int64_t t_ns : stamps) {
+      const Eigen::Isometry3d X_WV = drive.tf.pose(ego.vehicle_frame, ego.world_frame, t_ns);
+      const Eigen::Matrix3d R_WV = X_WV.linear();
+      drive.ego.push_back({t_ns, X_WV.translation().x(), X_WV.translation().y(), std::atan2(R_WV(1, 0), R_WV(0, 0)), 0.0, 0.0});
     }
-    const double yaw_rad = ros2::yaw_of_quaternion(o.qx, o.qy, o.qz, o.qw);
-    rec.ego.push_back({seconds_since(t_ns, t0_ns), o.x_m, o.y_m, yaw_rad, o.vx_mps, o.wz_radps});
+  } catch (const TfError& e) {
+    throw InputError(log.string(), ego.tf_topic, fmt::format("the ego from '{}' to '{}': {}", ego.vehicle_frame, ego.world_frame, e.what()));
+  }
+  if (stamps.size() < 2) {
+    throw InputError(log.string(), ego.tf_topic, fmt::format("the chain from '{}' to '{}' moves at {} stamp(s): no ego motion to read",
+                                                          ego.vehicle_frame, ego.world_frame, stamps.size()));
+  }
+  std::vector<LoggedEgo>& e = drive.ego;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    const LoggedEgo& a = e[i == 0 ? 0 : i - 1];
+    const LoggedEgo& b = e[i + 1 == e.size() ? i : i + 1];
+    const double dt_s = static_cast<double>(b.t_ns - a.t_ns) * 1e-9;
+    e[i].speed_mps = speed_along_heading_mps(Vec2((b.x_m - a.x_m) / dt_s, (b.y_m - a.y_m) / dt_s), e[i].yaw_rad);
+    e[i].yaw_rate_radps = angle_difference_rad(b.yaw_rad, a.yaw_rad) / dt_s;
+  }
+}
+
+// Each radar mounted by /tf_static where the mapping gives no mounting: its frame's pose in the
+// vehicle's at its first scan, to the plane.
+void mount_from_tf(const LoggedDrive& drive, const fs::path& log, const Mapping& mapping, Recording& rec) {
+  for (std::size_t s = 0; s < mapping.sensors.size(); ++s) {
+    const MappedSensor& mapped = mapping.sensors[s];
+    if (!mapped.mounting_from_tf) continue;
+    const std::string& frame = mapped.frame.empty() ? drive.scan_frames[s] : mapped.frame;
+    const auto first = std::find_if(drive.cycles.begin(), drive.cycles.end(),
+                                    [&](const LoggedCycle& c) { return c.sensor == static_cast<int>(s); });
+    RecordingSensor& sensor = rec.sensors[s];
+    try {
+      const Eigen::Isometry3d X_VS = drive.tf.pose(frame, mapping.ego.vehicle_frame, first->t_ns);
+      const Eigen::Matrix3d R_VS = X_VS.linear();
+      sensor.x_m = X_VS.translation().x(), sensor.y_m = X_VS.translation().y(), sensor.yaw_rad = std::atan2(R_VS(1, 0), R_VS(0, 0));
+    } catch (const TfError& e) {
+      throw InputError(log.string(), mapped.topic, fmt::format("sensor '{}''s mounting from /tf_static: {}", sensor.id, e.what()));
+    }
+    if (std::abs(sensor.x_m) > limits::kMaxMountOffset_m || std::abs(sensor.y_m) > limits::kMaxMountOffset_m) {
+      throw InputError(log.string(), mapped.topic,
+                       fmt::format("sensor '{}''s frame '{}' lies at ({:.3f}, {:.3f}) m from '{}': beyond the limits of "
+                                   "schemas/limits.md",
+                                   sensor.id, frame, sensor.x_m, sensor.y_m, mapping.ego.vehicle_frame));
+    }
+  }
+}
+
+void add_ego(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const std::string& topic, Recording& rec) {
+  std::vector<LoggedEgo>& ego = drive.ego;
+  std::stable_sort(ego.begin(), ego.end(), [](const LoggedEgo& a, const LoggedEgo& b) { return a.t_ns < b.t_ns; });
+  rec.ego.reserve(ego.size());
+  for (std::size_t i = 0; i < ego.size(); ++i) {
+    const LoggedEgo& e = ego[i];
+    if (i > 0 && e.t_ns == ego[i - 1].t_ns) throw InputError(log.string(), topic, fmt::format("two ego poses stamped {} ns", e.t_ns));
+    rec.ego.push_back({seconds_since(e.t_ns, t0_ns), e.x_m, e.y_m, e.yaw_rad, e.speed_mps, e.yaw_rate_radps});
     if (i > 0 && rec.ego.back().t_s - rec.ego[i - 1].t_s > kMaxEgoLogStep_s) {
-      throw InputError(log.string(), mapping.ego_topic,
-                       fmt::format("{:.3f} s without odometry after {:.6f} s (at most {} s are interpolated)",
+      throw InputError(log.string(), topic,
+                       fmt::format("{:.3f} s without an ego pose after {:.6f} s (at most {} s are interpolated)",
                                    rec.ego.back().t_s - rec.ego[i - 1].t_s, rec.ego[i - 1].t_s, kMaxEgoLogStep_s));
     }
   }
+  ego = {};  // memory back
   // The yaw unwrapped, so that interpolation never turns the long way (ego.csv allows any yaw).
   for (std::size_t i = 1; i < rec.ego.size(); ++i) {
     rec.ego[i].yaw_rad = rec.ego[i - 1].yaw_rad + angle_difference_rad(rec.ego[i].yaw_rad, rec.ego[i - 1].yaw_rad);
@@ -274,7 +392,7 @@ void add_cycles(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, con
     }
     if (t_s < first_ego_s - kEgoExtrapolationMargin_s || t_s > last_ego_s + kEgoExtrapolationMargin_s) {
       throw InputError(log.string(), topic,
-                       fmt::format("a scan at {:.6f} s lies beyond the odometry's {:.6f} to {:.6f} s by more than {} s", t_s,
+                       fmt::format("a scan at {:.6f} s lies beyond the ego log's {:.6f} to {:.6f} s by more than {} s", t_s,
                                    first_ego_s, last_ego_s, kEgoExtrapolationMargin_s));
     }
     times[s].push_back(t_s);
@@ -362,9 +480,10 @@ DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& op
   if (!options.frames.empty()) throw InputError(log.string(), "--frames", "takes the frames of a dataset of single frames (--from astyx)");
   const Mapping mapping = read_mapping(options.mapping);
   LoggedDrive drive = read_log(log, mapping);
+  if (mapping.ego.from_tf()) ego_from_tf(drive, log, mapping.ego);
   // The recording's clock: seconds since the earliest stamp of the mapped topics.
-  std::int64_t t0_ns = drive.ego.front().first;
-  for (const auto& [t_ns, o] : drive.ego) t0_ns = std::min(t0_ns, t_ns);
+  std::int64_t t0_ns = drive.ego.front().t_ns;
+  for (const LoggedEgo& e : drive.ego) t0_ns = std::min(t0_ns, e.t_ns);
   for (const LoggedCycle& c : drive.cycles) t0_ns = std::min(t0_ns, c.t_ns);
   for (const LoggedObject& o : drive.objects) {
     for (const std::int64_t t_ns : o.t_ns) t0_ns = std::min(t0_ns, t_ns);
@@ -374,7 +493,8 @@ DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& op
   rec.name = mapping.name.empty() ? log.stem().string() : mapping.name;
   rec.clock = Clock::per_sensor;
   for (const MappedSensor& s : mapping.sensors) rec.sensors.push_back(s.sensor);
-  add_ego(drive, t0_ns, log, mapping, rec);
+  mount_from_tf(drive, log, mapping, rec);
+  add_ego(drive, t0_ns, log, mapping.ego.from_tf() ? mapping.ego.tf_topic : mapping.ego.topic, rec);
   add_cycles(drive, t0_ns, log, mapping, rec);
   std::vector<double> annotation_times_s;
   add_objects(drive, t0_ns, log, mapping, rec, annotation_times_s);

@@ -126,6 +126,25 @@ Odometry decode_odometry(std::string_view cdr) {
   return o;
 }
 
+std::vector<TransformStamped> decode_tf_message(std::string_view cdr) {
+  CdrReader r(cdr);
+  // A transform is at least a header (8 + 4), a child frame's count (4) and 7 doubles.
+  const std::uint32_t n = r.count("transforms", 16 + 7 * sizeof(double));
+  std::vector<TransformStamped> transforms(n);
+  for (TransformStamped& t : transforms) {
+    t.header = r.header();
+    t.child_frame_id = r.string("transforms[].child_frame_id");
+    t.x_m = r.read<double>("transforms[].transform.translation.x");
+    t.y_m = r.read<double>("transforms[].transform.translation.y");
+    t.z_m = r.read<double>("transforms[].transform.translation.z");
+    t.qx = r.read<double>("transforms[].transform.rotation.x");
+    t.qy = r.read<double>("transforms[].transform.rotation.y");
+    t.qz = r.read<double>("transforms[].transform.rotation.z");
+    t.qw = r.read<double>("transforms[].transform.rotation.w");
+  }
+  return transforms;
+}
+
 double yaw_of_quaternion(double qx, double qy, double qz, double qw) {
   return std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz));
 }

@@ -49,11 +49,22 @@ struct Odometry {
   double vx_mps = 0.0, vy_mps = 0.0, wz_radps = 0.0;
 };
 
+// geometry_msgs/msg/TransformStamped: the pose of `child_frame_id` in `header.frame_id` (the
+// parent) at `header.stamp`: a point p in the child's frame is R p + t in the parent's.
+struct TransformStamped {
+  Header header;
+  std::string child_frame_id;
+  double x_m = 0.0, y_m = 0.0, z_m = 0.0;
+  double qx = 0.0, qy = 0.0, qz = 0.0, qw = 1.0;
+};
+
 inline constexpr std::string_view kRadarScanSchema = "radar_msgs/msg/RadarScan";
 inline constexpr std::string_view kOdometrySchema = "nav_msgs/msg/Odometry";
+inline constexpr std::string_view kTfMessageSchema = "tf2_msgs/msg/TFMessage";
 
 RadarScan decode_radar_scan(std::string_view cdr);
 Odometry decode_odometry(std::string_view cdr);
+std::vector<TransformStamped> decode_tf_message(std::string_view cdr);
 
 // The yaw of a quaternion (rotation about z, ZYX convention), rad in (-pi, pi].
 double yaw_of_quaternion(double qx, double qy, double qz, double qw);

@@ -104,5 +104,46 @@ TEST(Ros2Messages, OdometryByHand) {
   EXPECT_THROW(decode_odometry(b.substr(0, b.size() - 8)), CdrError);
 }
 
+// A TFMessage of two transforms: each one's doubles aligned to 8 from after the header, the
+// second transform's header starting 4-aligned right after the first's last double.
+TEST(Ros2Messages, TransformsByHand) {
+  std::string b("\x00\x01\x00\x00", 4);
+  b += le(std::uint32_t{2});                                  // to 8
+  b += le(std::int32_t{7}) + le(std::uint32_t{250});          // to 16
+  b += le(std::uint32_t{5}) + std::string("odom\0", 5);       // to 25
+  b += std::string(3, '\0');                                  // to 28
+  b += le(std::uint32_t{10}) + std::string("base_link\0", 10);  // to 42
+  b += std::string(2, '\0');                                  // to 44 (8-aligned counted from 4)
+  for (const double v : {1.5, -2.5, 0.25, 0.0, 0.0, std::sin(0.15), std::cos(0.15)}) b += le(v);  // to 100
+  b += le(std::int32_t{7}) + le(std::uint32_t{0});            // to 108
+  b += le(std::uint32_t{10}) + std::string("base_link\0", 10);  // to 122
+  b += std::string(2, '\0');                                  // to 124
+  b += le(std::uint32_t{3}) + std::string("fl\0", 3);         // to 131
+  b += std::string(1, '\0');                                  // to 132 (8-aligned counted from 4)
+  for (const double v : {3.8, 0.0, 0.5, 0.0, 0.0, 0.0, 1.0}) b += le(v);
+  std::vector<TransformStamped> tf;
+  try {
+    tf = decode_tf_message(b);
+  } catch (const CdrError& e) {
+    FAIL() << e.what();
+  }
+  ASSERT_EQ(tf.size(), 2u);
+  EXPECT_EQ(tf[0].header.stamp.ns(), 7'000'000'250LL);
+  EXPECT_EQ(tf[0].header.frame_id, "odom");
+  EXPECT_EQ(tf[0].child_frame_id, "base_link");
+  EXPECT_EQ(tf[0].x_m, 1.5);
+  EXPECT_EQ(tf[0].y_m, -2.5);
+  EXPECT_EQ(tf[0].z_m, 0.25);
+  EXPECT_NEAR(yaw_of_quaternion(tf[0].qx, tf[0].qy, tf[0].qz, tf[0].qw), 0.3, 1e-15);
+  EXPECT_EQ(tf[1].header.frame_id, "base_link");
+  EXPECT_EQ(tf[1].child_frame_id, "fl");
+  EXPECT_EQ(tf[1].x_m, 3.8);
+  EXPECT_EQ(tf[1].qw, 1.0);
+  EXPECT_THROW(decode_tf_message(b.substr(0, b.size() - 1)), CdrError);
+  std::string many = b;
+  many.replace(4, 4, le(std::uint32_t{3}));  // a third transform that is not there
+  EXPECT_THROW(decode_tf_message(many), CdrError);
+}
+
 }  // namespace
 }  // namespace rcsim::ros2::ros2_messages_test

@@ -46,13 +46,13 @@ class McapImport : public testing::ScratchDirTest {
   }
   // The recording in `dir` as a ROS 2 log (and its mapping file), written by the test tool.
   fs::path log_of(const fs::path& dir, const std::string& compression, const std::string& name,
-                  const std::string& detections = "radarscan") {
+                  const std::string& detections = "radarscan", const std::string& ego = "odometry") {
     const fs::path log = dir_ / (name + ".mcap");
     mapping_ = dir_ / (name + ".mapping.json");
     const auto written = rcsim::testing::run_shell_command("node " + (kTool / "write_ros2_log.js").string() + " " + dir.string() +
                                                            " " + log.string() + " --compression " + compression +
                                                            " --mapping " + mapping_.string() + " --chunk-bytes 16384" +
-                                                           " --detections " + detections);
+                                                           " --detections " + detections + " --ego " + ego);
     EXPECT_EQ(written.exit_code, 0) << written.output;
     return log;
   }
@@ -84,13 +84,15 @@ std::map<std::pair<int, long long>, std::vector<Target>> cycles_of(const Recordi
 
 // The imported recording holds the original's drive: every sensor cycle at its time with its
 // targets (to float32 and the files' decimals), the ego rows, the boxes within 1 mm.
-void expect_same_drive(const Recording& original, const Recording& back) {
+void expect_same_drive(const Recording& original, const Recording& back, double speed_tolerance_mps = 1e-4) {
   EXPECT_EQ(back.clock, Clock::per_sensor);
   ASSERT_EQ(back.sensors.size(), original.sensors.size());
   for (std::size_t s = 0; s < back.sensors.size(); ++s) {
     EXPECT_EQ(back.sensors[s].id, original.sensors[s].id);
     EXPECT_EQ(back.sensors[s].type, original.sensors[s].type);
     EXPECT_NEAR(back.sensors[s].x_m, original.sensors[s].x_m, 1e-9);
+    EXPECT_NEAR(back.sensors[s].y_m, original.sensors[s].y_m, 1e-9);
+    EXPECT_NEAR(back.sensors[s].yaw_rad, original.sensors[s].yaw_rad, 1e-9);
   }
   const auto a = cycles_of(original), b = cycles_of(back);
   ASSERT_EQ(a.size(), b.size());
@@ -113,7 +115,9 @@ void expect_same_drive(const Recording& original, const Recording& back) {
     EXPECT_NEAR(back.ego[i].t_s, original.ego[i].t_s, 1e-9);
     EXPECT_NEAR(back.ego[i].x_m, original.ego[i].x_m, 1e-4);
     EXPECT_NEAR(back.ego[i].yaw_rad, original.ego[i].yaw_rad, 1e-6);
-    EXPECT_NEAR(back.ego[i].speed_mps, original.ego[i].speed_mps, 1e-4);
+    EXPECT_NEAR(back.ego[i].y_m, original.ego[i].y_m, 1e-4);
+    EXPECT_NEAR(back.ego[i].speed_mps, original.ego[i].speed_mps, speed_tolerance_mps);
+    EXPECT_NEAR(back.ego[i].yaw_rate_radps, original.ego[i].yaw_rate_radps, speed_tolerance_mps);
   }
   ASSERT_EQ(back.objects.size(), original.objects.size());
   for (std::size_t o = 0; o < back.objects.size(); ++o) {
@@ -155,6 +159,27 @@ TEST_F(McapImport, UncompressedAndLz4ChunksReadAlike) {
 TEST_F(McapImport, PointCloudDetectionsGiveTheSameDrive) {
   const fs::path dir = testing::kBundledRecordings / "two_in_one_cell";
   expect_same_drive(read_recording(dir), imported(log_of(dir, "lz4", "clouds", "pointcloud")));
+}
+
+// The ego as a chain of /tf transforms (odom -> base_footprint moving, base_footprint -> base_link
+// static) and the radars' mountings from /tf_static, as a robot's bag has them: the same drive.
+// Speed and yaw rate come from the poses by central differences: exact for the drive's constant
+// deceleration but for the 4 decimals of the positions (1e-4 m / 0.08 s) and the one-sided ends
+// (1.25 m/s^2 x 0.02 s).
+TEST_F(McapImport, TheEgoFromATfChainAndTheMountingsFromTfStatic) {
+  const fs::path dir = testing::kBundledRecordings / "front_approach";
+  const Recording original = read_recording(dir);
+  const Recording back = imported(log_of(dir, "zstd", "tf", "radarscan", "tf"));
+  expect_same_drive(original, back, 0.03);
+  for (std::size_t i = 1; i + 1 < back.ego.size(); ++i) EXPECT_NEAR(back.ego[i].speed_mps, original.ego[i].speed_mps, 2e-3) << i;
+  // Without /tf_static the mounting cannot be had: the refusal names the frame and the frames there are.
+  std::string mapping = testing::file_bytes(mapping_);
+  mapping.replace(mapping.find("\"vehicle_frame\": \"base_link\""), 28, "\"vehicle_frame\": \"base_lnk\"");
+  DatasetImportOptions options;
+  options.mapping = write_file("typo.json", mapping);
+  const std::string m = refusal_of([&] { import_mcap(dir_ / "tf.mcap", options); });
+  EXPECT_NE(m.find("no transform names frame 'base_lnk' (the frames: base_footprint, base_link, front_left, front_right, odom)"),
+            std::string::npos) << m;
 }
 
 // The aiMotive drive as a ROS 2 log gives the recording `import --from aimotive` gives, and the

@@ -1,5 +1,5 @@
 // node write_ros2_log.js RECORDING_DIR OUT.mcap [--compression none|zstd|lz4] [--mapping OUT.json]
-//   [--chunk-bytes N] [--detections radarscan|pointcloud]
+//   [--chunk-bytes N] [--detections radarscan|pointcloud] [--ego odometry|tf]
 // Test tool: writes an rcsim recording (schemas/recording.md) as a ROS 2 log, the way a user's
 // drive arrives, with the format's own writer (@mcap/core) and ROS 2's CDR (@foxglove/cdr through
 // @foxglove/rosmsg2-serialization):
@@ -9,6 +9,9 @@
 //   (--detections pointcloud: /radar/SENSOR/points, foxglove.PointCloud (JSON) instead: float32
 //                       fields x, y, z in the radar's frame, range_rate and amplitude);
 //   /odom               nav_msgs/msg/Odometry, one per ego row (pose in "odom", twist in "base_link");
+//   (--ego tf: /tf, tf2_msgs/msg/TFMessage, instead: "base_footprint" in "odom" per ego row, and
+//                       /tf_static: "base_link" 0.3 m above "base_footprint", each radar's frame
+//                       (its id) mounted in "base_link"; the mapping then gives no mountings);
 //   /annotations        foxglove.SceneUpdate (JSON), one per annotation time: a cube per box, its
 //                       class and speed in the entity's metadata.
 // Times are nanoseconds: the recording's source.first_timestamp_ns (else 1.7e18) + t_s. With
@@ -82,6 +85,29 @@ float64 x
 float64 y
 float64 z`;
 
+const TF_MESSAGE = `geometry_msgs/TransformStamped[] transforms
+================================================================================
+MSG: geometry_msgs/TransformStamped
+std_msgs/Header header
+string child_frame_id
+geometry_msgs/Transform transform
+${HEADER_DEFINITIONS}
+================================================================================
+MSG: geometry_msgs/Transform
+geometry_msgs/Vector3 translation
+geometry_msgs/Quaternion rotation
+================================================================================
+MSG: geometry_msgs/Vector3
+float64 x
+float64 y
+float64 z
+================================================================================
+MSG: geometry_msgs/Quaternion
+float64 x
+float64 y
+float64 z
+float64 w`;
+
 function readCsv(file) {
   const lines = fs.readFileSync(file, "utf8").split("\n").filter((l) => l.length > 0);
   const header = lines[0].split(",");
@@ -94,12 +120,13 @@ function readCsv(file) {
 }
 
 function options(argv) {
-  const o = { compression: "none", mapping: "", chunkBytes: 64 * 1024, detections: "radarscan" };
+  const o = { compression: "none", mapping: "", chunkBytes: 64 * 1024, detections: "radarscan", ego: "odometry" };
   for (let i = 4; i < argv.length; i += 2) {
     if (argv[i] === "--compression") o.compression = argv[i + 1];
     else if (argv[i] === "--mapping") o.mapping = argv[i + 1];
     else if (argv[i] === "--chunk-bytes") o.chunkBytes = Number(argv[i + 1]);
     else if (argv[i] === "--detections") o.detections = argv[i + 1];
+    else if (argv[i] === "--ego") o.ego = argv[i + 1];
     else throw new Error(`unknown option ${argv[i]}`);
   }
   return o;
@@ -164,6 +191,11 @@ async function main() {
       messageEncoding: clouds ? "json" : "cdr", metadata: new Map() });
   }
   const odomChannel = await writer.registerChannel({ topic: "/odom", schemaId: odomSchema, messageEncoding: "cdr", metadata: new Map() });
+  const tfSchema = await writer.registerSchema({ name: "tf2_msgs/msg/TFMessage", encoding: "ros2msg", data: Buffer.from(TF_MESSAGE) });
+  const tfWriter = new MessageWriter(parseMessageDefinition(TF_MESSAGE, { ros2: true }));
+  const tfChannel = await writer.registerChannel({ topic: "/tf", schemaId: tfSchema, messageEncoding: "cdr", metadata: new Map() });
+  const tfStaticChannel = await writer.registerChannel({ topic: "/tf_static", schemaId: tfSchema, messageEncoding: "cdr",
+    metadata: new Map([["offered_qos_profiles", "durability: transient_local"]]) });
   const sceneChannel = await writer.registerChannel({ topic: "/annotations", schemaId: sceneSchema, messageEncoding: "json",
     metadata: new Map() });
 
@@ -188,8 +220,21 @@ async function main() {
       data: clouds ? cloudOf(ns, c.sensor, returnsOf[i])
         : scanWriter.writeMessage({ header: { stamp: stampOf(ns), frame_id: c.sensor }, returns: returnsOf[i] }) });
   });
+  const transform = (ns, parent, child, x, y, z, yaw) => ({ header: { stamp: stampOf(ns), frame_id: parent }, child_frame_id: child,
+    transform: { translation: { x, y, z }, rotation: quaternionOfYaw(yaw) } });
+  if (o.ego === "tf") {
+    const ns = nsOf(ego[0].t_s);
+    messages.push({ ns, order: -1, channelId: tfStaticChannel, data: tfWriter.writeMessage({ transforms: [
+      transform(ns, "base_footprint", "base_link", 0, 0, 0.3, 0),
+      ...rec.sensors.map((s) => transform(ns, "base_link", s.id, s.x_m, s.y_m, 0.5, s.yaw_rad))] }) });
+  }
   for (const e of ego) {
     const ns = nsOf(e.t_s);
+    if (o.ego === "tf") {
+      messages.push({ ns, order: 1, channelId: tfChannel, data: tfWriter.writeMessage({ transforms: [
+        transform(ns, "odom", "base_footprint", Number(e.x_m), Number(e.y_m), 0, Number(e.yaw_rad))] }) });
+      continue;
+    }
     messages.push({ ns, order: 1, channelId: odomChannel, data: odomWriter.writeMessage({
       header: { stamp: stampOf(ns), frame_id: "odom" }, child_frame_id: "base_link",
       pose: { pose: { position: { x: Number(e.x_m), y: Number(e.y_m), z: 0 }, orientation: quaternionOfYaw(Number(e.yaw_rad)) },
@@ -225,9 +270,10 @@ async function main() {
   fs.writeFileSync(out, Buffer.concat(chunks));
   if (o.mapping) {
     const mapping = { format: "rcsim-mcap-mapping", version: 1, name: rec.name,
-      sensors: rec.sensors.map((s) => ({ id: s.id, topic: topicOf(s.id), type: s.type, x_m: s.x_m, y_m: s.y_m,
-        yaw_rad: s.yaw_rad, reports: s.reports || "tracks" })),
-      ego: { topic: "/odom" }, objects: { topic: "/annotations" } };
+      sensors: rec.sensors.map((s) => ({ id: s.id, topic: topicOf(s.id), type: s.type,
+        ...(o.ego === "tf" ? {} : { x_m: s.x_m, y_m: s.y_m, yaw_rad: s.yaw_rad }), reports: s.reports || "tracks" })),
+      ego: o.ego === "tf" ? { tf: { world_frame: "odom", vehicle_frame: "base_link" } } : { topic: "/odom" },
+      objects: { topic: "/annotations" } };
     fs.writeFileSync(o.mapping, JSON.stringify(mapping, null, 2) + "\n");
   }
   console.log(JSON.stringify({ messages: messages.length, cycles: cycles.length, bytes: chunks.reduce((n, c) => n + c.length, 0) }));
