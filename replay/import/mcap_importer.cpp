@@ -151,14 +151,18 @@ struct LoggedCycle {
   std::vector<ros2::RadarReturn> returns;
 };
 
-// An object's boxes as logged (an hour of a busy road holds millions: kept compact), their stamps
-// beside them until the recording's clock is known.
+// One box as logged (an hour of a busy road holds millions: kept compact); its speed NaN where
+// the log gives none.
+struct LoggedBox {
+  std::int64_t t_ns = 0;
+  double x_m = 0.0, y_m = 0.0;
+  float yaw_rad = 0.0f, speed_mps = 0.0f, length_m = 0.0f, width_m = 0.0f;
+};
+
 struct LoggedObject {
   std::string id, log_class;
-  std::vector<AnnotatedBox> boxes;  // t_s not yet set
-  std::vector<std::int64_t> t_ns;
-  std::vector<float> lengths_m, widths_m;
-  bool speed_missing = false;  // some box without speed_mps: all speeds from the positions
+  std::vector<LoggedBox> boxes;
+  bool speed_missing = false;  // some box without a speed: all speeds from the positions
 };
 
 // One ego pose as logged (an hour at 100 Hz is 360,000: kept compact); a chain of transforms
@@ -180,18 +184,21 @@ struct LoggedDrive {
   std::string profile, library;
 };
 
+void add_box(std::string_view id, std::string_view log_class, const LoggedBox& box, LoggedDrive& drive) {
+  auto [it, added] = drive.object_index.try_emplace(std::string(id), drive.objects.size());
+  if (added) drive.objects.push_back({std::string(id), std::string(log_class), {}, false});
+  LoggedObject& object = drive.objects[it->second];
+  if (object.log_class.empty()) object.log_class = log_class;
+  object.boxes.push_back(box);
+  object.speed_missing = object.speed_missing || std::isnan(box.speed_mps);
+}
+
 // Every box of a foxglove.SceneUpdate into its object's boxes.
 void add_scene_update(simdjson::ondemand::parser& parser, const std::string& text, LoggedDrive& drive) {
   foxglove::for_each_scene_box(parser, text, [&](const foxglove::SceneBox& b) {
-    auto [it, added] = drive.object_index.try_emplace(std::string(b.id), drive.objects.size());
-    if (added) drive.objects.push_back({std::string(b.id), std::string(b.log_class), {}, {}, {}, {}, false});
-    LoggedObject& object = drive.objects[it->second];
-    if (object.log_class.empty()) object.log_class = b.log_class;
-    object.boxes.push_back({0.0, b.x_m, b.y_m, b.yaw_rad, b.speed_mps.value_or(0.0), 0});
-    object.t_ns.push_back(b.t_ns);
-    object.lengths_m.push_back(static_cast<float>(b.length_m));
-    object.widths_m.push_back(static_cast<float>(b.width_m));
-    object.speed_missing = object.speed_missing || !b.speed_mps;
+    const auto f = [](double v) { return static_cast<float>(v); };
+    add_box(b.id, b.log_class,
+            {b.t_ns, b.x_m, b.y_m, f(b.yaw_rad), f(b.speed_mps.value_or(std::nan(""))), f(b.length_m), f(b.width_m)}, drive);
   });
 }
 
@@ -381,6 +388,10 @@ void add_cycles(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, con
   std::stable_sort(drive.cycles.begin(), drive.cycles.end(), [](const LoggedCycle& a, const LoggedCycle& b) {
     return a.t_ns != b.t_ns ? a.t_ns < b.t_ns : a.sensor < b.sensor;
   });
+  std::size_t returns = 0;
+  for (const LoggedCycle& c : drive.cycles) returns += c.returns.size();
+  rec.targets.reserve(returns);
+  rec.cycles.reserve(drive.cycles.size());
   std::vector<std::vector<double>> times(rec.sensors.size());
   const double first_ego_s = rec.ego.front().t_s, last_ego_s = rec.ego.back().t_s;
   for (const LoggedCycle& c : drive.cycles) {
@@ -450,11 +461,15 @@ void add_objects(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, co
                        fmt::format("entity '{}' has class '{}', no object model (rcsim models); map it in the mapping's "
                                    "objects.classes", o.id, o.log_class));
     }
-    std::vector<AnnotatedBox> boxes = std::move(o.boxes);
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-      boxes[i].t_s = seconds_since(o.t_ns[i], t0_ns);
-      annotation_times_s.push_back(boxes[i].t_s);
+    std::vector<AnnotatedBox> boxes;
+    boxes.reserve(o.boxes.size());
+    std::vector<double> lengths_m, widths_m;
+    for (const LoggedBox& b : o.boxes) {
+      boxes.push_back({seconds_since(b.t_ns, t0_ns), b.x_m, b.y_m, b.yaw_rad, std::isnan(b.speed_mps) ? 0.0 : b.speed_mps, 0});
+      annotation_times_s.push_back(boxes.back().t_s);
+      lengths_m.push_back(b.length_m), widths_m.push_back(b.width_m);
     }
+    o.boxes = {};  // done with: memory back
     std::stable_sort(boxes.begin(), boxes.end(), [](const AnnotatedBox& a, const AnnotatedBox& b) { return a.t_s < b.t_s; });
     for (std::size_t i = 1; i < boxes.size(); ++i) {
       if (boxes[i].t_s <= boxes[i - 1].t_s) {
@@ -462,9 +477,7 @@ void add_objects(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, co
       }
     }
     if (o.speed_missing) set_speeds_from_positions(boxes);
-    const auto median_of = [](const std::vector<float>& v) { return median(std::vector<double>(v.begin(), v.end())); };
-    rec.objects.push_back({o.id, model, median_of(o.lengths_m), median_of(o.widths_m), nlohmann::json{{"log_class", o.log_class}}});
-    o.t_ns = {}, o.lengths_m = {}, o.widths_m = {};  // done with: memory back
+    rec.objects.push_back({o.id, model, median(lengths_m), median(widths_m), nlohmann::json{{"log_class", o.log_class}}});
     rec.boxes.push_back(std::move(boxes));
   }
 }
@@ -486,7 +499,7 @@ DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& op
   for (const LoggedEgo& e : drive.ego) t0_ns = std::min(t0_ns, e.t_ns);
   for (const LoggedCycle& c : drive.cycles) t0_ns = std::min(t0_ns, c.t_ns);
   for (const LoggedObject& o : drive.objects) {
-    for (const std::int64_t t_ns : o.t_ns) t0_ns = std::min(t0_ns, t_ns);
+    for (const LoggedBox& b : o.boxes) t0_ns = std::min(t0_ns, b.t_ns);
   }
   DatasetRecording out;
   Recording& rec = out.recording;
