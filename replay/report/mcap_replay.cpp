@@ -23,15 +23,10 @@ namespace rcsim::replay {
 
 namespace mcap_replay_internal {
 
-using foxglove::colour;
-using foxglove::entity;
 using foxglove::Json;
-using foxglove::pose_json;
 using foxglove::scene_update;
 using foxglove::time_ns;
-using foxglove::vec3;
 
-constexpr double kBoxHeightM = 1.5;    // the boxes are 2-D: drawn 1.5 m tall
 constexpr double kTargetSizeM = 0.5;   // a target's sphere or cube
 // Every channel names the format (schemas/mcap-replay.md).
 const std::map<std::string, std::string> kFormat = {{"format", "rcsim-mcap-replay"}, {"version", "1"}};
@@ -44,17 +39,40 @@ std::string cycle_figures_schema() {
   return Json{{"title", "rcsim.CycleFigures"}, {"type", "object"}, {"properties", properties}}.dump();
 }
 
-const char* class_colour(const StoredTarget& t) {
-  if (t.target_class == metrics::TargetClass::stationary_background) return colours::kBackground;
-  if (t.target_class == metrics::TargetClass::other) return colours::kOther;
-  return t.simulated ? colours::kSimulated : colours::kRecorded;
+// A target's colour by its class, as JSON.
+const std::string& class_colour_json(const StoredTarget& t) {
+  static const std::string background = foxglove::text::colour(colours::kBackground), other = foxglove::text::colour(colours::kOther),
+                           simulated = foxglove::text::colour(colours::kSimulated), recorded = foxglove::text::colour(colours::kRecorded);
+  if (t.target_class == metrics::TargetClass::stationary_background) return background;
+  if (t.target_class == metrics::TargetClass::other) return other;
+  return t.simulated ? simulated : recorded;
 }
 
-Json figures_json(const std::vector<DecodedValue>& row) {
-  Json out = Json::object();
-  const auto& columns = decoded_columns(DecodedTable::cycles);
-  for (std::size_t i = 0; i < row.size(); ++i) out[columns[i].name] = decoded_value_json(row[i]);
-  return out;
+const std::string kWorld = foxglove::text::quoted("world"), kEgo = foxglove::text::quoted("ego");
+
+// A cycle's figures as a JSON object, one member per column of the decoded cycles table; `keys`
+// the members' names quoted, with their colons.
+std::string figures_json(const std::vector<DecodedValue>& row, const std::vector<std::string>& keys) {
+  std::string out = "{";
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    if (i > 0) out += ',';
+    out += keys[i];
+    std::visit(
+        [&](const auto& x) {
+          using T = std::decay_t<decltype(x)>;
+          if constexpr (std::is_same_v<T, std::monostate>) {
+            out += "null";
+          } else if constexpr (std::is_same_v<T, std::string>) {
+            out += foxglove::text::quoted(x);
+          } else if constexpr (std::is_same_v<T, double>) {
+            foxglove::text::number(out, x);
+          } else {
+            fmt::format_to(std::back_inserter(out), "{}", x);
+          }
+        },
+        row[i]);
+  }
+  return out + "}";
 }
 
 // The rows of one block of cycles, by cycle.
@@ -85,6 +103,9 @@ class McapReplayWriter {
       sensor_channels_.push_back(c);
     }
     lifetime_ns_ = time_ns(run_.info.cycle_time_s);
+    for (const DecodedColumn& c : decoded_columns(DecodedTable::cycles)) figure_keys_.push_back(foxglove::text::quoted(c.name) + ":");
+    for (std::size_t o = 0; o < run_.objects.size(); ++o) object_labels_.push_back(foxglove::text::quoted(run_.object_label(static_cast<int>(o))));
+    for (SensorChannels& c : sensor_channels_) c.frame_json = foxglove::text::quoted(c.frame);
   }
 
   McapReplayCounts write() {
@@ -98,6 +119,7 @@ class McapReplayWriter {
  private:
   struct SensorChannels {
     std::string frame;  // the sensor's frame id and its topics' middle part
+    std::string frame_json;  // quoted
     std::uint16_t recorded = 0, simulated = 0, view_field = 0, figures = 0;
   };
 
@@ -114,8 +136,8 @@ class McapReplayWriter {
     return b;
   }
 
-  void message(std::uint16_t channel, std::uint64_t ns, const Json& body) {
-    writer_.write_message(channel, ns, body.dump());
+  void message(std::uint16_t channel, std::uint64_t ns, const std::string& body) {
+    writer_.write_message(channel, ns, body);
     ++counts_.messages;
   }
 
@@ -123,8 +145,9 @@ class McapReplayWriter {
   void write_static(std::uint64_t ns) {
     for (std::size_t i = 0; i < run_.sensors.size(); ++i) {
       const report::SensorInfo& s = run_.sensors[i];
-      message(tf_channel_, ns, foxglove::frame_transform(ns, "ego", sensor_channels_[i].frame, s.X_VS));
-      message(sensor_channels_[i].view_field, ns, scene_update(Json::array({foxglove::view_field_entity(sensor_channels_[i].frame, s.azimuth_half_rad, s.max_range_m, ns)})));
+      message(tf_channel_, ns, foxglove::frame_transform(ns, "ego", sensor_channels_[i].frame, s.X_VS).dump());
+      message(sensor_channels_[i].view_field, ns,
+              scene_update(Json::array({foxglove::view_field_entity(sensor_channels_[i].frame, s.azimuth_half_rad, s.max_range_m, ns)})).dump());
     }
   }
 
@@ -140,7 +163,7 @@ class McapReplayWriter {
       }
       for (const auto& row : b.figures.at(cycle)) {
         const auto sensor = static_cast<std::size_t>(std::get<std::int64_t>(row[2]));
-        if (sensor < sensor_channels_.size()) message(sensor_channels_[sensor].figures, ns, figures_json(row));
+        if (sensor < sensor_channels_.size()) message(sensor_channels_[sensor].figures, ns, figures_json(row, figure_keys_));
       }
       ++counts_.cycles;
     }
@@ -152,42 +175,44 @@ class McapReplayWriter {
     for (const StoredCycle& c : sensors) {
       if (!c.X_WS || c.sensor < 0 || static_cast<std::size_t>(c.sensor) >= run_.sensors.size()) continue;
       const Pose2 X_WV = compose(*c.X_WS, inverse(run_.sensors[static_cast<std::size_t>(c.sensor)].X_VS));
-      message(tf_channel_, ns, foxglove::frame_transform(ns, "world", "ego", X_WV));
+      message(tf_channel_, ns, foxglove::text::frame_transform(ns, kWorld, kEgo, X_WV));
       return;
     }
-    if (!ego_at_origin_) message(tf_channel_, ns, foxglove::frame_transform(ns, "world", "ego", Pose2{})), ego_at_origin_ = true;
+    if (!ego_at_origin_) message(tf_channel_, ns, foxglove::text::frame_transform(ns, kWorld, kEgo, Pose2{})), ego_at_origin_ = true;
   }
 
   void write_boxes(std::uint64_t ns, const std::vector<StoredObjectState>& boxes) {
-    Json e = entity(ns, "world", "boxes", lifetime_ns_);
+    static const std::string boxes_id = foxglove::text::quoted("boxes");
+    foxglove::text::Entity e(ns, kWorld, boxes_id, lifetime_ns_);
     for (const StoredObjectState& s : boxes) {
-      const report::ObjectInfo* o = s.object >= 0 && static_cast<std::size_t>(s.object) < run_.objects.size() ? &run_.objects[static_cast<std::size_t>(s.object)] : nullptr;
-      const Json pose = pose_json(s.X_WO.x_m, s.X_WO.y_m, 0.5 * kBoxHeightM, s.X_WO.yaw_rad);
-      e["cubes"].push_back({{"pose", pose}, {"size", vec3(o ? o->length_m : 4.5, o ? o->width_m : 1.8, kBoxHeightM)},
-                            {"color", colour(colours::kBackground, 0.35)}});
-      e["texts"].push_back({{"pose", pose_json(s.X_WO.x_m, s.X_WO.y_m, kBoxHeightM + 0.5, 0.0)}, {"billboard", true},
-                            {"font_size", 14.0}, {"scale_invariant", true}, {"color", colour(colours::kLabel)},
-                            {"text", run_.object_label(s.object)}});
+      const bool known = s.object >= 0 && static_cast<std::size_t>(s.object) < run_.objects.size();
+      const report::ObjectInfo* o = known ? &run_.objects[static_cast<std::size_t>(s.object)] : nullptr;
+      e.box(s.X_WO, o ? o->length_m : 4.5, o ? o->width_m : 1.8,
+            known ? object_labels_[static_cast<std::size_t>(s.object)] : foxglove::text::quoted(run_.object_label(s.object)));
     }
-    message(boxes_channel_, ns, scene_update(Json::array({e})));
+    message(boxes_channel_, ns, e.scene_update());
   }
 
   // A sensor's recorded targets as spheres and its simulated ones as cubes, in its own frame.
   void write_targets(std::uint64_t ns, int sensor, const std::vector<StoredTarget>* targets) {
-    const std::string& frame = sensor_channels_[static_cast<std::size_t>(sensor)].frame;
-    Json recorded = entity(ns, frame, "recorded", lifetime_ns_), simulated = entity(ns, frame, "simulated", lifetime_ns_);
+    static const std::string recorded_id = foxglove::text::quoted("recorded"), simulated_id = foxglove::text::quoted("simulated");
+    const SensorChannels& channels = sensor_channels_[static_cast<std::size_t>(sensor)];
+    foxglove::text::Entity recorded(ns, channels.frame_json, recorded_id, lifetime_ns_), simulated(ns, channels.frame_json, simulated_id, lifetime_ns_);
     if (targets != nullptr) {
       for (const StoredTarget& t : *targets) {
         if (t.sensor != sensor) continue;
         const Vec2 p = t.p_ST_S();
         const double z_m = std::isfinite(t.elevation_rad) ? t.range_m * std::sin(t.elevation_rad) : 0.0;
-        Json shape = {{"pose", pose_json(p.x(), p.y(), z_m, 0.0)}, {"size", vec3(kTargetSizeM, kTargetSizeM, kTargetSizeM)},
-                      {"color", colour(class_colour(t))}};
-        (t.simulated ? simulated["cubes"] : recorded["spheres"]).push_back(std::move(shape));
+        const std::string& c = class_colour_json(t);
+        if (t.simulated) {
+          simulated.cube(p.x(), p.y(), z_m, 0.0, kTargetSizeM, kTargetSizeM, kTargetSizeM, c);
+        } else {
+          recorded.sphere(p.x(), p.y(), z_m, 0.0, kTargetSizeM, kTargetSizeM, kTargetSizeM, c);
+        }
       }
     }
-    message(sensor_channels_[static_cast<std::size_t>(sensor)].recorded, ns, scene_update(Json::array({recorded})));
-    message(sensor_channels_[static_cast<std::size_t>(sensor)].simulated, ns, scene_update(Json::array({simulated})));
+    message(channels.recorded, ns, recorded.scene_update());
+    message(channels.simulated, ns, simulated.scene_update());
   }
 
   ReportDatabase& db_;
@@ -197,6 +222,7 @@ class McapReplayWriter {
   std::uint16_t scene_ = 0, transform_ = 0, figures_ = 0, tf_channel_ = 0, boxes_channel_ = 0;
   std::vector<SensorChannels> sensor_channels_;
   std::vector<std::string> frames_;
+  std::vector<std::string> figure_keys_, object_labels_;  // quoted, once
   std::uint64_t lifetime_ns_ = 0;
   bool static_written_ = false, ego_at_origin_ = false;
   McapReplayCounts counts_;

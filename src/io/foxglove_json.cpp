@@ -92,3 +92,109 @@ std::string frame_name(const std::string& sensor_id, int sensor, const std::vect
 }
 
 }  // namespace rcsim::foxglove
+
+namespace rcsim::foxglove::text {
+namespace {
+
+void time(std::string& out, std::uint64_t ns) { fmt::format_to(std::back_inserter(out), R"({{"sec":{},"nsec":{}}})", ns / 1000000000, ns % 1000000000); }
+
+void shape(std::string& list, double x_m, double y_m, double z_m, double yaw_rad, double sx_m, double sy_m, double sz_m,
+           const std::string& colour_json) {
+  list += list.empty() ? R"({"pose":)" : R"(,{"pose":)";
+  pose(list, x_m, y_m, z_m, yaw_rad);
+  list += R"(,"size":{"x":)";
+  number(list, sx_m);
+  list += R"(,"y":)";
+  number(list, sy_m);
+  list += R"(,"z":)";
+  number(list, sz_m);
+  list += R"(},"color":)";
+  list += colour_json;
+  list += '}';
+}
+
+}  // namespace
+
+void number(std::string& out, double v) {
+  if (std::isfinite(v)) {
+    fmt::format_to(std::back_inserter(out), "{}", v);
+  } else {
+    out += "null";
+  }
+}
+
+std::string quoted(const std::string& s) { return Json(s).dump(); }
+
+void pose(std::string& out, double x_m, double y_m, double z_m, double yaw_rad) {
+  out += R"({"position":{"x":)";
+  number(out, x_m);
+  out += R"(,"y":)";
+  number(out, y_m);
+  out += R"(,"z":)";
+  number(out, z_m);
+  out += R"(},"orientation":{"x":0,"y":0,"z":)";
+  number(out, std::sin(0.5 * yaw_rad));
+  out += R"(,"w":)";
+  number(out, std::cos(0.5 * yaw_rad));
+  out += "}}";
+}
+
+std::string colour(const char* hex_rrggbb, double alpha) { return foxglove::colour(hex_rrggbb, alpha).dump(); }
+
+Entity::Entity(std::uint64_t ns, std::string frame_id_json, std::string id_json, std::uint64_t lifetime_ns)
+    : ns_(ns), lifetime_ns_(lifetime_ns), frame_id_json_(std::move(frame_id_json)), id_json_(std::move(id_json)) {}
+
+void Entity::cube(double x_m, double y_m, double z_m, double yaw_rad, double sx_m, double sy_m, double sz_m, const std::string& colour_json) {
+  shape(cubes_, x_m, y_m, z_m, yaw_rad, sx_m, sy_m, sz_m, colour_json);
+}
+
+void Entity::sphere(double x_m, double y_m, double z_m, double yaw_rad, double sx_m, double sy_m, double sz_m, const std::string& colour_json) {
+  shape(spheres_, x_m, y_m, z_m, yaw_rad, sx_m, sy_m, sz_m, colour_json);
+}
+
+void Entity::label(double x_m, double y_m, double z_m, double font_size, const std::string& colour_json, const std::string& text_json) {
+  texts_ += texts_.empty() ? R"({"pose":)" : R"(,{"pose":)";
+  pose(texts_, x_m, y_m, z_m, 0.0);
+  texts_ += R"(,"billboard":true,"font_size":)";
+  number(texts_, font_size);
+  texts_ += R"(,"scale_invariant":true,"color":)";
+  texts_ += colour_json;
+  texts_ += R"(,"text":)";
+  texts_ += text_json;
+  texts_ += '}';
+}
+
+void Entity::box(const Pose2& X_WO, double length_m, double width_m, const std::string& label_json) {
+  static const std::string box_colour = colour(colours::kBackground, 0.35), label_colour = colour(colours::kLabel);
+  cube(X_WO.x_m, X_WO.y_m, 0.5 * kBoxHeight_m, X_WO.yaw_rad, length_m, width_m, kBoxHeight_m, box_colour);
+  label(X_WO.x_m, X_WO.y_m, kBoxHeight_m + 0.5, 14.0, label_colour, label_json);
+}
+
+std::string Entity::scene_update() const {
+  std::string out;
+  out.reserve(160 + cubes_.size() + spheres_.size() + texts_.size());
+  out += R"({"deletions":[],"entities":[{"timestamp":)";
+  time(out, ns_);
+  out += R"(,"frame_id":)" + frame_id_json_ + R"(,"id":)" + id_json_ + R"(,"lifetime":)";
+  time(out, lifetime_ns_);
+  out += R"(,"frame_locked":false,"metadata":[],"arrows":[],"cubes":[)" + cubes_ + R"(],"spheres":[)" + spheres_ +
+         R"(],"cylinders":[],"lines":[],"triangles":[],"texts":[)" + texts_ + R"(],"models":[]}]})";
+  return out;
+}
+
+std::string frame_transform(std::uint64_t ns, const std::string& parent_json, const std::string& child_json, const Pose2& X_PC) {
+  std::string out = R"({"timestamp":)";
+  time(out, ns);
+  out += R"(,"parent_frame_id":)" + parent_json + R"(,"child_frame_id":)" + child_json + R"(,"translation":{"x":)";
+  number(out, X_PC.x_m);
+  out += R"(,"y":)";
+  number(out, X_PC.y_m);
+  out += R"(,"z":0},"rotation":{"x":0,"y":0,"z":)";
+  number(out, std::sin(0.5 * X_PC.yaw_rad));
+  out += R"(,"w":)";
+  number(out, std::cos(0.5 * X_PC.yaw_rad));
+  out += "}}";
+  return out;
+}
+
+}  // namespace rcsim::foxglove::text

@@ -38,3 +38,39 @@ std::string frame_transform_schema();
 std::string frame_name(const std::string& sensor_id, int sensor, const std::vector<std::string>& taken);
 
 }  // namespace rcsim::foxglove
+
+namespace rcsim::foxglove::text {
+
+// The messages an export writes by the million, as JSON text straight away: the same JSON as
+// entity(), scene_update() and frame_transform() above build (keys in the same order), at a fifth
+// of the cost (an hour's export spent 60 % of its time building and freeing nlohmann::json).
+// Numbers in their shortest round-trip form, null where not finite.
+void number(std::string& out, double v);
+std::string quoted(const std::string& s);  // a JSON string, escaped by nlohmann's rules
+void pose(std::string& out, double x_m, double y_m, double z_m, double yaw_rad);
+std::string colour(const char* hex_rrggbb, double alpha = 1.0);
+
+// One scene entity with cubes, spheres and texts, written out as a SceneUpdate of it alone.
+class Entity {
+ public:
+  // frame_id and id as quoted() gives them.
+  Entity(std::uint64_t ns, std::string frame_id_json, std::string id_json, std::uint64_t lifetime_ns);
+  // A cube or sphere at (x, y, z) turned by yaw, of the size given, coloured as colour() gives it.
+  void cube(double x_m, double y_m, double z_m, double yaw_rad, double sx_m, double sy_m, double sz_m, const std::string& colour_json);
+  void sphere(double x_m, double y_m, double z_m, double yaw_rad, double sx_m, double sy_m, double sz_m, const std::string& colour_json);
+  // A label that faces the viewer at a fixed size on screen.
+  void label(double x_m, double y_m, double z_m, double font_size, const std::string& colour_json, const std::string& text_json);
+  // An annotated box as the exports draw it: a translucent cube of its length and width,
+  // kBoxHeight_m tall on the ground, its label (quoted()) above it.
+  void box(const Pose2& X_WO, double length_m, double width_m, const std::string& label_json);
+  static constexpr double kBoxHeight_m = 1.5;  // the boxes are 2-D
+  std::string scene_update() const;
+
+ private:
+  std::uint64_t ns_, lifetime_ns_;
+  std::string frame_id_json_, id_json_, cubes_, spheres_, texts_;
+};
+
+std::string frame_transform(std::uint64_t ns, const std::string& parent_json, const std::string& child_json, const Pose2& X_PC);
+
+}  // namespace rcsim::foxglove::text

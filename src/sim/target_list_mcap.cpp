@@ -12,7 +12,6 @@ namespace {
 
 using foxglove::Json;
 
-constexpr double kBoxHeightM = 1.5;   // the boxes are 2-D: drawn 1.5 m tall
 constexpr double kTargetSizeM = 0.5;  // a target's sphere
 const std::map<std::string, std::string> kSimulatedFormat = {{"format", "rcsim-mcap-replay"}, {"version", "1"}, {"source", "simulate"}};
 
@@ -48,27 +47,22 @@ void McapTargetListWriter::write_cycle(const Scene& scene, int cycle, double t_s
     }
     static_written_ = true;
   }
-  message(tf_channel_, ns, foxglove::frame_transform(ns, "world", "ego", scene.ego.state_at(t_s).X_WB).dump());
-  Json boxes = foxglove::entity(ns, "world", "boxes", lifetime_ns_);
+  static const std::string world = foxglove::text::quoted("world"), ego = foxglove::text::quoted("ego");
+  static const std::string simulated = foxglove::text::quoted("simulated"), boxes_id = foxglove::text::quoted("boxes");
+  static const std::string simulated_colour = foxglove::text::colour(colours::kSimulated);
+  message(tf_channel_, ns, foxglove::text::frame_transform(ns, world, ego, scene.ego.state_at(t_s).X_WB));
+  foxglove::text::Entity boxes(ns, world, boxes_id, lifetime_ns_);
   for (const SceneObject& o : scene.objects) {
-    if (!o.present_at(t_s)) continue;
-    const Pose2 X_WO = o.trajectory.state_at(t_s).X_WB;
-    const Json pose = foxglove::pose_json(X_WO.x_m, X_WO.y_m, 0.5 * kBoxHeightM, X_WO.yaw_rad);
-    boxes["cubes"].push_back({{"pose", pose}, {"size", foxglove::vec3(o.model.length_m, o.model.width_m, kBoxHeightM)},
-                              {"color", foxglove::colour(colours::kBackground, 0.35)}});
-    boxes["texts"].push_back({{"pose", foxglove::pose_json(X_WO.x_m, X_WO.y_m, kBoxHeightM + 0.5, 0.0)}, {"billboard", true},
-                              {"font_size", 14.0}, {"scale_invariant", true}, {"color", foxglove::colour(colours::kLabel)}, {"text", o.id}});
+    if (o.present_at(t_s)) boxes.box(o.trajectory.state_at(t_s).X_WB, o.model.length_m, o.model.width_m, foxglove::text::quoted(o.id));
   }
-  message(boxes_channel_, ns, foxglove::scene_update(Json::array({boxes})).dump());
+  message(boxes_channel_, ns, boxes.scene_update());
   for (std::size_t i = 0; i < states.size() && i < frames_.size(); ++i) {
-    Json targets = foxglove::entity(ns, frames_[i], "simulated", lifetime_ns_);
+    foxglove::text::Entity targets(ns, foxglove::text::quoted(frames_[i]), simulated, lifetime_ns_);
     for_each_target_list_row(scene, *states[i], level_, [&](const TargetListRow& row) {
       const Vec2 p = point_from_polar(row.range_m, row.azimuth_rad);
-      targets["spheres"].push_back({{"pose", foxglove::pose_json(p.x(), p.y(), 0.0, 0.0)},
-                                    {"size", foxglove::vec3(kTargetSizeM, kTargetSizeM, kTargetSizeM)},
-                                    {"color", foxglove::colour(colours::kSimulated)}});
+      targets.sphere(p.x(), p.y(), 0.0, 0.0, kTargetSizeM, kTargetSizeM, kTargetSizeM, simulated_colour);
     });
-    message(target_channels_[i], ns, foxglove::scene_update(Json::array({targets})).dump());
+    message(target_channels_[i], ns, targets.scene_update());
   }
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "common/angles.hpp"
+#include "common/target_colours.hpp"
 
 namespace rcsim::foxglove_json_test {
 
@@ -52,6 +53,30 @@ TEST(FoxgloveJson, AViewFieldIsALineFromTheSensorAlongTheArcAndBack) {
   EXPECT_NEAR(points[1]["y"].get<double>(), -5.0, 1e-12);
   EXPECT_EQ(e["frame_locked"], true);
   EXPECT_EQ(e["lifetime"], Json({{"sec", 0}, {"nsec", 0}}));  // for ever
+}
+
+// The text writers give the JSON the builders give, member for member and in the same order.
+TEST(FoxgloveJson, TheTextWritersGiveTheBuildersJson) {
+  const Pose2 X{12.5, -3.25, 0.7};
+  EXPECT_EQ(Json::parse(foxglove::text::frame_transform(3000000007ULL, foxglove::text::quoted("world"), foxglove::text::quoted("ego"), X)),
+            foxglove::frame_transform(3000000007ULL, "world", "ego", X));
+  foxglove::text::Entity text(5, foxglove::text::quoted("fl \"1\""), foxglove::text::quoted("recorded"), 40000000ULL);
+  Json built = foxglove::entity(5, "fl \"1\"", "recorded", 40000000ULL);
+  text.sphere(1.0, 2.0, 0.25, 0.0, 0.5, 0.5, 0.5, foxglove::text::colour("#1f5fbf"));
+  built["spheres"].push_back({{"pose", foxglove::pose_json(1.0, 2.0, 0.25, 0.0)}, {"size", foxglove::vec3(0.5, 0.5, 0.5)},
+                              {"color", foxglove::colour("#1f5fbf")}});
+  text.cube(-4.0, 1e-7, 0.0, 0.0, 0.5, 0.5, 0.5, foxglove::text::colour("#0ca678", 0.5));
+  built["cubes"].push_back({{"pose", foxglove::pose_json(-4.0, 1e-7, 0.0, 0.0)}, {"size", foxglove::vec3(0.5, 0.5, 0.5)},
+                            {"color", foxglove::colour("#0ca678", 0.5)}});
+  text.box(X, 4.6, 1.8, foxglove::text::quoted("car\n7"));
+  built["cubes"].push_back({{"pose", foxglove::pose_json(12.5, -3.25, 0.75, 0.7)}, {"size", foxglove::vec3(4.6, 1.8, 1.5)},
+                            {"color", foxglove::colour(colours::kBackground, 0.35)}});
+  built["texts"].push_back({{"pose", foxglove::pose_json(12.5, -3.25, 2.0, 0.0)}, {"billboard", true}, {"font_size", 14.0},
+                            {"scale_invariant", true}, {"color", foxglove::colour(colours::kLabel)}, {"text", "car\n7"}});
+  EXPECT_EQ(Json::parse(text.scene_update()), foxglove::scene_update(Json::array({built})));
+  std::string n;
+  foxglove::text::number(n, std::nan(""));
+  EXPECT_EQ(n, "null");  // JSON has no NaN
 }
 
 TEST(FoxgloveJson, FramesAreSensorIdsMadeSafeAndUnique) {
