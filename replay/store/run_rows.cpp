@@ -314,15 +314,19 @@ class CycleOrder {
   std::vector<Row> pending_;
 };
 
-// The blocks of a run that overlap `span`, by first cycle and sensor.
+// The blocks of a run that overlap `span`, by first cycle and sensor. A block holds at most
+// kBlockCycles cycles (checked as read), so the ones that overlap start no earlier than that
+// before the span: the lower bound keeps the index's range to them (without it every query
+// walked the run's blocks from its first, quadratic in the run's length).
 SQLite::Statement block_query(SQLite::Database& db, const std::string& columns, const char* table, std::int64_t run_id,
                               CycleSpan span, bool by_sensor) {
-  SQLite::Statement q(db, fmt::format("SELECT {} FROM {} WHERE run_id = ? AND first_cycle <= ? AND first_cycle + cycles > ? "
-                                      "ORDER BY first_cycle{}",
+  SQLite::Statement q(db, fmt::format("SELECT {} FROM {} WHERE run_id = ? AND first_cycle >= ? AND first_cycle <= ? "
+                                      "AND first_cycle + cycles > ? ORDER BY first_cycle{}",
                                       columns, table, by_sensor ? ", sensor" : ""));
   q.bind(1, run_id);
-  q.bind(2, span.last);
-  q.bind(3, span.first);
+  q.bind(2, static_cast<std::int64_t>(span.first) - kBlockCycles + 1);
+  q.bind(3, span.last);
+  q.bind(4, span.first);
   return q;
 }
 
