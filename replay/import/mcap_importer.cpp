@@ -20,6 +20,7 @@
 #include "io/ros2_messages.hpp"
 #include "model/model_library.hpp"
 #include "replay/import/foxglove_messages.hpp"
+#include "replay/import/openlabel.hpp"
 #include "replay/import/tf_tree.hpp"
 
 namespace rcsim::replay {
@@ -51,8 +52,11 @@ struct Mapping {
   std::string name;
   std::vector<MappedSensor> sensors;
   MappedEgo ego;
+  // The annotated boxes: a topic of the log, or an OpenLABEL file beside it.
   std::string objects_topic;
+  fs::path openlabel;
   std::map<std::string, std::string> classes;  // the log's class name -> an object model
+  std::string objects_source() const { return openlabel.empty() ? objects_topic : openlabel.string(); }
   std::optional<double> annotation_step_s;
 };
 
@@ -127,8 +131,13 @@ Mapping read_mapping(const fs::path& path) {
     }
   }
   if (const auto objects = root.optional_member("objects")) {
-    objects->expect_only({"topic", "classes"});
-    m.objects_topic = objects->string("topic");
+    objects->expect_only({"topic", "openlabel", "classes"});
+    if (objects->has("topic") == objects->has("openlabel")) {
+      objects->fail("takes the boxes' \"topic\" in the log or an \"openlabel\" file beside it, one of them");
+    }
+    if (objects->has("topic")) m.objects_topic = objects->string("topic");
+    // An OpenLABEL file named relative to the mapping file.
+    if (objects->has("openlabel")) m.openlabel = path.parent_path() / objects->string("openlabel");
     if (const auto classes = objects->optional_member("classes")) {
       if (!classes->json().is_object()) objects->fail("classes", "must map the log's class names to object models");
       for (const auto& [from, to] : classes->json().items()) {
@@ -177,6 +186,7 @@ struct LoggedDrive {
   std::vector<LoggedCycle> cycles;
   std::vector<std::string> scan_frames;  // per sensor: its first scan's frame_id
   std::vector<LoggedEgo> ego;
+  std::string odometry_frame, odometry_child_frame;  // the first Odometry's
   TfTree tf;
   std::vector<LoggedObject> objects;
   std::map<std::string, std::size_t> object_index;
@@ -264,6 +274,7 @@ LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
       } else if (is_ego) {
         expect(ros2::kOdometrySchema, "cdr");
         const ros2::Odometry o = ros2::decode_odometry(m.data);
+        if (drive.ego.empty()) drive.odometry_frame = o.header.frame_id, drive.odometry_child_frame = o.child_frame_id;
         drive.ego.push_back({o.header.stamp.ns(), o.x_m, o.y_m, ros2::yaw_of_quaternion(o.qx, o.qy, o.qz, o.qw), o.vx_mps, o.wz_radps});
       } else if (is_tf) {
         expect(ros2::kTfMessageSchema, "cdr");
@@ -363,9 +374,65 @@ void mount_from_tf(const LoggedDrive& drive, const fs::path& log, const Mapping&
   }
 }
 
+// The ego's pose at t_ns from the odometry (times increasing), interpolated; beyond its ends by more
+// than the margin refused.
+Pose2 odometry_pose(const std::vector<LoggedEgo>& ego, std::int64_t t_ns, const std::string& what) {
+  const auto after = std::lower_bound(ego.begin(), ego.end(), t_ns, [](const LoggedEgo& e, std::int64_t t) { return e.t_ns < t; });
+  const auto sample = [&](const LoggedEgo& e) {
+    return EgoSample{seconds_since(e.t_ns, ego.front().t_ns), e.x_m, e.y_m, e.yaw_rad, e.speed_mps, e.yaw_rate_radps};
+  };
+  const double t_s = seconds_since(t_ns, ego.front().t_ns);
+  if (t_s < -kEgoExtrapolationMargin_s || seconds_since(t_ns, ego.back().t_ns) > kEgoExtrapolationMargin_s) {
+    throw std::out_of_range(fmt::format("{} at {} ns lies beyond the odometry's {} to {} ns by more than {} s", what, t_ns,
+                                        ego.front().t_ns, ego.back().t_ns, kEgoExtrapolationMargin_s));
+  }
+  const EgoSample e = after == ego.begin()  ? sample(ego.front())
+                      : after == ego.end()  ? sample(ego.back())
+                                            : interpolate_ego(sample(*(after - 1)), sample(*after), t_s);
+  return {e.x_m, e.y_m, e.yaw_rad};
+}
+
+// The boxes of an OpenLABEL file beside the log, in the ego's world frame: a cuboid in the world
+// frame (or in none named) as it is; one in another frame of /tf (the vehicle's, a sensor's)
+// through the transforms at its time; with an Odometry ego, one in the odometry's child frame (the
+// vehicle's) through the odometry's pose at its time. Planar: z and the height are dropped.
+void add_openlabel(LoggedDrive& drive, const Mapping& mapping) {
+  const openlabel::Labels labels = openlabel::read_openlabel(mapping.openlabel);
+  const bool tf = mapping.ego.from_tf();
+  const std::string& world = tf ? mapping.ego.world_frame : drive.odometry_frame;
+  const std::string& vehicle = tf ? mapping.ego.vehicle_frame : drive.odometry_child_frame;
+  const auto f = [](double v) { return static_cast<float>(v); };
+  for (const openlabel::LabelledBox& b : labels.boxes) {
+    Pose2 X_WO{b.x_m, b.y_m, b.yaw_rad};
+    const std::string& frame = b.coordinate_system;
+    const std::string what = fmt::format("object '{}''s cuboid", b.uid);
+    try {
+      if (!frame.empty() && frame != world) {
+        Pose2 X_WC;
+        if (tf) {
+          const Eigen::Isometry3d X = drive.tf.pose(frame, world, b.t_ns);
+          X_WC = {X.translation().x(), X.translation().y(), std::atan2(X.linear()(1, 0), X.linear()(0, 0))};
+        } else if (frame == vehicle) {
+          X_WC = odometry_pose(drive.ego, b.t_ns, what);
+        } else {
+          throw std::out_of_range(fmt::format("{} is in coordinate system '{}': neither the odometry's world frame '{}' nor its "
+                                              "vehicle frame '{}' (map the ego as a /tf chain to use other frames)",
+                                              what, frame, world, vehicle));
+        }
+        X_WO = compose(X_WC, X_WO);
+      }
+    } catch (const std::out_of_range& e) {
+      throw InputError(mapping.openlabel.string(), "openlabel.objects." + b.uid, e.what());
+    } catch (const TfError& e) {
+      throw InputError(mapping.openlabel.string(), "openlabel.objects." + b.uid, what + ": " + e.what());
+    }
+    add_box(b.uid, b.type, {b.t_ns, X_WO.x_m, X_WO.y_m, f(X_WO.yaw_rad), f(b.speed_mps.value_or(std::nan(""))), f(b.length_m), f(b.width_m)},
+            drive);
+  }
+}
+
 void add_ego(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const std::string& topic, Recording& rec) {
-  std::vector<LoggedEgo>& ego = drive.ego;
-  std::stable_sort(ego.begin(), ego.end(), [](const LoggedEgo& a, const LoggedEgo& b) { return a.t_ns < b.t_ns; });
+  std::vector<LoggedEgo>& ego = drive.ego;  // times increasing
   rec.ego.reserve(ego.size());
   for (std::size_t i = 0; i < ego.size(); ++i) {
     const LoggedEgo& e = ego[i];
@@ -457,7 +524,7 @@ void add_objects(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, co
     const auto mapped = mapping.classes.find(o.log_class);
     const std::string model = mapped != mapping.classes.end() ? mapped->second : o.log_class;
     if (!library.contains(model)) {
-      throw InputError(log.string(), mapping.objects_topic,
+      throw InputError(log.string(), mapping.objects_source(),
                        fmt::format("entity '{}' has class '{}', no object model (rcsim models); map it in the mapping's "
                                    "objects.classes", o.id, o.log_class));
     }
@@ -473,7 +540,7 @@ void add_objects(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, co
     std::stable_sort(boxes.begin(), boxes.end(), [](const AnnotatedBox& a, const AnnotatedBox& b) { return a.t_s < b.t_s; });
     for (std::size_t i = 1; i < boxes.size(); ++i) {
       if (boxes[i].t_s <= boxes[i - 1].t_s) {
-        throw InputError(log.string(), mapping.objects_topic, fmt::format("entity '{}' twice at {:.6f} s", o.id, boxes[i].t_s));
+        throw InputError(log.string(), mapping.objects_source(), fmt::format("entity '{}' twice at {:.6f} s", o.id, boxes[i].t_s));
       }
     }
     if (o.speed_missing) set_speeds_from_positions(boxes);
@@ -494,6 +561,8 @@ DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& op
   const Mapping mapping = read_mapping(options.mapping);
   LoggedDrive drive = read_log(log, mapping);
   if (mapping.ego.from_tf()) ego_from_tf(drive, log, mapping.ego);
+  std::stable_sort(drive.ego.begin(), drive.ego.end(), [](const LoggedEgo& a, const LoggedEgo& b) { return a.t_ns < b.t_ns; });
+  if (!mapping.openlabel.empty()) add_openlabel(drive, mapping);
   // The recording's clock: seconds since the earliest stamp of the mapped topics.
   std::int64_t t0_ns = drive.ego.front().t_ns;
   for (const LoggedEgo& e : drive.ego) t0_ns = std::min(t0_ns, e.t_ns);
@@ -519,6 +588,7 @@ DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& op
   rec.source = {{"importer", "rcsim import --from mcap"},
                 {"log", log.filename().string()},
                 {"mapping", options.mapping.filename().string()},
+                {"boxes", mapping.openlabel.empty() ? "topic " + mapping.objects_topic : "OpenLABEL " + mapping.openlabel.filename().string()},
                 {"first_timestamp_ns", t0_ns},
                 {"profile", drive.profile},
                 {"library", drive.library}};

@@ -46,13 +46,15 @@ class McapImport : public testing::ScratchDirTest {
   }
   // The recording in `dir` as a ROS 2 log (and its mapping file), written by the test tool.
   fs::path log_of(const fs::path& dir, const std::string& compression, const std::string& name,
-                  const std::string& detections = "radarscan", const std::string& ego = "odometry") {
+                  const std::string& detections = "radarscan", const std::string& ego = "odometry",
+                  const std::string& boxes = "scene") {
     const fs::path log = dir_ / (name + ".mcap");
     mapping_ = dir_ / (name + ".mapping.json");
     const auto written = rcsim::testing::run_shell_command("node " + (kTool / "write_ros2_log.js").string() + " " + dir.string() +
                                                            " " + log.string() + " --compression " + compression +
                                                            " --mapping " + mapping_.string() + " --chunk-bytes 16384" +
-                                                           " --detections " + detections + " --ego " + ego);
+                                                           " --detections " + detections + " --ego " + ego +
+                                                           " --boxes " + boxes);
     EXPECT_EQ(written.exit_code, 0) << written.output;
     return log;
   }
@@ -180,6 +182,37 @@ TEST_F(McapImport, TheEgoFromATfChainAndTheMountingsFromTfStatic) {
   const std::string m = refusal_of([&] { import_mcap(dir_ / "tf.mcap", options); });
   EXPECT_NE(m.find("no transform names frame 'base_lnk' (the frames: base_footprint, base_link, front_left, front_right, odom)"),
             std::string::npos) << m;
+}
+
+// The boxes from an ASAM OpenLABEL file beside the log, each cuboid in the vehicle's frame at its
+// time: moved into the world by the odometry's pose, or by the /tf chain, the same boxes come back.
+TEST_F(McapImport, BoxesFromAnOpenLabelFileInTheVehiclesFrame) {
+  const fs::path dir = testing::kBundledRecordings / "overtaking";
+  const Recording original = read_recording(dir);
+  ASSERT_FALSE(original.objects.empty());
+  expect_same_drive(original, imported(log_of(dir, "zstd", "openlabel", "radarscan", "odometry", "openlabel")));
+  const Recording tf = imported(log_of(dir, "zstd", "openlabel_tf", "radarscan", "tf", "openlabel"));
+  ASSERT_EQ(tf.boxes.size(), original.boxes.size());
+  for (std::size_t o = 0; o < tf.boxes.size(); ++o) {
+    ASSERT_EQ(tf.boxes[o].size(), original.boxes[o].size());
+    for (std::size_t k = 0; k < tf.boxes[o].size(); ++k) {
+      EXPECT_NEAR(tf.boxes[o][k].x_m, original.boxes[o][k].x_m, 1e-3);
+      EXPECT_NEAR(tf.boxes[o][k].y_m, original.boxes[o][k].y_m, 1e-3);
+      EXPECT_NEAR(tf.boxes[o][k].yaw_rad, original.boxes[o][k].yaw_rad, 1e-6);
+    }
+  }
+  // A cuboid in a frame the odometry does not know is refused naming the file, the object and the frame.
+  std::string labels = testing::file_bytes(dir_ / "openlabel.mcap.openlabel.json");
+  for (std::size_t at = labels.find("\"base_link\""); at != std::string::npos; at = labels.find("\"base_link\"", at)) {
+    labels.replace(at, 11, "\"radar_fl\"");
+  }
+  write_file("openlabel.mcap.openlabel.json", labels);
+  DatasetImportOptions options;
+  options.mapping = dir_ / "openlabel.mapping.json";
+  const std::string m = refusal_of([&] { import_mcap(dir_ / "openlabel.mcap", options); });
+  EXPECT_NE(m.find("openlabel.mcap.openlabel.json"), std::string::npos) << m;
+  EXPECT_NE(m.find("is in coordinate system 'radar_fl': neither the odometry's world frame 'odom' nor its vehicle frame "
+                   "'base_link'"), std::string::npos) << m;
 }
 
 // The aiMotive drive as a ROS 2 log gives the recording `import --from aimotive` gives, and the

@@ -1,5 +1,5 @@
 // node write_ros2_log.js RECORDING_DIR OUT.mcap [--compression none|zstd|lz4] [--mapping OUT.json]
-//   [--chunk-bytes N] [--detections radarscan|pointcloud] [--ego odometry|tf]
+//   [--chunk-bytes N] [--detections radarscan|pointcloud] [--ego odometry|tf] [--boxes scene|openlabel]
 // Test tool: writes an rcsim recording (schemas/recording.md) as a ROS 2 log, the way a user's
 // drive arrives, with the format's own writer (@mcap/core) and ROS 2's CDR (@foxglove/cdr through
 // @foxglove/rosmsg2-serialization):
@@ -14,6 +14,10 @@
 //                       (its id) mounted in "base_link"; the mapping then gives no mountings);
 //   /annotations        foxglove.SceneUpdate (JSON), one per annotation time: a cube per box, its
 //                       class and speed in the entity's metadata.
+//   (--boxes openlabel: no /annotations; OUT.openlabel.json beside the mapping instead, an ASAM
+//                       OpenLABEL 1.0 file: a frame per annotation time stamped "sec.nanosec", each
+//                       box a 10-value cuboid in the vehicle's frame "base_link" where an ego row has
+//                       its time (else in "odom"), its speed a num "speed_mps".)
 // Times are nanoseconds: the recording's source.first_timestamp_ns (else 1.7e18) + t_s. With
 // --mapping, also writes the rcsim-mcap-mapping file (schemas/mcap-mapping.md) that imports it.
 "use strict";
@@ -120,13 +124,14 @@ function readCsv(file) {
 }
 
 function options(argv) {
-  const o = { compression: "none", mapping: "", chunkBytes: 64 * 1024, detections: "radarscan", ego: "odometry" };
+  const o = { compression: "none", mapping: "", chunkBytes: 64 * 1024, detections: "radarscan", ego: "odometry", boxes: "scene" };
   for (let i = 4; i < argv.length; i += 2) {
     if (argv[i] === "--compression") o.compression = argv[i + 1];
     else if (argv[i] === "--mapping") o.mapping = argv[i + 1];
     else if (argv[i] === "--chunk-bytes") o.chunkBytes = Number(argv[i + 1]);
     else if (argv[i] === "--detections") o.detections = argv[i + 1];
     else if (argv[i] === "--ego") o.ego = argv[i + 1];
+    else if (argv[i] === "--boxes") o.boxes = argv[i + 1];
     else throw new Error(`unknown option ${argv[i]}`);
   }
   return o;
@@ -248,7 +253,35 @@ async function main() {
     if (!byTime.has(b.t_s)) byTime.set(b.t_s, []);
     byTime.get(b.t_s).push(b);
   }
-  for (const [t, list] of byTime) {
+  // The boxes as OpenLABEL: in the vehicle's frame, X_VO = X_WV^-1 X_WO, where the ego has a row then.
+  const egoAt = new Map(ego.map((e) => [e.t_s, e]));
+  const openlabel = { openlabel: { metadata: { schema_version: "1.0.0" }, objects: {}, frames: {},
+    coordinate_systems: { odom: { type: "scene_cs", parent: "", children: ["base_link"] },
+      base_link: { type: "local_cs", parent: "odom", children: [] } } } };
+  if (o.boxes === "openlabel") {
+    for (const ob of rec.objects) openlabel.openlabel.objects[ob.id] = { name: ob.id, type: ob.class };
+    let frame = 0;
+    for (const [t, list] of byTime) {
+      const ns = nsOf(t);
+      const objects = {};
+      for (const b of list) {
+        const ob = classOf.get(b.object);
+        let [x, y, yaw, cs] = [Number(b.x_m), Number(b.y_m), Number(b.yaw_rad), "odom"];
+        const e = egoAt.get(t);
+        if (e) {
+          const [dx, dy, ey] = [x - Number(e.x_m), y - Number(e.y_m), Number(e.yaw_rad)];
+          [x, y, yaw, cs] = [Math.cos(ey) * dx + Math.sin(ey) * dy, -Math.sin(ey) * dx + Math.cos(ey) * dy, yaw - ey, "base_link"];
+        }
+        const q = quaternionOfYaw(yaw);
+        objects[b.object] = { object_data: { cuboid: [{ name: "box", coordinate_system: cs,
+          val: [x, y, 0.75, q.x, q.y, q.z, q.w, ob.length_m, ob.width_m, 1.5] }],
+          num: [{ name: "speed_mps", val: Number(b.speed_mps) }] } };
+      }
+      openlabel.openlabel.frames[String(frame++)] = { frame_properties: { timestamp: `${ns / 1000000000n}.${String(ns % 1000000000n).padStart(9, "0")}` },
+        objects };
+    }
+  }
+  for (const [t, list] of o.boxes === "openlabel" ? [] : byTime) {
     const ns = nsOf(t);
     const entities = list.map((b) => {
       const ob = classOf.get(b.object);
@@ -273,8 +306,9 @@ async function main() {
       sensors: rec.sensors.map((s) => ({ id: s.id, topic: topicOf(s.id), type: s.type,
         ...(o.ego === "tf" ? {} : { x_m: s.x_m, y_m: s.y_m, yaw_rad: s.yaw_rad }), reports: s.reports || "tracks" })),
       ego: o.ego === "tf" ? { tf: { world_frame: "odom", vehicle_frame: "base_link" } } : { topic: "/odom" },
-      objects: { topic: "/annotations" } };
+      objects: o.boxes === "openlabel" ? { openlabel: path.basename(out) + ".openlabel.json" } : { topic: "/annotations" } };
     fs.writeFileSync(o.mapping, JSON.stringify(mapping, null, 2) + "\n");
+    if (o.boxes === "openlabel") fs.writeFileSync(path.join(path.dirname(o.mapping), path.basename(out) + ".openlabel.json"), JSON.stringify(openlabel));
   }
   console.log(JSON.stringify({ messages: messages.length, cycles: cycles.length, bytes: chunks.reduce((n, c) => n + c.length, 0) }));
 }
