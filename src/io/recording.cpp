@@ -23,6 +23,7 @@
 #include "common/text_file.hpp"
 #include "io/csv_reader.hpp"
 #include "io/recording_stream.hpp"
+#include "io/recording_writer.hpp"
 
 namespace rcsim {
 
@@ -441,7 +442,6 @@ void check_writable(const Recording& rec) {
     for (const auto& s : rec.sensors) {
       if (!(s.cycle_time_s > 0.0)) throw std::invalid_argument(fmt::format("sensor '{}' on its own clock has no cycle time", s.id));
     }
-    if (rec.cycles.empty()) throw std::invalid_argument("sensors on their own clocks: no cycles listed");
   }
   // Version 3's fields as the reader takes them.
   for (const auto& s : rec.sensors) {
@@ -458,115 +458,127 @@ void check_writable(const Recording& rec) {
     }
   }
 }
+}  // namespace
 
-void write_ego_csv(const fs::path& path, const Recording& rec) {
-  FileOut ego(path);
-  ego.text() = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
-  for (const auto& e : rec.ego) {
-    fmt::format_to(ego.out(), "{:.6f},{:.4f},{:.4f},{:.6f},{:.4f},{:.6f}\n", e.t_s, e.x_m, e.y_m, e.yaw_rad, e.speed_mps,
-                   e.yaw_rate_radps);
-    ego.row_done();
+// The open files of a RecordingWriter.
+struct RecordingWriter::Files {
+  explicit Files(const fs::path& dir, bool own_clocks)
+      : ego(dir / "ego.csv"), objects(dir / "objects.csv"), targets(dir / "targets.csv") {
+    if (own_clocks) cycles = std::make_unique<FileOut>(dir / "cycles.csv");
   }
-  ego.close();
+  FileOut ego, objects, targets;
+  std::unique_ptr<FileOut> cycles;
+};
+
+RecordingWriter::RecordingWriter(const fs::path& dir, std::vector<std::string> sensor_ids, TargetColumns columns, bool own_clocks)
+    : sensor_ids_(std::move(sensor_ids)), columns_(columns) {
+  target_ = fs::absolute(dir).lexically_normal();
+  name_ = target_.filename().empty() ? target_.parent_path().filename() : target_.filename();
+  parent_ = target_.filename().empty() ? target_.parent_path().parent_path() : target_.parent_path();
+  // The parent is made as `mkdir -p` would: `import ... -o out/rec` in a fresh clone just works.
+  std::error_code error;
+  fs::create_directories(parent_, error);
+  if (!fs::is_directory(parent_)) {
+    throw InputError(dir.string(), "", fmt::format("cannot make the parent directory: {}", error ? error.message() : "not a directory"));
+  }
+  check_output_directory(target_, "recording.json");
+  temp_ = parent_ / fmt::format(".{}.tmp.{}", name_.string(), ::getpid());
+  fs::remove_all(temp_);
+  fs::create_directory(temp_);
+  files_ = std::make_unique<Files>(temp_, own_clocks);
+  files_->ego.text() = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
+  files_->objects.text() = "t_s,object,x_m,y_m,yaw_rad,speed_mps\n";
+  files_->targets.text() = columns_.id ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db"
+                                       : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db";
+  files_->targets.text() += std::string(columns_.rcs_dbsm ? ",rcs_dbsm" : "") + (columns_.snr_db ? ",snr_db" : "") +
+                            (columns_.elevation_rad ? ",elevation_rad" : "") + "\n";
+  if (files_->cycles) files_->cycles->text() = "t_s,sensor\n";
 }
 
-void write_cycles_csv(const fs::path& path, const Recording& rec) {
-  FileOut cycles(path);
-  cycles.text() = "t_s,sensor\n";
-  for (const auto& c : rec.cycles) {
-    fmt::format_to(cycles.out(), "{:.6f},{}\n", c.t_s, csv_field(rec.sensors.at(static_cast<std::size_t>(c.sensor)).id));
-    cycles.row_done();
-  }
-  cycles.close();
+RecordingWriter::~RecordingWriter() {
+  if (finished_) return;
+  files_.reset();
+  std::error_code ignored;
+  fs::remove_all(temp_, ignored);
 }
 
-void write_objects_csv(const fs::path& path, const Recording& rec) {
-  // Rows in time order, objects in recording order within one time.
+void RecordingWriter::ego(const EgoSample& e) {
+  fmt::format_to(files_->ego.out(), "{:.6f},{:.4f},{:.4f},{:.6f},{:.4f},{:.6f}\n", e.t_s, e.x_m, e.y_m, e.yaw_rad, e.speed_mps,
+                 e.yaw_rate_radps);
+  files_->ego.row_done();
+}
+
+void RecordingWriter::box(const std::string& object_id, const AnnotatedBox& b) {
+  fmt::format_to(files_->objects.out(), "{:.6f},{},{:.4f},{:.4f},{:.6f},{:.4f}\n", b.t_s, csv_field(object_id), b.x_m, b.y_m,
+                 b.yaw_rad, b.speed_mps);
+  files_->objects.row_done();
+}
+
+void RecordingWriter::target(const RecordedTarget& t) {
+  // A column holds a number in every row (the reader refuses empty fields and nan).
+  if ((columns_.rcs_dbsm && !std::isfinite(t.rcs_dbsm)) || (columns_.snr_db && !std::isfinite(t.snr_db)) ||
+      (columns_.elevation_rad && !std::isfinite(t.elevation_rad))) {
+    throw std::invalid_argument("targets.csv: an optional column (rcs_dbsm, snr_db, elevation_rad) is given for some targets only");
+  }
+  FileOut& out = files_->targets;
+  fmt::format_to(out.out(), "{:.6f},{},{},", t.t_s, t.cycle, csv_field(sensor_ids_.at(static_cast<std::size_t>(t.sensor))));
+  if (columns_.id) fmt::format_to(out.out(), "{},", t.id);
+  fmt::format_to(out.out(), "{:.4f},{:.6f},{:.4f},{:.3f}", t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db);
+  if (columns_.rcs_dbsm) fmt::format_to(out.out(), ",{:.3f}", t.rcs_dbsm);
+  if (columns_.snr_db) fmt::format_to(out.out(), ",{:.3f}", t.snr_db);
+  if (columns_.elevation_rad) fmt::format_to(out.out(), ",{:.6f}", t.elevation_rad);
+  out.text() += '\n';
+  out.row_done();
+}
+
+void RecordingWriter::cycle(const SensorCycle& c) {
+  fmt::format_to(files_->cycles->out(), "{:.6f},{}\n", c.t_s, csv_field(sensor_ids_.at(static_cast<std::size_t>(c.sensor))));
+  files_->cycles->row_done();
+  ++cycles_;
+}
+
+void RecordingWriter::finish(const Recording& header, const std::map<std::string, std::string>& extra_files) {
+  check_writable(header);
+  if (files_->cycles && cycles_ == 0) throw std::invalid_argument("sensors on their own clocks: no cycles listed");
+  files_->ego.close(), files_->objects.close(), files_->targets.close();
+  if (files_->cycles) files_->cycles->close();
+  write_file(temp_ / "recording.json", header_text(header));
+  for (const auto& [file, content] : extra_files) write_file(temp_ / fs::path(file).filename(), content);
+  // A directory cannot be renamed over a non-empty one: move the old one aside first.
+  const fs::path old = parent_ / fmt::format(".{}.old.{}", name_.string(), ::getpid());
+  const bool replacing = fs::exists(target_);
+  if (replacing) fs::rename(target_, old);
+  fs::rename(temp_, target_);
+  finished_ = true;
+  if (replacing) fs::remove_all(old);
+}
+
+TargetColumns target_columns(const Recording& rec) {
+  const auto any = [&](double RecordedTarget::*field) {
+    return std::any_of(rec.targets.begin(), rec.targets.end(), [&](const RecordedTarget& t) { return std::isfinite(t.*field); });
+  };
+  // The id column only when the sensors report track ids (raw detections have none).
+  return {std::any_of(rec.targets.begin(), rec.targets.end(), [](const RecordedTarget& t) { return t.id >= 0; }),
+          any(&RecordedTarget::rcs_dbsm), any(&RecordedTarget::snr_db), any(&RecordedTarget::elevation_rad)};
+}
+
+void write_recording(const fs::path& dir, const Recording& rec, const std::map<std::string, std::string>& extra_files) {
+  check_writable(rec);  // before anything is made
+  if (rec.clock == Clock::per_sensor && rec.cycles.empty()) throw std::invalid_argument("sensors on their own clocks: no cycles listed");
+  std::vector<std::string> sensor_ids;
+  for (const RecordingSensor& s : rec.sensors) sensor_ids.push_back(s.id);
+  RecordingWriter writer(dir, sensor_ids, target_columns(rec), rec.clock == Clock::per_sensor);
+  for (const EgoSample& e : rec.ego) writer.ego(e);
+  // Boxes in time order, objects in recording order within one time.
   std::vector<std::pair<std::size_t, const AnnotatedBox*>> rows;
   for (std::size_t i = 0; i < rec.boxes.size(); ++i) {
     for (const auto& b : rec.boxes[i]) rows.emplace_back(i, &b);
   }
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second->t_s < b.second->t_s; });
-  FileOut objects(path);
-  objects.text() = "t_s,object,x_m,y_m,yaw_rad,speed_mps\n";
-  for (const auto& [i, b] : rows) {
-    fmt::format_to(objects.out(), "{:.6f},{},{:.4f},{:.4f},{:.6f},{:.4f}\n", b->t_s, csv_field(rec.objects[i].id), b->x_m,
-                   b->y_m, b->yaw_rad, b->speed_mps);
-    objects.row_done();
-  }
-  objects.close();
-}
-
-void write_targets_csv(const fs::path& path, const Recording& rec) {
-  // The id column only when the sensors report track ids (raw detections have none).
-  const bool ids = std::any_of(rec.targets.begin(), rec.targets.end(), [](const RecordedTarget& t) { return t.id >= 0; });
-  // The optional columns only where some target has the value.
-  const auto any = [&](double RecordedTarget::*field) {
-    return std::any_of(rec.targets.begin(), rec.targets.end(), [&](const RecordedTarget& t) { return std::isfinite(t.*field); });
-  };
-  const bool rcs = any(&RecordedTarget::rcs_dbsm), snr = any(&RecordedTarget::snr_db),
-             elevation = any(&RecordedTarget::elevation_rad);
-  // A column holds a number in every row (the reader refuses empty fields and nan).
-  for (const auto& t : rec.targets) {
-    if ((rcs && !std::isfinite(t.rcs_dbsm)) || (snr && !std::isfinite(t.snr_db)) ||
-        (elevation && !std::isfinite(t.elevation_rad))) {
-      throw std::invalid_argument("targets.csv: an optional column (rcs_dbsm, snr_db, elevation_rad) is given for "
-                                  "some targets only");
-    }
-  }
-  FileOut targets(path);
-  targets.text() = ids ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db"
-                       : "t_s,cycle,sensor,range_m,azimuth_rad,range_rate_mps,amplitude_db";
-  targets.text() += std::string(rcs ? ",rcs_dbsm" : "") + (snr ? ",snr_db" : "") + (elevation ? ",elevation_rad" : "") + "\n";
-  for (const auto& t : rec.targets) {
-    fmt::format_to(targets.out(), "{:.6f},{},{},", t.t_s, t.cycle, csv_field(rec.sensors[t.sensor].id));
-    if (ids) fmt::format_to(targets.out(), "{},", t.id);
-    fmt::format_to(targets.out(), "{:.4f},{:.6f},{:.4f},{:.3f}", t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db);
-    if (rcs) fmt::format_to(targets.out(), ",{:.3f}", t.rcs_dbsm);
-    if (snr) fmt::format_to(targets.out(), ",{:.3f}", t.snr_db);
-    if (elevation) fmt::format_to(targets.out(), ",{:.6f}", t.elevation_rad);
-    targets.text() += '\n';
-    targets.row_done();
-  }
-  targets.close();
-}
-
-}  // namespace
-
-void write_recording(const fs::path& dir, const Recording& rec, const std::map<std::string, std::string>& extra_files) {
-  const fs::path target = fs::absolute(dir).lexically_normal();
-  const fs::path name = target.filename().empty() ? target.parent_path().filename() : target.filename();
-  const fs::path parent = target.filename().empty() ? target.parent_path().parent_path() : target.parent_path();
-  // The parent is made as `mkdir -p` would: `import ... -o out/rec` in a fresh clone just works.
-  std::error_code error;
-  fs::create_directories(parent, error);
-  if (!fs::is_directory(parent)) {
-    throw InputError(dir.string(), "", fmt::format("cannot make the parent directory: {}", error ? error.message() : "not a directory"));
-  }
-  check_output_directory(target, "recording.json");
-  check_writable(rec);
-  const fs::path temp = parent / fmt::format(".{}.tmp.{}", name.string(), ::getpid());
-  fs::remove_all(temp);
-  fs::create_directory(temp);
-  try {
-    write_file(temp / "recording.json", header_text(rec));
-    write_ego_csv(temp / "ego.csv", rec);
-    write_objects_csv(temp / "objects.csv", rec);
-    write_targets_csv(temp / "targets.csv", rec);
-    if (rec.clock == Clock::per_sensor) write_cycles_csv(temp / "cycles.csv", rec);
-    for (const auto& [file, content] : extra_files) write_file(temp / fs::path(file).filename(), content);
-
-    // A directory cannot be renamed over a non-empty one: move the old one aside first.
-    const fs::path old = parent / fmt::format(".{}.old.{}", name.string(), ::getpid());
-    const bool replacing = fs::exists(target);
-    if (replacing) fs::rename(target, old);
-    fs::rename(temp, target);
-    if (replacing) fs::remove_all(old);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove_all(temp, ignored);
-    throw;
-  }
+  for (const auto& [i, b] : rows) writer.box(rec.objects[i].id, *b);
+  for (const RecordedTarget& t : rec.targets) writer.target(t);
+  for (const SensorCycle& c : rec.cycles) writer.cycle(c);
+  writer.finish(rec, extra_files);
 }
 
 EgoSample interpolate_ego(const EgoSample& a, const EgoSample& b, double t_s) {
