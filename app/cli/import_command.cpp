@@ -35,6 +35,12 @@ void import_dataset(const std::string& dataset, const std::string& raw_dir, cons
                     const replay::DatasetImportOptions& options, const std::string& sensor_clocks) {
   const replay::DatasetImporter& importer = replay::find_dataset_importer(dataset);
   check_output_directory(std::filesystem::absolute(output).lexically_normal(), "recording.json");  // before the work
+  if (importer.import_to != nullptr && sensor_clocks != "estimated") {  // streamed to disk
+    const replay::ImportSummary s = importer.import_to(raw_dir, options, output);
+    std::cout << fmt::format("{}: {} sensor cycles on their own clocks, {} sensor{}, {} objects, {} targets; written to {}\n", s.name,
+                             s.cycles, s.sensors, s.sensors == 1 ? "" : "s", s.objects, s.targets, output);
+    return;
+  }
   replay::DatasetRecording imported = importer.import(raw_dir, options);
   for (const auto& warning : imported.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
   if (sensor_clocks == "estimated") imported.recording = on_estimated_clocks(imported.recording, raw_dir);

@@ -12,9 +12,10 @@ namespace rcsim::replay {
 
 const std::vector<DatasetImporter>& dataset_importers() {
   static const std::vector<DatasetImporter> importers{
-      {"aimotive", "aiMotive Multimodal Dataset sequence (radar detections, 3D boxes, calibration)", import_aimotive},
-      {"astyx", "Astyx HiRes2019 frames (imaging radar point clouds, 3D boxes; snapshots, --frames)", import_astyx},
-      {"mcap", "an MCAP log (ROS 2 bag): radar_msgs/RadarScan, nav_msgs/Odometry, foxglove.SceneUpdate; --mapping", import_mcap},
+      {"aimotive", "aiMotive Multimodal Dataset sequence (radar detections, 3D boxes, calibration)", import_aimotive, nullptr},
+      {"astyx", "Astyx HiRes2019 frames (imaging radar point clouds, 3D boxes; snapshots, --frames)", import_astyx, nullptr},
+      {"mcap", "an MCAP log (ROS 2 bag): radar_msgs/RadarScan, nav_msgs/Odometry or /tf, foxglove.SceneUpdate or OpenLABEL; --mapping",
+       import_mcap, import_mcap_to},
   };
   return importers;
 }

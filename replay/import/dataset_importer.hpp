@@ -43,10 +43,20 @@ struct FrameRange {
 // item by item, so that a range is never expanded beyond the dataset.
 std::vector<FrameRange> parse_frame_list(std::string_view list);
 
+// What an importer that writes its recording straight to disk (a log of any length) wrote.
+struct ImportSummary {
+  std::string name;
+  std::size_t cycles = 0, sensors = 0, objects = 0, targets = 0;
+};
+
 struct DatasetImporter {
   std::string_view name;         // the value of --from
   std::string_view description;  // one line for --help and docs
   DatasetRecording (*import)(const std::filesystem::path& raw_dir, const DatasetImportOptions& options);
+  // The recording written straight into a directory in bounded memory, where the importer can;
+  // nullptr: write import()'s recording.
+  ImportSummary (*import_to)(const std::filesystem::path& raw_dir, const DatasetImportOptions& options,
+                                 const std::filesystem::path& dir) = nullptr;
 };
 
 // Every importer, by name.

@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <functional>
+#include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <Eigen/Geometry>
@@ -17,6 +22,7 @@
 #include "common/quantile.hpp"
 #include "common/text_file.hpp"
 #include "io/mcap_reader.hpp"
+#include "io/recording_writer.hpp"
 #include "io/ros2_messages.hpp"
 #include "model/model_library.hpp"
 #include "replay/import/foxglove_messages.hpp"
@@ -153,64 +159,98 @@ Mapping read_mapping(const fs::path& path) {
   return m;
 }
 
-// One sensor cycle as logged: its stamp and its returns.
-struct LoggedCycle {
-  std::int64_t t_ns = 0;
-  int sensor = 0;
-  std::vector<ros2::RadarReturn> returns;
-};
-
-// One box as logged (an hour of a busy road holds millions: kept compact); its speed NaN where
-// the log gives none.
+// One box as logged; its speed NaN where the log gives none.
 struct LoggedBox {
   std::int64_t t_ns = 0;
   double x_m = 0.0, y_m = 0.0;
   float yaw_rad = 0.0f, speed_mps = 0.0f, length_m = 0.0f, width_m = 0.0f;
 };
 
-struct LoggedObject {
-  std::string id, log_class;
-  std::vector<LoggedBox> boxes;
-  bool speed_missing = false;  // some box without a speed: all speeds from the positions
-};
-
-// One ego pose as logged (an hour at 100 Hz is 360,000: kept compact); a chain of transforms
-// gives poses only, their speeds and yaw rates follow from them.
+// One ego pose as logged; a chain of transforms gives poses only, their speeds and yaw rates
+// follow from them.
 struct LoggedEgo {
   std::int64_t t_ns = 0;
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, speed_mps = 0.0, yaw_rate_radps = 0.0;
 };
 
-// What the log holds on the mapped topics, in log order.
-struct LoggedDrive {
-  std::vector<LoggedCycle> cycles;
-  std::vector<std::string> scan_frames;  // per sensor: its first scan's frame_id
+// A count of values at a resolution (steps in µs, sizes in mm): their median exactly at that
+// resolution in memory bounded by the values' spread, not by how many there are.
+class Histogram {
+ public:
+  void add(std::int64_t value) { ++counts_[value], ++n_; }
+  bool empty() const { return n_ == 0; }
+  // The median (the mean of the two middle values of an even count).
+  double median() const {
+    const auto value_at = [&](std::int64_t rank) {  // the rank-th value (from 0) in order
+      for (const auto& [value, count] : counts_) {
+        if (rank < count) return static_cast<double>(value);
+        rank -= count;
+      }
+      return static_cast<double>(counts_.rbegin()->first);
+    };
+    return 0.5 * (value_at((n_ - 1) / 2) + value_at(n_ / 2));
+  }
+
+ private:
+  std::map<std::int64_t, std::int64_t> counts_;
+  std::int64_t n_ = 0;
+};
+
+constexpr double kNsPerUs = 1e3, kMmPerM = 1e3;
+
+// An object as the survey finds it: in the order of first appearance.
+struct SurveyedObject {
+  std::string id, log_class;
+  Histogram lengths_mm, widths_mm;
+  bool speed_missing = false;  // some box without a speed: all speeds from the positions
+};
+
+// What the first pass over the log finds: the recording's clock and header, the ego log (held:
+// 48 B a pose), and per sensor and object what their rows will need. The scans and boxes, the
+// bulk of a log, are not held.
+struct Survey {
+  std::int64_t t0_ns = std::numeric_limits<std::int64_t>::max();
+  std::vector<std::string> scan_frames;           // per sensor: its first scan's frame_id
+  std::vector<std::int64_t> first_scan_ns, last_scan_ns;
+  std::vector<Histogram> scan_steps_us;
   std::vector<LoggedEgo> ego;
   std::string odometry_frame, odometry_child_frame;  // the first Odometry's
   TfTree tf;
-  std::vector<LoggedObject> objects;
+  std::vector<SurveyedObject> objects;
   std::map<std::string, std::size_t> object_index;
+  Histogram annotation_steps_us;
+  std::int64_t last_annotation_ns = std::numeric_limits<std::int64_t>::min();
   std::set<std::string> topics_seen;
   std::string profile, library;
+
+  void stamp(std::int64_t t_ns) { t0_ns = std::min(t0_ns, t_ns); }
+  std::size_t object(std::string_view id, std::string_view log_class) {
+    auto [it, added] = object_index.try_emplace(std::string(id), objects.size());
+    if (added) objects.push_back({std::string(id), std::string(log_class), {}, {}, false});
+    if (objects[it->second].log_class.empty()) objects[it->second].log_class = log_class;
+    return it->second;
+  }
+  void box(std::size_t o, const LoggedBox& b) {
+    stamp(b.t_ns);
+    objects[o].lengths_mm.add(std::llround(b.length_m * kMmPerM));
+    objects[o].widths_mm.add(std::llround(b.width_m * kMmPerM));
+    objects[o].speed_missing = objects[o].speed_missing || std::isnan(b.speed_mps);
+    if (b.t_ns > last_annotation_ns) {
+      if (last_annotation_ns != std::numeric_limits<std::int64_t>::min()) {
+        annotation_steps_us.add(std::llround(static_cast<double>(b.t_ns - last_annotation_ns) / kNsPerUs));
+      }
+      last_annotation_ns = b.t_ns;
+    }
+  }
 };
 
-void add_box(std::string_view id, std::string_view log_class, const LoggedBox& box, LoggedDrive& drive) {
-  auto [it, added] = drive.object_index.try_emplace(std::string(id), drive.objects.size());
-  if (added) drive.objects.push_back({std::string(id), std::string(log_class), {}, false});
-  LoggedObject& object = drive.objects[it->second];
-  if (object.log_class.empty()) object.log_class = log_class;
-  object.boxes.push_back(box);
-  object.speed_missing = object.speed_missing || std::isnan(box.speed_mps);
-}
-
-// Every box of a foxglove.SceneUpdate into its object's boxes.
-void add_scene_update(simdjson::ondemand::parser& parser, const std::string& text, LoggedDrive& drive) {
-  foxglove::for_each_scene_box(parser, text, [&](const foxglove::SceneBox& b) {
-    const auto f = [](double v) { return static_cast<float>(v); };
-    add_box(b.id, b.log_class,
-            {b.t_ns, b.x_m, b.y_m, f(b.yaw_rad), f(b.speed_mps.value_or(std::nan(""))), f(b.length_m), f(b.width_m)}, drive);
-  });
-}
+// What one pass over the log hands on, message by message in log order.
+struct LogVisitor {
+  std::function<void(int sensor, ros2::RadarScan& scan)> scan;
+  std::function<void(const ros2::Odometry&)> odometry;
+  std::function<void(const std::vector<ros2::TransformStamped>&, bool is_static)> transforms;
+  std::function<void(const foxglove::SceneBox&)> box;
+};
 
 // A radar's foxglove.PointCloud as a scan: each point (x, y, z in the cloud's frame, moved by its
 // pose into the radar's) a return with the mapped range-rate and amplitude fields.
@@ -237,21 +277,24 @@ ros2::RadarScan scan_of_point_cloud(simdjson::ondemand::parser& parser, const st
   return scan;
 }
 
-LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
+// One pass over the log: every message on a mapped topic decoded and handed on; a message of
+// another schema than the mapped one, or one that does not decode, refused naming the topic and
+// the message. Returns the topics seen.
+std::set<std::string> read_log(const fs::path& log, const Mapping& mapping, const LogVisitor& visit, std::string* profile = nullptr,
+                               std::string* library = nullptr) {
   mcap::Reader reader(log);
-  LoggedDrive drive;
-  drive.profile = reader.summary().profile, drive.library = reader.summary().library;
+  if (profile != nullptr) *profile = reader.summary().profile, *library = reader.summary().library;
   simdjson::ondemand::parser json_parser;
   std::map<std::string, int> sensor_of_topic;
   for (std::size_t s = 0; s < mapping.sensors.size(); ++s) sensor_of_topic[mapping.sensors[s].topic] = static_cast<int>(s);
-  drive.scan_frames.resize(mapping.sensors.size());
   const MappedEgo& ego = mapping.ego;
+  std::set<std::string> topics_seen;
   reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& channel, const mcap::Schema* schema) {
     const auto sensor = sensor_of_topic.find(channel.topic);
     const bool is_ego = channel.topic == ego.topic, is_objects = channel.topic == mapping.objects_topic;
     const bool is_tf = ego.from_tf() && (channel.topic == ego.tf_topic || channel.topic == ego.tf_static_topic);
     if (sensor == sensor_of_topic.end() && !is_ego && !is_objects && !is_tf) return;
-    drive.topics_seen.insert(channel.topic);
+    topics_seen.insert(channel.topic);
     const std::string schema_name = schema != nullptr ? schema->name : std::string("(none)");
     const std::string where = fmt::format("topic '{}', message {} at log time {} ns", channel.topic, m.sequence, m.log_time_ns);
     const auto expect = [&](std::string_view name, std::string_view encoding, std::string_view or_else = "") {
@@ -268,20 +311,16 @@ LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
         if (!cloud) expect(ros2::kRadarScanSchema, "cdr", " or foxglove.PointCloud in 'json'");
         ros2::RadarScan scan = cloud ? scan_of_point_cloud(json_parser, m.data, mapping.sensors[static_cast<std::size_t>(sensor->second)])
                                      : ros2::decode_radar_scan(m.data);
-        std::string& frame = drive.scan_frames[static_cast<std::size_t>(sensor->second)];
-        if (frame.empty()) frame = scan.header.frame_id;
-        drive.cycles.push_back({scan.header.stamp.ns(), sensor->second, std::move(scan.returns)});
+        if (visit.scan) visit.scan(sensor->second, scan);
       } else if (is_ego) {
         expect(ros2::kOdometrySchema, "cdr");
-        const ros2::Odometry o = ros2::decode_odometry(m.data);
-        if (drive.ego.empty()) drive.odometry_frame = o.header.frame_id, drive.odometry_child_frame = o.child_frame_id;
-        drive.ego.push_back({o.header.stamp.ns(), o.x_m, o.y_m, ros2::yaw_of_quaternion(o.qx, o.qy, o.qz, o.qw), o.vx_mps, o.wz_radps});
+        if (visit.odometry) visit.odometry(ros2::decode_odometry(m.data));
       } else if (is_tf) {
         expect(ros2::kTfMessageSchema, "cdr");
-        drive.tf.add(ros2::decode_tf_message(m.data), channel.topic == ego.tf_static_topic);
+        if (visit.transforms) visit.transforms(ros2::decode_tf_message(m.data), channel.topic == ego.tf_static_topic);
       } else {
         expect("foxglove.SceneUpdate", "json");
-        add_scene_update(json_parser, m.data, drive);
+        if (visit.box) foxglove::for_each_scene_box(json_parser, m.data, visit.box);
       }
     } catch (const ros2::CdrError& e) {
       throw InputError(log.string(), where, e.what());
@@ -293,43 +332,74 @@ LoggedDrive read_log(const fs::path& log, const Mapping& mapping) {
       throw InputError(log.string(), where, fmt::format("not a {}: {}", schema_name, e.what()));
     }
   });
+  return topics_seen;
+}
+
+float as_float(double v) { return static_cast<float>(v); }
+
+LoggedBox logged_box(const foxglove::SceneBox& b) {
+  return {b.t_ns, b.x_m, b.y_m, as_float(b.yaw_rad), as_float(b.speed_mps.value_or(std::nan(""))), as_float(b.length_m), as_float(b.width_m)};
+}
+
+// The first pass: the survey of the log.
+Survey survey_log(const fs::path& log, const Mapping& mapping) {
+  Survey survey;
+  const std::size_t sensors = mapping.sensors.size();
+  survey.scan_frames.resize(sensors);
+  survey.first_scan_ns.assign(sensors, std::numeric_limits<std::int64_t>::max());
+  survey.last_scan_ns.assign(sensors, std::numeric_limits<std::int64_t>::min());
+  survey.scan_steps_us.resize(sensors);
+  LogVisitor visit;
+  visit.scan = [&](int sensor, ros2::RadarScan& scan) {
+    const auto s = static_cast<std::size_t>(sensor);
+    const std::int64_t t_ns = scan.header.stamp.ns();
+    survey.stamp(t_ns);
+    if (survey.scan_frames[s].empty()) survey.scan_frames[s] = scan.header.frame_id;
+    if (survey.last_scan_ns[s] != std::numeric_limits<std::int64_t>::min() && t_ns > survey.last_scan_ns[s]) {
+      survey.scan_steps_us[s].add(std::llround(static_cast<double>(t_ns - survey.last_scan_ns[s]) / kNsPerUs));
+    }
+    survey.first_scan_ns[s] = std::min(survey.first_scan_ns[s], t_ns);
+    survey.last_scan_ns[s] = std::max(survey.last_scan_ns[s], t_ns);
+  };
+  visit.odometry = [&](const ros2::Odometry& o) {
+    if (survey.ego.empty()) survey.odometry_frame = o.header.frame_id, survey.odometry_child_frame = o.child_frame_id;
+    survey.ego.push_back({o.header.stamp.ns(), o.x_m, o.y_m, ros2::yaw_of_quaternion(o.qx, o.qy, o.qz, o.qw), o.vx_mps, o.wz_radps});
+  };
+  visit.transforms = [&](const std::vector<ros2::TransformStamped>& transforms, bool is_static) { survey.tf.add(transforms, is_static); };
+  visit.box = [&](const foxglove::SceneBox& b) { survey.box(survey.object(b.id, b.log_class), logged_box(b)); };
+  survey.topics_seen = read_log(log, mapping, visit, &survey.profile, &survey.library);
   for (const MappedSensor& s : mapping.sensors) {
-    if (!drive.topics_seen.count(s.topic)) {
+    if (!survey.topics_seen.count(s.topic)) {
       std::vector<std::string> topics;
+      const mcap::Reader reader(log);
       for (const auto& [id, c] : reader.channels()) topics.push_back(c.topic);
       throw InputError(log.string(), s.topic, fmt::format("no messages on sensor '{}''s topic (the log's topics: {})", s.sensor.id,
                                                           fmt::join(topics, ", ")));
     }
   }
+  const MappedEgo& ego = mapping.ego;
   if (ego.from_tf()) {
-    if (!drive.topics_seen.count(ego.tf_topic)) throw InputError(log.string(), ego.tf_topic, "no transforms: the ego's chain is read from them");
-    drive.tf.finish();
-  } else if (!drive.topics_seen.count(ego.topic)) {
+    if (!survey.topics_seen.count(ego.tf_topic)) throw InputError(log.string(), ego.tf_topic, "no transforms: the ego's chain is read from them");
+    survey.tf.finish();
+  } else if (!survey.topics_seen.count(ego.topic)) {
     throw InputError(log.string(), ego.topic, "no messages on the ego topic");
   }
-  return drive;
+  return survey;
 }
 
 double seconds_since(std::int64_t t_ns, std::int64_t t0_ns) { return static_cast<double>(t_ns - t0_ns) * 1e-9; }
 
-// The median step of increasing times (s); `fallback` where there are fewer than two.
-double median_step_s(const std::vector<double>& t_s, double fallback) {
-  std::vector<double> steps;
-  for (std::size_t i = 1; i < t_s.size(); ++i) steps.push_back(t_s[i] - t_s[i - 1]);
-  return steps.empty() ? fallback : median(steps);
-}
-
 // The ego as the chain of transforms from the vehicle's frame to the world frame: a pose at each
 // stamp of the chain's densest moving transform; speed along the heading and yaw rate by central
 // differences of the poses (one-sided at the ends).
-void ego_from_tf(LoggedDrive& drive, const fs::path& log, const MappedEgo& ego) {
+void ego_from_tf(Survey& survey, const fs::path& log, const MappedEgo& ego) {
   std::vector<std::int64_t> stamps;
   try {
-    stamps = drive.tf.chain_stamps(ego.vehicle_frame, ego.world_frame);
+    stamps = survey.tf.chain_stamps(ego.vehicle_frame, ego.world_frame);
     for (const std::int64_t t_ns : stamps) {
-      const Eigen::Isometry3d X_WV = drive.tf.pose(ego.vehicle_frame, ego.world_frame, t_ns);
+      const Eigen::Isometry3d X_WV = survey.tf.pose(ego.vehicle_frame, ego.world_frame, t_ns);
       const Eigen::Matrix3d R_WV = X_WV.linear();
-      drive.ego.push_back({t_ns, X_WV.translation().x(), X_WV.translation().y(), std::atan2(R_WV(1, 0), R_WV(0, 0)), 0.0, 0.0});
+      survey.ego.push_back({t_ns, X_WV.translation().x(), X_WV.translation().y(), std::atan2(R_WV(1, 0), R_WV(0, 0)), 0.0, 0.0});
     }
   } catch (const TfError& e) {
     throw InputError(log.string(), ego.tf_topic, fmt::format("the ego from '{}' to '{}': {}", ego.vehicle_frame, ego.world_frame, e.what()));
@@ -338,7 +408,7 @@ void ego_from_tf(LoggedDrive& drive, const fs::path& log, const MappedEgo& ego) 
     throw InputError(log.string(), ego.tf_topic, fmt::format("the chain from '{}' to '{}' moves at {} stamp(s): no ego motion to read",
                                                           ego.vehicle_frame, ego.world_frame, stamps.size()));
   }
-  std::vector<LoggedEgo>& e = drive.ego;
+  std::vector<LoggedEgo>& e = survey.ego;
   for (std::size_t i = 0; i < e.size(); ++i) {
     const LoggedEgo& a = e[i == 0 ? 0 : i - 1];
     const LoggedEgo& b = e[i + 1 == e.size() ? i : i + 1];
@@ -350,16 +420,14 @@ void ego_from_tf(LoggedDrive& drive, const fs::path& log, const MappedEgo& ego) 
 
 // Each radar mounted by /tf_static where the mapping gives no mounting: its frame's pose in the
 // vehicle's at its first scan, to the plane.
-void mount_from_tf(const LoggedDrive& drive, const fs::path& log, const Mapping& mapping, Recording& rec) {
+void mount_from_tf(const Survey& survey, const fs::path& log, const Mapping& mapping, Recording& rec) {
   for (std::size_t s = 0; s < mapping.sensors.size(); ++s) {
     const MappedSensor& mapped = mapping.sensors[s];
     if (!mapped.mounting_from_tf) continue;
-    const std::string& frame = mapped.frame.empty() ? drive.scan_frames[s] : mapped.frame;
-    const auto first = std::find_if(drive.cycles.begin(), drive.cycles.end(),
-                                    [&](const LoggedCycle& c) { return c.sensor == static_cast<int>(s); });
+    const std::string& frame = mapped.frame.empty() ? survey.scan_frames[s] : mapped.frame;
     RecordingSensor& sensor = rec.sensors[s];
     try {
-      const Eigen::Isometry3d X_VS = drive.tf.pose(frame, mapping.ego.vehicle_frame, first->t_ns);
+      const Eigen::Isometry3d X_VS = survey.tf.pose(frame, mapping.ego.vehicle_frame, survey.first_scan_ns[s]);
       const Eigen::Matrix3d R_VS = X_VS.linear();
       sensor.x_m = X_VS.translation().x(), sensor.y_m = X_VS.translation().y(), sensor.yaw_rad = std::atan2(R_VS(1, 0), R_VS(0, 0));
     } catch (const TfError& e) {
@@ -392,16 +460,23 @@ Pose2 odometry_pose(const std::vector<LoggedEgo>& ego, std::int64_t t_ns, const 
   return {e.x_m, e.y_m, e.yaw_rad};
 }
 
-// The boxes of an OpenLABEL file beside the log, in the ego's world frame: a cuboid in the world
-// frame (or in none named) as it is; one in another frame of /tf (the vehicle's, a sensor's)
-// through the transforms at its time; with an Odometry ego, one in the odometry's child frame (the
-// vehicle's) through the odometry's pose at its time. Planar: z and the height are dropped.
-void add_openlabel(LoggedDrive& drive, const Mapping& mapping) {
+// One object's box, the object by its index in the survey.
+struct ObjectBox {
+  std::size_t object = 0;
+  LoggedBox box;
+};
+
+// The boxes of an OpenLABEL file beside the log (read whole), in the ego's world frame and in time
+// order: a cuboid in the world frame (or in none named) as it is; one in another frame of /tf (the
+// vehicle's, a sensor's) through the transforms at its time; with an Odometry ego, one in the
+// odometry's child frame (the vehicle's) through the odometry's pose at its time. Planar: z and
+// the height are dropped.
+std::vector<ObjectBox> openlabel_boxes(Survey& survey, const Mapping& mapping) {
   const openlabel::Labels labels = openlabel::read_openlabel(mapping.openlabel);
   const bool tf = mapping.ego.from_tf();
-  const std::string& world = tf ? mapping.ego.world_frame : drive.odometry_frame;
-  const std::string& vehicle = tf ? mapping.ego.vehicle_frame : drive.odometry_child_frame;
-  const auto f = [](double v) { return static_cast<float>(v); };
+  const std::string& world = tf ? mapping.ego.world_frame : survey.odometry_frame;
+  const std::string& vehicle = tf ? mapping.ego.vehicle_frame : survey.odometry_child_frame;
+  std::vector<ObjectBox> boxes;
   for (const openlabel::LabelledBox& b : labels.boxes) {
     Pose2 X_WO{b.x_m, b.y_m, b.yaw_rad};
     const std::string& frame = b.coordinate_system;
@@ -410,10 +485,10 @@ void add_openlabel(LoggedDrive& drive, const Mapping& mapping) {
       if (!frame.empty() && frame != world) {
         Pose2 X_WC;
         if (tf) {
-          const Eigen::Isometry3d X = drive.tf.pose(frame, world, b.t_ns);
+          const Eigen::Isometry3d X = survey.tf.pose(frame, world, b.t_ns);
           X_WC = {X.translation().x(), X.translation().y(), std::atan2(X.linear()(1, 0), X.linear()(0, 0))};
         } else if (frame == vehicle) {
-          X_WC = odometry_pose(drive.ego, b.t_ns, what);
+          X_WC = odometry_pose(survey.ego, b.t_ns, what);
         } else {
           throw std::out_of_range(fmt::format("{} is in coordinate system '{}': neither the odometry's world frame '{}' nor its "
                                               "vehicle frame '{}' (map the ego as a /tf chain to use other frames)",
@@ -426,59 +501,92 @@ void add_openlabel(LoggedDrive& drive, const Mapping& mapping) {
     } catch (const TfError& e) {
       throw InputError(mapping.openlabel.string(), "openlabel.objects." + b.uid, what + ": " + e.what());
     }
-    add_box(b.uid, b.type, {b.t_ns, X_WO.x_m, X_WO.y_m, f(X_WO.yaw_rad), f(b.speed_mps.value_or(std::nan(""))), f(b.length_m), f(b.width_m)},
-            drive);
+    boxes.push_back({survey.object(b.uid, b.type), {b.t_ns, X_WO.x_m, X_WO.y_m, as_float(X_WO.yaw_rad),
+                                                    as_float(b.speed_mps.value_or(std::nan(""))), as_float(b.length_m), as_float(b.width_m)}});
   }
+  std::stable_sort(boxes.begin(), boxes.end(), [](const ObjectBox& a, const ObjectBox& b) { return a.box.t_ns < b.box.t_ns; });
+  for (const ObjectBox& b : boxes) survey.box(b.object, b.box);
+  return boxes;
 }
 
-void add_ego(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const std::string& topic, Recording& rec) {
-  std::vector<LoggedEgo>& ego = drive.ego;  // times increasing
-  rec.ego.reserve(ego.size());
+// Where the import's rows go, in their files' order: a Recording in memory, or a RecordingWriter.
+struct RowSink {
+  virtual ~RowSink() = default;
+  virtual void ego(const EgoSample& e) = 0;
+  virtual void box(std::size_t object, const AnnotatedBox& b) = 0;
+  virtual void cycle(const SensorCycle& c, const std::vector<RecordedTarget>& targets) = 0;
+};
+
+// The ego log's rows: times increasing, no hole beyond kMaxEgoLogStep_s, the yaw unwrapped (so
+// that interpolation never turns the long way; ego.csv allows any yaw).
+void write_ego(std::vector<LoggedEgo>& ego, std::int64_t t0_ns, const fs::path& log, const std::string& topic, RowSink& sink) {
+  std::stable_sort(ego.begin(), ego.end(), [](const LoggedEgo& a, const LoggedEgo& b) { return a.t_ns < b.t_ns; });
+  EgoSample previous;
   for (std::size_t i = 0; i < ego.size(); ++i) {
     const LoggedEgo& e = ego[i];
     if (i > 0 && e.t_ns == ego[i - 1].t_ns) throw InputError(log.string(), topic, fmt::format("two ego poses stamped {} ns", e.t_ns));
-    rec.ego.push_back({seconds_since(e.t_ns, t0_ns), e.x_m, e.y_m, e.yaw_rad, e.speed_mps, e.yaw_rate_radps});
-    if (i > 0 && rec.ego.back().t_s - rec.ego[i - 1].t_s > kMaxEgoLogStep_s) {
-      throw InputError(log.string(), topic,
-                       fmt::format("{:.3f} s without an ego pose after {:.6f} s (at most {} s are interpolated)",
-                                   rec.ego.back().t_s - rec.ego[i - 1].t_s, rec.ego[i - 1].t_s, kMaxEgoLogStep_s));
+    EgoSample row{seconds_since(e.t_ns, t0_ns), e.x_m, e.y_m, e.yaw_rad, e.speed_mps, e.yaw_rate_radps};
+    if (i > 0) {
+      if (row.t_s - previous.t_s > kMaxEgoLogStep_s) {
+        throw InputError(log.string(), topic, fmt::format("{:.3f} s without an ego pose after {:.6f} s (at most {} s are interpolated)",
+                                                          row.t_s - previous.t_s, previous.t_s, kMaxEgoLogStep_s));
+      }
+      row.yaw_rad = previous.yaw_rad + angle_difference_rad(row.yaw_rad, previous.yaw_rad);
     }
-  }
-  ego = {};  // memory back
-  // The yaw unwrapped, so that interpolation never turns the long way (ego.csv allows any yaw).
-  for (std::size_t i = 1; i < rec.ego.size(); ++i) {
-    rec.ego[i].yaw_rad = rec.ego[i - 1].yaw_rad + angle_difference_rad(rec.ego[i].yaw_rad, rec.ego[i - 1].yaw_rad);
+    sink.ego(row);
+    previous = row;
   }
 }
 
-void add_cycles(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec) {
-  std::stable_sort(drive.cycles.begin(), drive.cycles.end(), [](const LoggedCycle& a, const LoggedCycle& b) {
-    return a.t_ns != b.t_ns ? a.t_ns < b.t_ns : a.sensor < b.sensor;
-  });
-  std::size_t returns = 0;
-  for (const LoggedCycle& c : drive.cycles) returns += c.returns.size();
-  rec.targets.reserve(returns);
-  rec.cycles.reserve(drive.cycles.size());
-  std::vector<std::vector<double>> times(rec.sensors.size());
-  const double first_ego_s = rec.ego.front().t_s, last_ego_s = rec.ego.back().t_s;
-  for (const LoggedCycle& c : drive.cycles) {
-    const double t_s = seconds_since(c.t_ns, t0_ns);
-    const auto s = static_cast<std::size_t>(c.sensor);
-    const std::string& topic = mapping.sensors[s].topic;
-    if (!times[s].empty() && t_s <= times[s].back()) {
-      throw InputError(log.string(), topic, fmt::format("two scans stamped {:.9f} s after the log's start", t_s));
+// How far the stamps of one topic's messages may run out of log order: the second pass puts them
+// in order through a window this long (memory: that much of the log).
+constexpr std::int64_t kReorderWindow_ns = 2'000'000'000;
+
+// The second pass's scans, put in time order (then sensor order) through the window and written
+// as cycles, each numbered, checked and its returns made targets.
+class CycleStream {
+ public:
+  CycleStream(const fs::path& log, const Mapping& mapping, std::int64_t t0_ns, double first_ego_s, double last_ego_s, RowSink& sink)
+      : log_(log), mapping_(mapping), t0_ns_(t0_ns), first_ego_s_(first_ego_s), last_ego_s_(last_ego_s), sink_(sink),
+        last_t_s_(mapping.sensors.size(), -std::numeric_limits<double>::infinity()) {}
+
+  void add(int sensor, ros2::RadarScan& scan) {
+    const std::int64_t t_ns = scan.header.stamp.ns();
+    const std::pair<std::int64_t, int> key{t_ns, sensor};
+    if (key <= written_) {
+      throw InputError(log_.string(), mapping_.sensors[static_cast<std::size_t>(sensor)].topic,
+                       fmt::format("a scan stamped {} ns comes {:.3f} s after one stamped {} ns in the log: the import puts "
+                                   "scans in order within {} s",
+                                   t_ns, seconds_since(written_.first, t_ns), written_.first, kReorderWindow_ns / 1'000'000'000));
     }
-    if (t_s < first_ego_s - kEgoExtrapolationMargin_s || t_s > last_ego_s + kEgoExtrapolationMargin_s) {
-      throw InputError(log.string(), topic,
+    pending_.emplace(key, std::move(scan.returns));
+    newest_ns_ = std::max(newest_ns_, t_ns);
+    while (!pending_.empty() && pending_.begin()->first.first < newest_ns_ - kReorderWindow_ns) write_first();
+  }
+  void finish() {
+    while (!pending_.empty()) write_first();
+  }
+  std::size_t targets() const { return targets_; }
+
+ private:
+  void write_first() {
+    const auto [key, returns] = std::move(*pending_.begin());
+    pending_.erase(pending_.begin());
+    written_ = key;
+    const auto s = static_cast<std::size_t>(key.second);
+    const std::string& topic = mapping_.sensors[s].topic;
+    const double t_s = seconds_since(key.first, t0_ns_);
+    if (t_s <= last_t_s_[s]) throw InputError(log_.string(), topic, fmt::format("two scans stamped {:.9f} s after the log's start", t_s));
+    if (t_s < first_ego_s_ - kEgoExtrapolationMargin_s || t_s > last_ego_s_ + kEgoExtrapolationMargin_s) {
+      throw InputError(log_.string(), topic,
                        fmt::format("a scan at {:.6f} s lies beyond the ego log's {:.6f} to {:.6f} s by more than {} s", t_s,
-                                   first_ego_s, last_ego_s, kEgoExtrapolationMargin_s));
+                                   first_ego_s_, last_ego_s_, kEgoExtrapolationMargin_s));
     }
-    times[s].push_back(t_s);
-    const int cycle = static_cast<int>(rec.cycles.size());
-    rec.cycles.push_back({t_s, c.sensor});
-    for (const ros2::RadarReturn& r : c.returns) {
+    last_t_s_[s] = t_s;
+    targets_buffer_.clear();
+    for (const ros2::RadarReturn& r : returns) {
       RecordedTarget t;
-      t.t_s = t_s, t.cycle = cycle, t.sensor = c.sensor;
+      t.t_s = t_s, t.cycle = cycle_, t.sensor = key.second;
       // The planar model's range: the slant range over the ground.
       t.range_m = static_cast<double>(r.range) * std::cos(static_cast<double>(r.elevation));
       t.azimuth_rad = r.azimuth, t.elevation_rad = r.elevation;
@@ -486,72 +594,102 @@ void add_cycles(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, con
       if (!std::isfinite(t.range_m) || t.range_m < 0.0 || t.range_m > limits::kMaxRange_m ||
           std::abs(t.azimuth_rad) > limits::kMaxAzimuth_rad || std::abs(t.range_rate_mps) > limits::kMaxSpeed_mps ||
           !std::isfinite(t.amplitude_db) || std::abs(t.amplitude_db) > limits::kMaxLevel_dB || std::abs(t.elevation_rad) > 1.58) {
-        throw InputError(log.string(), topic,
+        throw InputError(log_.string(), topic,
                          fmt::format("a return at {:.6f} s beyond the limits of schemas/limits.md (range {}, azimuth {}, "
                                      "elevation {}, doppler_velocity {}, amplitude {})",
                                      t_s, r.range, r.azimuth, r.elevation, r.doppler_velocity, r.amplitude));
       }
-      rec.targets.push_back(t);
+      targets_buffer_.push_back(t);
     }
+    sink_.cycle({t_s, key.second}, targets_buffer_);
+    targets_ += targets_buffer_.size();
+    ++cycle_;
   }
-  drive.cycles = {};  // the targets hold them now: memory back
-  for (std::size_t s = 0; s < rec.sensors.size(); ++s) {
-    const MappedSensor& mapped = mapping.sensors[s];
-    rec.sensors[s].cycle_time_s = mapped.cycle_time_s.value_or(median_step_s(times[s], 0.05));
-    if (!(rec.sensors[s].cycle_time_s > 0.0 && rec.sensors[s].cycle_time_s <= limits::kMaxCycleTime_s)) {
-      throw InputError(log.string(), mapped.topic, fmt::format("the scans' median step {} s is no cycle time", rec.sensors[s].cycle_time_s));
-    }
-  }
-}
 
-// Boxes logged without speed_mps: each one's speed along its heading from its neighbours'
-// positions (central differences, one-sided at the ends; times increasing).
-void set_speeds_from_positions(std::vector<AnnotatedBox>& boxes) {
-  if (boxes.size() < 2) return;
-  for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const AnnotatedBox& a = boxes[i == 0 ? 0 : i - 1];
-    const AnnotatedBox& b = boxes[i + 1 == boxes.size() ? i : i + 1];
-    const Vec2 v_W((b.x_m - a.x_m) / (b.t_s - a.t_s), (b.y_m - a.y_m) / (b.t_s - a.t_s));
-    boxes[i].speed_mps = speed_along_heading_mps(v_W, boxes[i].yaw_rad);
-  }
-}
+  const fs::path& log_;
+  const Mapping& mapping_;
+  std::int64_t t0_ns_;
+  double first_ego_s_, last_ego_s_;
+  RowSink& sink_;
+  std::map<std::pair<std::int64_t, int>, std::vector<ros2::RadarReturn>> pending_;
+  std::pair<std::int64_t, int> written_{std::numeric_limits<std::int64_t>::min(), 0};
+  std::int64_t newest_ns_ = std::numeric_limits<std::int64_t>::min();
+  std::vector<double> last_t_s_;
+  std::vector<RecordedTarget> targets_buffer_;
+  std::size_t targets_ = 0;
+  int cycle_ = 0;
+};
 
-void add_objects(LoggedDrive& drive, std::int64_t t0_ns, const fs::path& log, const Mapping& mapping, Recording& rec,
-                 std::vector<double>& annotation_times_s) {
-  const ModelLibrary& library = ModelLibrary::builtin();
-  rec.boxes.clear();
-  for (LoggedObject& o : drive.objects) {
-    const auto mapped = mapping.classes.find(o.log_class);
-    const std::string model = mapped != mapping.classes.end() ? mapped->second : o.log_class;
-    if (!library.contains(model)) {
-      throw InputError(log.string(), mapping.objects_source(),
-                       fmt::format("entity '{}' has class '{}', no object model (rcsim models); map it in the mapping's "
-                                   "objects.classes", o.id, o.log_class));
+// The second pass's boxes, put in time order (then object order) through the window; a box logged
+// without a speed gets one along its heading from its object's neighbouring boxes' positions
+// (central differences; one-sided at an end or where the neighbour lies beyond the window).
+class BoxStream {
+ public:
+  BoxStream(const fs::path& log, const Mapping& mapping, const Survey& survey, std::int64_t t0_ns, RowSink& sink)
+      : log_(log), mapping_(mapping), survey_(survey), t0_ns_(t0_ns), sink_(sink), pending_(survey.objects.size()),
+        previous_(survey.objects.size()) {}
+
+  void add(std::size_t object, const LoggedBox& box) {
+    const std::pair<std::int64_t, std::size_t> key{box.t_ns, object};
+    if (key <= written_) {
+      throw InputError(log_.string(), mapping_.objects_source(),
+                       fmt::format("object '{}''s box stamped {} ns comes {:.3f} s after one stamped {} ns: the import puts "
+                                   "boxes in order within {} s",
+                                   survey_.objects[object].id, box.t_ns, seconds_since(written_.first, box.t_ns), written_.first,
+                                   kReorderWindow_ns / 1'000'000'000));
     }
-    std::vector<AnnotatedBox> boxes;
-    boxes.reserve(o.boxes.size());
-    std::vector<double> lengths_m, widths_m;
-    for (const LoggedBox& b : o.boxes) {
-      boxes.push_back({seconds_since(b.t_ns, t0_ns), b.x_m, b.y_m, b.yaw_rad, std::isnan(b.speed_mps) ? 0.0 : b.speed_mps, 0});
-      annotation_times_s.push_back(boxes.back().t_s);
-      lengths_m.push_back(b.length_m), widths_m.push_back(b.width_m);
+    std::deque<LoggedBox>& q = pending_[object];
+    // An object's boxes in time order (its own are rarely out of order: a sorted insert).
+    q.insert(std::upper_bound(q.begin(), q.end(), box.t_ns, [](std::int64_t t, const LoggedBox& b) { return t < b.t_ns; }), box);
+    order_.insert(key);
+    newest_ns_ = std::max(newest_ns_, box.t_ns);
+    while (!order_.empty() && order_.begin()->first < newest_ns_ - kReorderWindow_ns) write_first();
+  }
+  void finish() {
+    while (!order_.empty()) write_first();
+  }
+
+ private:
+  void write_first() {
+    const auto key = *order_.begin();
+    order_.erase(order_.begin());
+    written_ = key;
+    const std::size_t o = key.second;
+    const LoggedBox b = pending_[o].front();
+    pending_[o].pop_front();
+    AnnotatedBox box{seconds_since(b.t_ns, t0_ns_), b.x_m, b.y_m, b.yaw_rad, std::isnan(b.speed_mps) ? 0.0 : b.speed_mps, 0};
+    const std::optional<AnnotatedBox>& previous = previous_[o];
+    if (previous && box.t_s <= previous->t_s) {
+      throw InputError(log_.string(), mapping_.objects_source(), fmt::format("entity '{}' twice at {:.6f} s", survey_.objects[o].id, box.t_s));
     }
-    o.boxes = {};  // done with: memory back
-    std::stable_sort(boxes.begin(), boxes.end(), [](const AnnotatedBox& a, const AnnotatedBox& b) { return a.t_s < b.t_s; });
-    for (std::size_t i = 1; i < boxes.size(); ++i) {
-      if (boxes[i].t_s <= boxes[i - 1].t_s) {
-        throw InputError(log.string(), mapping.objects_source(), fmt::format("entity '{}' twice at {:.6f} s", o.id, boxes[i].t_s));
+    if (survey_.objects[o].speed_missing) {
+      const AnnotatedBox& a = previous ? *previous : box;
+      AnnotatedBox c = box;
+      if (!pending_[o].empty()) {
+        const LoggedBox& next = pending_[o].front();
+        c = {seconds_since(next.t_ns, t0_ns_), next.x_m, next.y_m, next.yaw_rad, 0.0, 0};
       }
+      if (c.t_s > a.t_s) box.speed_mps = speed_along_heading_mps(Vec2((c.x_m - a.x_m) / (c.t_s - a.t_s), (c.y_m - a.y_m) / (c.t_s - a.t_s)), box.yaw_rad);
     }
-    if (o.speed_missing) set_speeds_from_positions(boxes);
-    rec.objects.push_back({o.id, model, median(lengths_m), median(widths_m), nlohmann::json{{"log_class", o.log_class}}});
-    rec.boxes.push_back(std::move(boxes));
+    previous_[o] = box;
+    sink_.box(o, box);
   }
-}
 
-}  // namespace
+  const fs::path& log_;
+  const Mapping& mapping_;
+  const Survey& survey_;
+  std::int64_t t0_ns_;
+  RowSink& sink_;
+  std::vector<std::deque<LoggedBox>> pending_;  // per object, in time order
+  std::set<std::pair<std::int64_t, std::size_t>> order_;
+  std::vector<std::optional<AnnotatedBox>> previous_;
+  std::pair<std::int64_t, std::size_t> written_{std::numeric_limits<std::int64_t>::min(), 0};
+  std::int64_t newest_ns_ = std::numeric_limits<std::int64_t>::min();
+};
 
-DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& options) {
+// The whole import: the survey, the header, then the rows streamed into `sink`. Returns the
+// recording's header (no rows) and how many targets were written.
+std::pair<Recording, std::size_t> import_log(const fs::path& log, const DatasetImportOptions& options, const std::function<RowSink&(const Recording&)>& open_sink) {
   if (options.mapping.empty()) {
     throw InputError(log.string(), "--mapping", "an MCAP log needs a mapping file: which topic is which radar, the ego, the boxes "
                                                 "(schemas/mcap-mapping.md)");
@@ -559,30 +697,40 @@ DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& op
   if (!options.ego_log.empty()) throw InputError(log.string(), "--ego-log", "an MCAP log carries its ego motion (the mapping's ego topic)");
   if (!options.frames.empty()) throw InputError(log.string(), "--frames", "takes the frames of a dataset of single frames (--from astyx)");
   const Mapping mapping = read_mapping(options.mapping);
-  LoggedDrive drive = read_log(log, mapping);
-  if (mapping.ego.from_tf()) ego_from_tf(drive, log, mapping.ego);
-  std::stable_sort(drive.ego.begin(), drive.ego.end(), [](const LoggedEgo& a, const LoggedEgo& b) { return a.t_ns < b.t_ns; });
-  if (!mapping.openlabel.empty()) add_openlabel(drive, mapping);
+  Survey survey = survey_log(log, mapping);
+  if (mapping.ego.from_tf()) ego_from_tf(survey, log, mapping.ego);
+  std::stable_sort(survey.ego.begin(), survey.ego.end(), [](const LoggedEgo& a, const LoggedEgo& b) { return a.t_ns < b.t_ns; });
+  const std::vector<ObjectBox> labelled = mapping.openlabel.empty() ? std::vector<ObjectBox>{} : openlabel_boxes(survey, mapping);
   // The recording's clock: seconds since the earliest stamp of the mapped topics.
-  std::int64_t t0_ns = drive.ego.front().t_ns;
-  for (const LoggedEgo& e : drive.ego) t0_ns = std::min(t0_ns, e.t_ns);
-  for (const LoggedCycle& c : drive.cycles) t0_ns = std::min(t0_ns, c.t_ns);
-  for (const LoggedObject& o : drive.objects) {
-    for (const LoggedBox& b : o.boxes) t0_ns = std::min(t0_ns, b.t_ns);
-  }
-  DatasetRecording out;
-  Recording& rec = out.recording;
+  for (const LoggedEgo& e : survey.ego) survey.stamp(e.t_ns);
+  const std::int64_t t0_ns = survey.t0_ns;
+
+  Recording rec;
   rec.name = mapping.name.empty() ? log.stem().string() : mapping.name;
   rec.clock = Clock::per_sensor;
   for (const MappedSensor& s : mapping.sensors) rec.sensors.push_back(s.sensor);
-  mount_from_tf(drive, log, mapping, rec);
-  add_ego(drive, t0_ns, log, mapping.ego.from_tf() ? mapping.ego.tf_topic : mapping.ego.topic, rec);
-  add_cycles(drive, t0_ns, log, mapping, rec);
-  std::vector<double> annotation_times_s;
-  add_objects(drive, t0_ns, log, mapping, rec, annotation_times_s);
-  std::sort(annotation_times_s.begin(), annotation_times_s.end());
-  annotation_times_s.erase(std::unique(annotation_times_s.begin(), annotation_times_s.end()), annotation_times_s.end());
-  rec.cycle_time_s = mapping.annotation_step_s.value_or(median_step_s(annotation_times_s, rec.sensors.front().cycle_time_s));
+  mount_from_tf(survey, log, mapping, rec);
+  for (std::size_t s = 0; s < rec.sensors.size(); ++s) {
+    const MappedSensor& mapped = mapping.sensors[s];
+    const Histogram& steps = survey.scan_steps_us[s];
+    rec.sensors[s].cycle_time_s = mapped.cycle_time_s.value_or(steps.empty() ? 0.05 : steps.median() / 1e6);
+    if (!(rec.sensors[s].cycle_time_s > 0.0 && rec.sensors[s].cycle_time_s <= limits::kMaxCycleTime_s)) {
+      throw InputError(log.string(), mapped.topic, fmt::format("the scans' median step {} s is no cycle time", rec.sensors[s].cycle_time_s));
+    }
+  }
+  const ModelLibrary& library = ModelLibrary::builtin();
+  for (const SurveyedObject& o : survey.objects) {
+    const auto mapped = mapping.classes.find(o.log_class);
+    const std::string model = mapped != mapping.classes.end() ? mapped->second : o.log_class;
+    if (!library.contains(model)) {
+      throw InputError(log.string(), mapping.objects_source(),
+                       fmt::format("entity '{}' has class '{}', no object model (rcsim models); map it in the mapping's "
+                                   "objects.classes", o.id, o.log_class));
+    }
+    rec.objects.push_back({o.id, model, o.lengths_mm.median() / kMmPerM, o.widths_mm.median() / kMmPerM, nlohmann::json{{"log_class", o.log_class}}});
+  }
+  rec.cycle_time_s = mapping.annotation_step_s.value_or(survey.annotation_steps_us.empty() ? rec.sensors.front().cycle_time_s
+                                                                                          : survey.annotation_steps_us.median() / 1e6);
   rec.description = fmt::format("MCAP log {}: {} radar{} on their own clocks, {} annotated objects", log.filename().string(),
                                 rec.sensors.size(), rec.sensors.size() == 1 ? "" : "s", rec.objects.size());
   rec.source = {{"importer", "rcsim import --from mcap"},
@@ -590,9 +738,83 @@ DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& op
                 {"mapping", options.mapping.filename().string()},
                 {"boxes", mapping.openlabel.empty() ? "topic " + mapping.objects_topic : "OpenLABEL " + mapping.openlabel.filename().string()},
                 {"first_timestamp_ns", t0_ns},
-                {"profile", drive.profile},
-                {"library", drive.library}};
+                {"profile", survey.profile},
+                {"library", survey.library}};
+
+  RowSink& sink = open_sink(rec);
+  write_ego(survey.ego, t0_ns, log, mapping.ego.from_tf() ? mapping.ego.tf_topic : mapping.ego.topic, sink);
+  CycleStream cycles(log, mapping, t0_ns, seconds_since(survey.ego.front().t_ns, t0_ns), seconds_since(survey.ego.back().t_ns, t0_ns), sink);
+  BoxStream boxes(log, mapping, survey, t0_ns, sink);
+  for (const ObjectBox& b : labelled) boxes.add(b.object, b.box);
+  LogVisitor visit;
+  visit.scan = [&](int sensor, ros2::RadarScan& scan) { cycles.add(sensor, scan); };
+  visit.box = [&](const foxglove::SceneBox& b) { boxes.add(survey.object_index.at(std::string(b.id)), logged_box(b)); };
+  read_log(log, mapping, visit);
+  cycles.finish(), boxes.finish();
+  return {std::move(rec), cycles.targets()};
+}
+
+// Rows into a Recording.
+struct RecordingRows : RowSink {
+  explicit RecordingRows(Recording& r) : rec(r) { rec.boxes.assign(rec.objects.size(), {}); }
+  void ego(const EgoSample& e) override { rec.ego.push_back(e); }
+  void box(std::size_t object, const AnnotatedBox& b) override { rec.boxes[object].push_back(b); }
+  void cycle(const SensorCycle& c, const std::vector<RecordedTarget>& targets) override {
+    rec.cycles.push_back(c);
+    rec.targets.insert(rec.targets.end(), targets.begin(), targets.end());
+  }
+  Recording& rec;
+};
+
+// Rows into a recording's files.
+struct WrittenRows : RowSink {
+  WrittenRows(const fs::path& dir, const Recording& header)
+      : writer(dir, sensor_ids(header), TargetColumns{false, false, false, true}, true), objects(header.objects) {}
+  static std::vector<std::string> sensor_ids(const Recording& header) {
+    std::vector<std::string> ids;
+    for (const RecordingSensor& s : header.sensors) ids.push_back(s.id);
+    return ids;
+  }
+  void ego(const EgoSample& e) override { writer.ego(e); }
+  void box(std::size_t object, const AnnotatedBox& b) override { writer.box(objects[object].id, b); }
+  void cycle(const SensorCycle& c, const std::vector<RecordedTarget>& targets) override {
+    writer.cycle(c);
+    for (const RecordedTarget& t : targets) writer.target(t);
+  }
+  RecordingWriter writer;
+  std::vector<RecordingObject> objects;
+};
+
+}  // namespace
+
+DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& options) {
+  DatasetRecording out;
+  std::unique_ptr<RecordingRows> rows;
+  auto [header, targets] = import_log(log, options, [&](const Recording& h) -> RowSink& {
+    out.recording = h;
+    rows = std::make_unique<RecordingRows>(out.recording);
+    return *rows;
+  });
   return out;
+}
+
+ImportSummary import_mcap_to(const fs::path& log, const DatasetImportOptions& options, const fs::path& dir) {
+  std::unique_ptr<WrittenRows> rows;
+  std::size_t cycles = 0;
+  struct Counting : RowSink {
+    RowSink* inner = nullptr;
+    std::size_t* cycles = nullptr;
+    void ego(const EgoSample& e) override { inner->ego(e); }
+    void box(std::size_t object, const AnnotatedBox& b) override { inner->box(object, b); }
+    void cycle(const SensorCycle& c, const std::vector<RecordedTarget>& targets) override { inner->cycle(c, targets), ++*cycles; }
+  } counting;
+  auto [header, targets] = import_log(log, options, [&](const Recording& h) -> RowSink& {
+    rows = std::make_unique<WrittenRows>(dir, h);
+    counting.inner = rows.get(), counting.cycles = &cycles;
+    return counting;
+  });
+  rows->writer.finish(header);
+  return {header.name, cycles, header.sensors.size(), header.objects.size(), targets};
 }
 
 }  // namespace rcsim::replay

@@ -47,14 +47,14 @@ class McapImport : public testing::ScratchDirTest {
   // The recording in `dir` as a ROS 2 log (and its mapping file), written by the test tool.
   fs::path log_of(const fs::path& dir, const std::string& compression, const std::string& name,
                   const std::string& detections = "radarscan", const std::string& ego = "odometry",
-                  const std::string& boxes = "scene") {
+                  const std::string& boxes = "scene", const std::string& extra = "") {
     const fs::path log = dir_ / (name + ".mcap");
     mapping_ = dir_ / (name + ".mapping.json");
     const auto written = rcsim::testing::run_shell_command("node " + (kTool / "write_ros2_log.js").string() + " " + dir.string() +
                                                            " " + log.string() + " --compression " + compression +
                                                            " --mapping " + mapping_.string() + " --chunk-bytes 16384" +
                                                            " --detections " + detections + " --ego " + ego +
-                                                           " --boxes " + boxes);
+                                                           " --boxes " + boxes + " " + extra);
     EXPECT_EQ(written.exit_code, 0) << written.output;
     return log;
   }
@@ -213,6 +213,35 @@ TEST_F(McapImport, BoxesFromAnOpenLabelFileInTheVehiclesFrame) {
   EXPECT_NE(m.find("openlabel.mcap.openlabel.json"), std::string::npos) << m;
   EXPECT_NE(m.find("is in coordinate system 'radar_fl': neither the odometry's world frame 'odom' nor its vehicle frame "
                    "'base_link'"), std::string::npos) << m;
+}
+
+// Streamed straight to disk (as `rcsim import` does, in bounded memory) the files are those of the
+// import in memory, byte for byte; scans logged up to 0.5 s late (their log time, not their stamp)
+// are put back in order, and scans 3 s late, beyond the 2 s window, are refused by name.
+TEST_F(McapImport, StreamedToDiskTheSameFilesAndLateScansPutInOrder) {
+  const fs::path dir = testing::kBundledRecordings / "two_in_one_cell";
+  DatasetImportOptions options;
+  const fs::path log = log_of(dir, "zstd", "on_time");
+  options.mapping = mapping_;
+  write_recording(dir_ / "in_memory", import_mcap(log, options).recording);
+  const ImportSummary summary = import_mcap_to(log, options, dir_ / "streamed");
+  for (const char* file : {"recording.json", "ego.csv", "objects.csv", "targets.csv", "cycles.csv"}) {
+    EXPECT_EQ(testing::file_bytes(dir_ / "streamed" / file), testing::file_bytes(dir_ / "in_memory" / file)) << file;
+  }
+  const Recording original = read_recording(dir);
+  EXPECT_EQ(summary.targets, original.targets.size());
+  EXPECT_EQ(summary.cycles, 2 * original.ego.size());  // two radars, a scan each per ego row
+  const fs::path late = log_of(dir, "zstd", "late", "radarscan", "odometry", "scene", "--scan-delay-ms 500");
+  options.mapping = mapping_;
+  import_mcap_to(late, options, dir_ / "late");
+  for (const char* file : {"ego.csv", "objects.csv", "targets.csv", "cycles.csv"}) {
+    EXPECT_EQ(testing::file_bytes(dir_ / "late" / file), testing::file_bytes(dir_ / "in_memory" / file)) << file;
+  }
+  const fs::path later = log_of(dir, "zstd", "later", "radarscan", "odometry", "scene", "--scan-delay-ms 3000");
+  options.mapping = mapping_;
+  const std::string m = refusal_of([&] { import_mcap_to(later, options, dir_ / "later"); });
+  EXPECT_NE(m.find("the import puts scans in order within 2 s"), std::string::npos) << m;
+  EXPECT_FALSE(fs::exists(dir_ / "later"));  // nothing half-written
 }
 
 // The aiMotive drive as a ROS 2 log gives the recording `import --from aimotive` gives, and the

@@ -1,5 +1,6 @@
 // node write_ros2_log.js RECORDING_DIR OUT.mcap [--compression none|zstd|lz4] [--mapping OUT.json]
 //   [--chunk-bytes N] [--detections radarscan|pointcloud] [--ego odometry|tf] [--boxes scene|openlabel]
+//   [--scan-delay-ms N]
 // Test tool: writes an rcsim recording (schemas/recording.md) as a ROS 2 log, the way a user's
 // drive arrives, with the format's own writer (@mcap/core) and ROS 2's CDR (@foxglove/cdr through
 // @foxglove/rosmsg2-serialization):
@@ -18,6 +19,8 @@
 //                       OpenLABEL 1.0 file: a frame per annotation time stamped "sec.nanosec", each
 //                       box a 10-value cuboid in the vehicle's frame "base_link" where an ego row has
 //                       its time (else in "odom"), its speed a num "speed_mps".)
+// --scan-delay-ms N logs every 7th scan N ms late (its log time, not its stamp), as a loaded
+// recorder does: the log's order is then not the stamps' order.
 // Times are nanoseconds: the recording's source.first_timestamp_ns (else 1.7e18) + t_s. With
 // --mapping, also writes the rcsim-mcap-mapping file (schemas/mcap-mapping.md) that imports it.
 "use strict";
@@ -124,7 +127,7 @@ function readCsv(file) {
 }
 
 function options(argv) {
-  const o = { compression: "none", mapping: "", chunkBytes: 64 * 1024, detections: "radarscan", ego: "odometry", boxes: "scene" };
+  const o = { compression: "none", mapping: "", chunkBytes: 64 * 1024, detections: "radarscan", ego: "odometry", boxes: "scene", scanDelayMs: 0 };
   for (let i = 4; i < argv.length; i += 2) {
     if (argv[i] === "--compression") o.compression = argv[i + 1];
     else if (argv[i] === "--mapping") o.mapping = argv[i + 1];
@@ -132,6 +135,7 @@ function options(argv) {
     else if (argv[i] === "--detections") o.detections = argv[i + 1];
     else if (argv[i] === "--ego") o.ego = argv[i + 1];
     else if (argv[i] === "--boxes") o.boxes = argv[i + 1];
+    else if (argv[i] === "--scan-delay-ms") o.scanDelayMs = Number(argv[i + 1]);
     else throw new Error(`unknown option ${argv[i]}`);
   }
   return o;
@@ -221,7 +225,7 @@ async function main() {
   };
   cycles.forEach((c, i) => {
     const ns = nsOf(c.t);
-    messages.push({ ns, order: 0, channelId: scanChannel[c.sensor],
+    messages.push({ ns, logNs: ns + (i % 7 === 3 ? BigInt(o.scanDelayMs) * 1000000n : 0n), order: 0, channelId: scanChannel[c.sensor],
       data: clouds ? cloudOf(ns, c.sensor, returnsOf[i])
         : scanWriter.writeMessage({ header: { stamp: stampOf(ns), frame_id: c.sensor }, returns: returnsOf[i] }) });
   });
@@ -294,10 +298,11 @@ async function main() {
     messages.push({ ns, order: 2, channelId: sceneChannel,
       data: Buffer.from(JSON.stringify({ deletions: [], entities: entities.map((e) => ({ ...e, timestamp: { sec: e.timestamp.sec, nsec: e.timestamp.nanosec } })) })) });
   }
-  messages.sort((a, b) => (a.ns < b.ns ? -1 : a.ns > b.ns ? 1 : a.order - b.order));
+  messages.forEach((m) => { if (m.logNs === undefined) m.logNs = m.ns; });
+  messages.sort((a, b) => (a.logNs < b.logNs ? -1 : a.logNs > b.logNs ? 1 : a.order - b.order));
   let sequence = 0;
   for (const m of messages) {
-    await writer.addMessage({ channelId: m.channelId, sequence: sequence++, logTime: m.ns, publishTime: m.ns, data: m.data });
+    await writer.addMessage({ channelId: m.channelId, sequence: sequence++, logTime: m.logNs, publishTime: m.logNs, data: m.data });
   }
   await writer.end();
   fs.writeFileSync(out, Buffer.concat(chunks));
