@@ -4,10 +4,10 @@
 # RadarScan in CDR or foxglove.PointCloud, Odometry, SceneUpdate boxes; zstd chunks), and
 # `rcsim export --format mcap` of its replay. Times both with /usr/bin/time (wall time and peak
 # resident memory). Needs Node.js and the tool (scripts/test-tools.sh).
-# Usage: scripts/bench-mcap.sh [DURATIONS_S="3600"] [WORK_DIR=/tmp/rcsim-bench-mcap]
+# Usage: scripts/bench-mcap.sh [DURATIONS_S="600 3600"] [WORK_DIR=/tmp/rcsim-bench-mcap]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-durations=${1:-"3600"}
+durations=${1:-"600 3600"}
 work=${2:-/tmp/rcsim-bench-mcap}
 bash scripts/setup.sh build >/dev/null
 bash scripts/test-tools.sh >/dev/null
@@ -37,6 +37,10 @@ for duration_s in $durations; do
   done
   db="$work/report_${duration_s}.sqlite"
   rm -f "$db"*
-  build/bin/rcsim replay "$work/imported" --db "$db" >/dev/null
-  timed "export --format mcap" "$duration_s" "$work/run.mcap" build/bin/rcsim export "$db" --run 1 --format mcap -o "$work/run.mcap"
+  timed "replay (own clocks)" "$duration_s" "$db" build/bin/rcsim replay "$work/imported" --db "$db"
+  timed "export (own clocks)" "$duration_s" "$work/run.mcap" build/bin/rcsim export "$db" --run 1 --format mcap -o "$work/run.mcap"
+  # The same drive on one shared clock (the generated recording itself): its replay exported.
+  rm -f "$db"*
+  timed "replay (shared clock)" "$duration_s" "$db" build/bin/rcsim replay "$rec" --db "$db"
+  timed "export (shared clock)" "$duration_s" "$work/run.mcap" build/bin/rcsim export "$db" --run 1 --format mcap -o "$work/run.mcap"
 done
