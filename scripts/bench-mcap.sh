@@ -14,7 +14,7 @@ bash scripts/test-tools.sh >/dev/null
 mkdir -p "$work"
 grep -m1 "model name" /proc/cpuinfo
 echo "cores: $(nproc), rcsim $(build/bin/rcsim --version 2>/dev/null || echo '?')"
-printf '%-6s %-22s %10s %10s %12s\n' drive step "wall s" "peak MB" "file MB"
+printf '%-7s %-22s %10s %10s %12s\n' drive step "wall s" "peak MB" "file MB"
 timed() {  # timed LABEL DURATION FILE COMMAND...: one row
   local label=$1 duration_s=$2 file=$3
   shift 3
@@ -23,7 +23,7 @@ timed() {  # timed LABEL DURATION FILE COMMAND...: one row
   local size_b=0
   [ -e "$file" ] && size_b=$(du -sb "$file" | cut -f1)
   awk -v d="$duration_s" -v l="$label" -v w="$wall_s" -v p="$peak_kib" -v b="$size_b" 'BEGIN {
-    printf "%-6s %-22s %10.2f %10.1f %12.1f\n", d / 3600 " h", l, w, p / 1024, b / 1e6 }'
+    printf "%-7s %-22s %10.2f %10.1f %12.1f\n", d / 60 " min", l, w, p / 1024, b / 1e6 }'
 }
 for duration_s in $durations; do
   rec="$work/ring_drive_${duration_s}s"

@@ -98,17 +98,33 @@ namespace {
 
 void time(std::string& out, std::uint64_t ns) { fmt::format_to(std::back_inserter(out), R"({{"sec":{},"nsec":{}}})", ns / 1000000000, ns % 1000000000); }
 
+// {"x":..,"y":..,"z":..}
+void vec3(std::string& out, double x, double y, double z) {
+  out += R"({"x":)";
+  number(out, x);
+  out += R"(,"y":)";
+  number(out, y);
+  out += R"(,"z":)";
+  number(out, z);
+  out += '}';
+}
+
+// {"x":0,"y":0,"z":sin(yaw/2),"w":cos(yaw/2)}
+void yaw_quaternion(std::string& out, double yaw_rad) {
+  out += R"({"x":0,"y":0,"z":)";
+  number(out, std::sin(0.5 * yaw_rad));
+  out += R"(,"w":)";
+  number(out, std::cos(0.5 * yaw_rad));
+  out += '}';
+}
+
 void shape(std::string& list, double x_m, double y_m, double z_m, double yaw_rad, double sx_m, double sy_m, double sz_m,
            const std::string& colour_json) {
   list += list.empty() ? R"({"pose":)" : R"(,{"pose":)";
   pose(list, x_m, y_m, z_m, yaw_rad);
-  list += R"(,"size":{"x":)";
-  number(list, sx_m);
-  list += R"(,"y":)";
-  number(list, sy_m);
-  list += R"(,"z":)";
-  number(list, sz_m);
-  list += R"(},"color":)";
+  list += R"(,"size":)";
+  vec3(list, sx_m, sy_m, sz_m);
+  list += R"(,"color":)";
   list += colour_json;
   list += '}';
 }
@@ -126,17 +142,11 @@ void number(std::string& out, double v) {
 std::string quoted(const std::string& s) { return Json(s).dump(); }
 
 void pose(std::string& out, double x_m, double y_m, double z_m, double yaw_rad) {
-  out += R"({"position":{"x":)";
-  number(out, x_m);
-  out += R"(,"y":)";
-  number(out, y_m);
-  out += R"(,"z":)";
-  number(out, z_m);
-  out += R"(},"orientation":{"x":0,"y":0,"z":)";
-  number(out, std::sin(0.5 * yaw_rad));
-  out += R"(,"w":)";
-  number(out, std::cos(0.5 * yaw_rad));
-  out += "}}";
+  out += R"({"position":)";
+  vec3(out, x_m, y_m, z_m);
+  out += R"(,"orientation":)";
+  yaw_quaternion(out, yaw_rad);
+  out += '}';
 }
 
 std::string colour(const char* hex_rrggbb, double alpha) { return foxglove::colour(hex_rrggbb, alpha).dump(); }
@@ -185,15 +195,11 @@ std::string Entity::scene_update() const {
 std::string frame_transform(std::uint64_t ns, const std::string& parent_json, const std::string& child_json, const Pose2& X_PC) {
   std::string out = R"({"timestamp":)";
   time(out, ns);
-  out += R"(,"parent_frame_id":)" + parent_json + R"(,"child_frame_id":)" + child_json + R"(,"translation":{"x":)";
-  number(out, X_PC.x_m);
-  out += R"(,"y":)";
-  number(out, X_PC.y_m);
-  out += R"(,"z":0},"rotation":{"x":0,"y":0,"z":)";
-  number(out, std::sin(0.5 * X_PC.yaw_rad));
-  out += R"(,"w":)";
-  number(out, std::cos(0.5 * X_PC.yaw_rad));
-  out += "}}";
+  out += R"(,"parent_frame_id":)" + parent_json + R"(,"child_frame_id":)" + child_json + R"(,"translation":)";
+  vec3(out, X_PC.x_m, X_PC.y_m, 0.0);
+  out += R"(,"rotation":)";
+  yaw_quaternion(out, X_PC.yaw_rad);
+  out += '}';
   return out;
 }
 

@@ -43,6 +43,18 @@ MSG: builtin_interfaces/Time
 int32 sec
 uint32 nanosec`;
 
+const VECTOR3_DEFINITION = `================================================================================
+MSG: geometry_msgs/Vector3
+float64 x
+float64 y
+float64 z`;
+const QUATERNION_DEFINITION = `================================================================================
+MSG: geometry_msgs/Quaternion
+float64 x
+float64 y
+float64 z
+float64 w`;
+
 const RADAR_SCAN = `std_msgs/Header header
 radar_msgs/RadarReturn[] returns
 ${HEADER_DEFINITIONS}
@@ -72,12 +84,7 @@ MSG: geometry_msgs/Point
 float64 x
 float64 y
 float64 z
-================================================================================
-MSG: geometry_msgs/Quaternion
-float64 x
-float64 y
-float64 z
-float64 w
+${QUATERNION_DEFINITION}
 ================================================================================
 MSG: geometry_msgs/TwistWithCovariance
 geometry_msgs/Twist twist
@@ -86,11 +93,7 @@ float64[36] covariance
 MSG: geometry_msgs/Twist
 geometry_msgs/Vector3 linear
 geometry_msgs/Vector3 angular
-================================================================================
-MSG: geometry_msgs/Vector3
-float64 x
-float64 y
-float64 z`;
+${VECTOR3_DEFINITION}`;
 
 const TF_MESSAGE = `geometry_msgs/TransformStamped[] transforms
 ================================================================================
@@ -103,17 +106,8 @@ ${HEADER_DEFINITIONS}
 MSG: geometry_msgs/Transform
 geometry_msgs/Vector3 translation
 geometry_msgs/Quaternion rotation
-================================================================================
-MSG: geometry_msgs/Vector3
-float64 x
-float64 y
-float64 z
-================================================================================
-MSG: geometry_msgs/Quaternion
-float64 x
-float64 y
-float64 z
-float64 w`;
+${VECTOR3_DEFINITION}
+${QUATERNION_DEFINITION}`;
 
 function readCsv(file) {
   const lines = fs.readFileSync(file, "utf8").split("\n").filter((l) => l.length > 0);
