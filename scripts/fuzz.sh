@@ -120,7 +120,7 @@ gather_seeds() {  # gather_seeds HARNESS DIR
       base_sections tests/fuzz/base/aimotive.txt "$dir" ;;
     astyx)
       base_sections tests/fuzz/base/astyx.txt "$dir" ;;
-    udp_datagram|udp_control|report_database|mcap)
+    udp_datagram|udp_control|report_database|mcap|openlabel)
       # Datagrams made by the project's encoders (udp_targets.hpp), and report databases replayed
       # from the recording base (store_targets.hpp): written by the harness itself.
       RCSIM_FUZZ_WRITE_SEEDS=$dir "$build/bin/${h}_fuzz" ;;

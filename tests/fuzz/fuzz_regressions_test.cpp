@@ -18,6 +18,7 @@
 #include "fuzz/astyx_targets.hpp"
 #include "fuzz/recording_targets.hpp"
 #include "fuzz/mcap_targets.hpp"
+#include "fuzz/openlabel_targets.hpp"
 #include "fuzz/store_targets.hpp"
 #include "fuzz/udp_targets.hpp"
 #include "fuzz/world_targets.hpp"
@@ -32,7 +33,7 @@ const std::map<std::string, void (*)(Input)>& entry_points() {
   static const std::map<std::string, void (*)(Input)> entries{
       {"scene", fuzz_scene},         {"object_model", fuzz_object_model}, {"sensor_config", fuzz_sensor_config},
       {"recording", fuzz_recording}, {"calibration", fuzz_calibration},   {"aimotive", fuzz_aimotive},
-      {"astyx", fuzz_astyx},         {"mcap", fuzz_mcap},
+      {"astyx", fuzz_astyx},         {"mcap", fuzz_mcap},                 {"openlabel", fuzz_openlabel},
       {"udp_datagram", fuzz_udp_datagrams}, {"udp_control", fuzz_udp_control},
       {"report_database", fuzz_report_database}, {"campaign_manifest", fuzz_campaign_manifest}};
   return entries;
@@ -242,6 +243,28 @@ TEST(FuzzBases, TheMcapSeedsImportOrAreRefusedByName) {
   EXPECT_EQ(clouds.targets.size(), 30u);
   EXPECT_NEAR(clouds.targets[1].range_m, 20.0 - 3.7, 1e-5);
   EXPECT_NEAR(clouds.targets[1].azimuth_rad, 0.0, 1e-7);
+}
+
+// The OpenLABEL seed reads: car1 in frames 0 and 1 (its val null in frame 2), the truck's static
+// cuboid in frames 0 and 2; each timestamp form to the nanosecond.
+TEST(FuzzBases, TheOpenLabelSeedReads) {
+  const auto seeds = openlabel_seeds();
+  ASSERT_EQ(seeds.size(), 1u);
+  const fs::path dir = fresh_dir("openlabel_seed");
+  write_file(dir / "labels.json", {reinterpret_cast<const char*>(seeds[0].second.data()), seeds[0].second.size()});
+  const replay::openlabel::Labels labels = replay::openlabel::read_openlabel(dir / "labels.json");
+  ASSERT_EQ(labels.boxes.size(), 4u);
+  EXPECT_EQ(labels.boxes[0].uid, "car1");
+  EXPECT_EQ(labels.boxes[0].t_ns, 1'700'000'000'050'000'000LL);
+  EXPECT_EQ(labels.boxes[0].speed_mps, 13.9);
+  EXPECT_EQ(labels.boxes[1].uid, "truck");
+  EXPECT_EQ(labels.boxes[1].coordinate_system, "base_link");
+  EXPECT_EQ(labels.boxes[1].speed_mps, 20.5);
+  EXPECT_EQ(labels.boxes[2].t_ns, 1'700'000'000'150'000'001LL);
+  EXPECT_NEAR(labels.boxes[2].yaw_rad, 0.5, 1e-12);  // the Euler cuboid's rz
+  EXPECT_EQ(labels.boxes[3].uid, "truck");
+  EXPECT_EQ(labels.boxes[3].t_ns, 1'700'000'000'250'000'000LL);  // 2023-11-14T22:13:20.250Z
+  EXPECT_NO_THROW(fuzz_openlabel(Input(seeds[0].second.data(), seeds[0].second.size())));
 }
 
 TEST(FuzzSupport, SectionsSplitOnTheSeparatorLine) {
