@@ -166,6 +166,21 @@ int Scene::cycle_count() const {
   return static_cast<int>(std::floor(duration_s / cycle_time_s + 1e-9)) + 1;
 }
 
+std::size_t Scene::most_reflectors_present() const {
+  std::size_t always = 0;
+  std::vector<std::pair<double, long long>> changes;  // (time, +count at its start, -count after its end)
+  for (const SceneObject& o : objects) {
+    const auto n = static_cast<long long>(o.model.reflector_count());
+    if (o.presence.empty()) always += static_cast<std::size_t>(n);
+    for (const TimeInterval& i : o.presence) changes.emplace_back(i.from_s, n), changes.emplace_back(i.until_s, -n);
+  }
+  // At one time starts before ends: the intervals are closed.
+  std::sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return a.first != b.first ? a.first < b.first : a.second > b.second; });
+  long long present = 0, most = 0;
+  for (const auto& [t_s, change] : changes) most = std::max(most, present += change);
+  return always + static_cast<std::size_t>(most);
+}
+
 Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std::string& base_dir) {
   root.expect_only({"format", "version", "name", "description", "duration_s", "cycle_time_s", "effects", "ego",
                     "objects"});

@@ -57,6 +57,10 @@ struct Scene {
 
   // Cycles k = 0..n-1 at t = k * cycle_time_s, the last one at or before duration_s.
   int cycle_count() const;
+  // The most reflection centres of objects present at one time (each object's presence closed):
+  // what one cycle's ideal target list can hold, far below every object's together where the
+  // objects come and go (a dataset of snapshots: every frame's objects are one scene's).
+  std::size_t most_reflectors_present() const;
   double cycle_time_at(int cycle) const { return cycle * cycle_time_s; }
   // Sensor i's cycle time: its own (on its own clock) or the scene's.
   double sensor_cycle_time_s(std::size_t i) const {

@@ -3,8 +3,7 @@
 namespace rcsim {
 
 Simulation::Simulation(const Scene& scene, const SimulationOptions& options) : scene_(scene), objects_(scene.objects) {
-  std::size_t reflectors = 0;
-  for (const auto& o : scene.objects) reflectors += o.model.reflector_count();
+  const std::size_t reflectors = scene.most_reflectors_present();
   models_.reserve(scene.sensors.size());
   states_.reserve(scene.sensors.size());
   for (std::size_t i = 0; i < scene.sensors.size(); ++i) {

@@ -115,6 +115,28 @@ TEST(ModelLibrary, BuiltinsAreThere) {
   EXPECT_EQ(testing::library().at("passenger_car").planes.size(), 4u);
 }
 
+// A cycle holds the reflectors of the objects present at one time: cars (12 reflectors: 8 points,
+// 4 planes) that come and go count only while present, intervals closed at both ends; a pole
+// without presence counts always.
+TEST(Scene, TheMostReflectorsPresentAtOneTime) {
+  Scene scene;
+  const auto object = [&](const char* model, std::vector<TimeInterval> presence) {
+    SceneObject o;
+    o.model = testing::library().at(model);
+    o.presence = std::move(presence);
+    scene.objects.push_back(o);
+  };
+  object("passenger_car", {{0.0, 1.0}});
+  object("passenger_car", {{2.0, 3.0}});
+  object("passenger_car", {{2.5, 4.0}, {10.0, 11.0}});
+  EXPECT_EQ(scene.most_reflectors_present(), 24u);  // two cars at 2.5-3 s, not three
+  object("passenger_car", {{1.0, 1.5}});           // meets the first at 1 s: both present then
+  object("pole", {});
+  EXPECT_EQ(scene.most_reflectors_present(), 25u);  // 24 + the pole (cars 1 and 4: 24 at 1 s as well)
+  object("passenger_car", {{1.0, 1.0}});
+  EXPECT_EQ(scene.most_reflectors_present(), 37u);  // three cars at 1 s, and the pole
+}
+
 // A guard rail 3.5 m left of a road along x: its polyline runs against x so that its left (the
 // side its posts face) is the road.
 const std::string kRail = R"({
