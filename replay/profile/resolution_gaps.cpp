@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 
 #include "common/angles.hpp"
 #include "common/quantile.hpp"
@@ -25,22 +27,81 @@ constexpr std::size_t kMinPairs = 20;
 constexpr double kSameValue = 1e-6;
 constexpr std::ptrdiff_t kEdgeContrast = 4;
 
-// |d_other| of the pairs of one cycle with |d_key| < key_window, over all cycles.
+// Distances between pairs of detections, of which only the low tail is read: the gap's edge
+// (scanned up to the 5 % quantile, counting up to 1.5 times it), the 1 % and 5 % quantiles, and a
+// histogram up to 4 times the gap. `sorted` holds every distance up to a cut beyond all of those,
+// `total` counts them all: 400 Astyx frames have 10^8 pairs at one radial speed, held whole 1.3 GB.
+struct Distances {
+  std::vector<double> sorted;
+  std::size_t total = 0;
+  std::size_t size() const { return total; }
+  // The q quantile of all of them (q up to 5 %: within `sorted`).
+  double quantile(double q) const {
+    if (total == 0) return std::nan("");
+    const double h = std::clamp(q, 0.0, 1.0) * static_cast<double>(total - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(h));
+    const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+    return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+  }
+};
+
+// The pairs' distances as a histogram of their logarithms (1/64 of an octave a bin): where the
+// low tail ends, to a bin.
+class OctaveHistogram {
+ public:
+  void add(double v) {
+    ++total_;
+    if (v > 0.0) ++counts_[static_cast<int>(std::floor(std::log2(v) * kBinsPerOctave))];
+  }
+  // An upper bound of the value of rank k (from 0, in ascending order) of those added.
+  double upper_bound_of_rank(std::size_t k) const {
+    std::size_t below = total_;
+    for (const auto& [bin, n] : counts_) below -= n;  // the zeros
+    if (k < below) return 0.0;
+    for (const auto& [bin, n] : counts_) {
+      below += n;
+      if (k < below) return std::exp2(static_cast<double>(bin + 1) / kBinsPerOctave);
+    }
+    return std::numeric_limits<double>::infinity();
+  }
+  std::size_t total() const { return total_; }
+
+ private:
+  static constexpr double kBinsPerOctave = 64.0;
+  std::map<int, std::size_t> counts_;
+  std::size_t total_ = 0;
+};
+
+// |d_other| of the pairs of one cycle with |d_key| < key_window, over all cycles, those of
+// |d_other| <= drop_at_most left out: two passes, the first for where the low tail ends, the
+// second keeping it (up to 4 times an upper bound of the 5 % quantile's neighbours).
 template <class Key, class Other>
-std::vector<double> pair_gaps(const DetectionPool& pool, Key key, Other other, double key_window) {
-  std::vector<double> gaps;
+Distances pair_gaps(const DetectionPool& pool, Key key, Other other, double key_window, double drop_at_most = -1.0) {
   std::vector<const PooledDetection*> sorted;
-  for (const PooledCycle& c : pool.cycles) {
-    sorted.clear();
-    for (const PooledDetection& d : c.detections) sorted.push_back(&d);
-    std::sort(sorted.begin(), sorted.end(), [&](const auto* a, const auto* b) { return key(*a) < key(*b); });
-    for (std::size_t i = 0; i < sorted.size(); ++i) {
-      for (std::size_t j = i + 1; j < sorted.size() && key(*sorted[j]) - key(*sorted[i]) < key_window; ++j) {
-        gaps.push_back(std::abs(other(*sorted[j]) - other(*sorted[i])));
+  const auto for_each_gap = [&](const auto& visit) {
+    for (const PooledCycle& c : pool.cycles) {
+      sorted.clear();
+      for (const PooledDetection& d : c.detections) sorted.push_back(&d);
+      std::sort(sorted.begin(), sorted.end(), [&](const auto* a, const auto* b) { return key(*a) < key(*b); });
+      for (std::size_t i = 0; i < sorted.size(); ++i) {
+        for (std::size_t j = i + 1; j < sorted.size() && key(*sorted[j]) - key(*sorted[i]) < key_window; ++j) {
+          const double gap = std::abs(other(*sorted[j]) - other(*sorted[i]));
+          if (gap > drop_at_most) visit(gap);
+        }
       }
     }
-  }
-  std::sort(gaps.begin(), gaps.end());
+  };
+  OctaveHistogram histogram;
+  for_each_gap([&](double gap) { histogram.add(gap); });
+  Distances gaps;
+  gaps.total = histogram.total();
+  if (gaps.total == 0) return gaps;
+  const auto rank_5 = static_cast<std::size_t>(std::floor(0.05 * static_cast<double>(gaps.total - 1))) + 1;
+  const double cut = 4.0 * histogram.upper_bound_of_rank(std::min(rank_5, gaps.total - 1));
+  for_each_gap([&](double gap) {
+    if (gap <= cut) gaps.sorted.push_back(gap);
+  });
+  std::sort(gaps.sorted.begin(), gaps.sorted.end());
   return gaps;
 }
 
@@ -54,19 +115,20 @@ struct Gap {
   double distance = 0.0;
   bool edge = false;
 };
-Gap gap_edge(const std::vector<double>& sorted) {
+Gap gap_edge(const Distances& distances) {
+  const std::vector<double>& sorted = distances.sorted;
   const auto first = std::upper_bound(sorted.begin(), sorted.end(), kSameValue);
-  const double scan_end = quantile_of_sorted(sorted, 0.05);
+  const double scan_end = distances.quantile(0.05);
   // Beyond the edge at least 1 pair in 1000: a dense scene's few pairs at the CSV's last decimal
   // are no edge.
-  const auto min_above = std::max<std::ptrdiff_t>(kMinPairs, static_cast<std::ptrdiff_t>(sorted.size() / 1000));
+  const auto min_above = std::max<std::ptrdiff_t>(kMinPairs, static_cast<std::ptrdiff_t>(distances.size() / 1000));
   for (auto it = first; it != sorted.end() && *it <= scan_end; ++it) {
     const double b = *it;
     const auto above = std::lower_bound(it, sorted.end(), 1.5 * b) - it;
     const auto below = it - std::lower_bound(first, it, 0.5 * b);
     if (above >= min_above && above >= kEdgeContrast * std::max<std::ptrdiff_t>(below, 1)) return {b, true};
   }
-  return {quantile_of_sorted(sorted, kGapQuantile), false};
+  return {distances.quantile(kGapQuantile), false};
 }
 
 // The pairs of one cycle inside one range-Doppler cell (the very same radial speed, within half a
@@ -74,7 +136,7 @@ Gap gap_edge(const std::vector<double>& sorted) {
 // azimuth sines (u, direction cosine across the array: equal beams in u, not in angle), or apart
 // in elevation (an array that resolves elevation, as the Astyx HiRes: almost all its pairs).
 struct SameCellPairs {
-  std::vector<double> azimuth_gaps_rad;  // asin(|du|), sorted
+  Distances azimuth_gaps_rad;  // asin(|du|), all of them
   std::size_t elevation_pairs = 0;
 };
 constexpr double kSameElevationSine = 0.005;  // 0.3 deg: the Astyx array's finest elevation step
@@ -97,12 +159,22 @@ SameCellPairs same_cell_pairs(const DetectionPool& pool, double range_cell_m) {
           continue;
         }
         const double du = std::abs(std::sin(a.azimuth_rad) * std::cos(el_a) - std::sin(b.azimuth_rad) * std::cos(el_b));
-        if (du > kSameValue) pairs.azimuth_gaps_rad.push_back(std::asin(std::min(1.0, du)));
+        if (du > kSameValue) pairs.azimuth_gaps_rad.sorted.push_back(std::asin(std::min(1.0, du)));
       }
     }
   }
-  std::sort(pairs.azimuth_gaps_rad.begin(), pairs.azimuth_gaps_rad.end());
+  std::sort(pairs.azimuth_gaps_rad.sorted.begin(), pairs.azimuth_gaps_rad.sorted.end());
+  pairs.azimuth_gaps_rad.total = pairs.azimuth_gaps_rad.sorted.size();
   return pairs;
+}
+
+// The pairs' distances over [0, hi) in 60 bins, all beyond in the last (those not held lie beyond
+// hi: the cut is at least 4 times the 5 % quantile, hi at most 4 times the gap below it).
+DerivationFigure distances_figure(std::string title, std::string x_label, const Distances& d, double hi, double marker,
+                                  std::string marker_label) {
+  DerivationFigure f = histogram_figure(std::move(title), std::move(x_label), d.sorted, hi, 60, marker, std::move(marker_label));
+  f.counts.back() += static_cast<long long>(d.total - d.sorted.size());
+  return f;
 }
 
 // A radar that resolves azimuth reports two beams of one range-Doppler cell often: at least this
@@ -113,7 +185,7 @@ constexpr double kMinSameCellShare = 0.01;
 // they are enough to show an array that resolves azimuth; else the base's.
 DerivedValue azimuth_cell(const DetectionPool& pool, const Cells& cells, std::vector<DerivationFigure>& figures) {
   const SameCellPairs pairs = same_cell_pairs(pool, cells.range_m);
-  const std::vector<double>& gaps = pairs.azimuth_gaps_rad;
+  const Distances& gaps = pairs.azimuth_gaps_rad;
   const double share = pool.detections > 0 ? static_cast<double>(gaps.size()) / static_cast<double>(pool.detections) : 0.0;
   const Gap gap = gaps.size() >= kMinPairs ? gap_edge(gaps) : Gap{};
   if (share < kMinSameCellShare || !(gap.distance > 0.0)) {
@@ -124,14 +196,14 @@ DerivedValue azimuth_cell(const DetectionPool& pool, const Cells& cells, std::ve
             static_cast<long long>(gaps.size())};
   }
   const double cell_deg = rad_to_deg(gap.distance);
-  figures.push_back(histogram_figure("Azimuth distances of pairs inside one range-Doppler cell, at one elevation", "asin(|du|) / rad",
-                                     gaps, 4.0 * gap.distance, 60, gap.distance, "azimuth cell"));
+  figures.push_back(distances_figure("Azimuth distances of pairs inside one range-Doppler cell, at one elevation", "asin(|du|) / rad",
+                                     gaps, 4.0 * gap.distance, gap.distance, "azimuth cell"));
   return {"resolution.azimuth_cell_deg", round_to(cell_deg, 0.1), ValueSource::derived,
           fmt::format("{} pairs inside one range-Doppler cell at one elevation ({:.1f} % of the detections; {} more at two "
                       "elevations): {} {:.2f} deg (1 % quantile {:.2f}, 5 % {:.2f})",
                       gaps.size(), 100.0 * share, pairs.elevation_pairs,
                       gap.edge ? "their density rises 4-fold at" : "no edge stands out; their 1 % quantile", cell_deg,
-                      rad_to_deg(quantile_of_sorted(gaps, kGapQuantile)), rad_to_deg(quantile_of_sorted(gaps, 0.05))),
+                      rad_to_deg(gaps.quantile(kGapQuantile)), rad_to_deg(gaps.quantile(0.05))),
           static_cast<long long>(gaps.size())};
 }
 
@@ -141,16 +213,15 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, Cells& ce
   // Two rounds: the range cell from pairs at one radial speed, the range-rate cell from pairs
   // within half that range cell, the range cell again from pairs within a quarter of the range-rate
   // cell.
-  std::vector<double> range_gaps = pair_gaps(pool, range_rate_of, range_of, kSameRangeRateMps);
-  std::vector<double> range_rate_gaps;
+  Distances range_gaps = pair_gaps(pool, range_rate_of, range_of, kSameRangeRateMps);
+  Distances range_rate_gaps;
   std::pair<bool, bool> edges;
   for (int round = 0; round < 2 && range_gaps.size() >= kMinPairs; ++round) {
     const Gap range_gap = gap_edge(range_gaps);
     const double range_m = range_gap.distance;
-    std::vector<double> rate_gaps = pair_gaps(pool, range_of, range_rate_of, 0.5 * range_m);
     // Pairs at the very same radial speed within half a range cell are two beams of one cell (an
     // imaging array's); the range-rate cell is the gap beyond them.
-    rate_gaps.erase(rate_gaps.begin(), std::upper_bound(rate_gaps.begin(), rate_gaps.end(), kSameValue));
+    Distances rate_gaps = pair_gaps(pool, range_of, range_rate_of, 0.5 * range_m, kSameValue);
     if (rate_gaps.size() < kMinPairs) break;
     const Gap range_rate_gap = gap_edge(rate_gaps);
     const double range_rate_mps = range_rate_gap.distance;
@@ -165,20 +236,20 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, Cells& ce
     return {{"resolution.range_cell_m", nullptr, ValueSource::base, why, 0},
             {"resolution.range_rate_cell_mps", nullptr, ValueSource::base, why, 0}};
   }
-  const auto described = [](const std::vector<double>& gaps, double gap, bool edge, const char* unit, const char* pairs) {
+  const auto described = [](const Distances& gaps, double gap, bool edge, const char* unit, const char* pairs) {
     return fmt::format("{} pairs {}: {} {:.3f} {} (1 % quantile {:.3f}, 5 % {:.3f})", gaps.size(), pairs,
                        edge ? "their density rises 4-fold at" : "no edge stands out; their 1 % quantile", gap, unit,
-                       quantile_of_sorted(gaps, kGapQuantile), quantile_of_sorted(gaps, 0.05));
+                       gaps.quantile(kGapQuantile), gaps.quantile(0.05));
   };
   std::vector<DerivedValue> values{
       {"resolution.range_cell_m", round_to(cells.range_m, cells.range_m < 0.5 ? 0.001 : 0.01), ValueSource::derived,
        described(range_gaps, cells.range_m, edges.first, "m", "at one radial speed"), static_cast<long long>(range_gaps.size())},
       {"resolution.range_rate_cell_mps", round_to(cells.range_rate_mps, 0.001), ValueSource::derived,
        described(range_rate_gaps, cells.range_rate_mps, edges.second, "m/s", "within half a range cell"), static_cast<long long>(range_rate_gaps.size())}};
-  figures.push_back(histogram_figure("Range distances of pairs at one radial speed", "range distance / m", range_gaps, 4.0 * cells.range_m,
-                                     60, cells.range_m, "range cell"));
-  figures.push_back(histogram_figure("Radial-speed distances of pairs within half a range cell", "radial-speed distance / (m/s)",
-                                     range_rate_gaps, 4.0 * cells.range_rate_mps, 60, cells.range_rate_mps, "range-rate cell"));
+  figures.push_back(distances_figure("Range distances of pairs at one radial speed", "range distance / m", range_gaps, 4.0 * cells.range_m,
+                                     cells.range_m, "range cell"));
+  figures.push_back(distances_figure("Radial-speed distances of pairs within half a range cell", "radial-speed distance / (m/s)",
+                                     range_rate_gaps, 4.0 * cells.range_rate_mps, cells.range_rate_mps, "range-rate cell"));
   values.push_back(azimuth_cell(pool, cells, figures));
   return values;
 }
