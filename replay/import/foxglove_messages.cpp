@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <fmt/format.h>
 #include <simdjson.h>
 #include <stdexcept>
@@ -21,6 +22,10 @@ double finite(simdjson::ondemand::value value, const char* field) {
 std::int64_t time_ns(simdjson::ondemand::object stamp) {
   const std::int64_t sec = stamp["sec"].get_int64(), nsec = stamp["nsec"].get_int64();
   if (nsec < 0 || nsec >= 1'000'000'000) throw std::invalid_argument(fmt::format("timestamp.nsec: {} is not in [0, 10^9)", nsec));
+  // As builtin_interfaces/Time: seconds since the epoch that fit an int32 (until 2038).
+  if (sec < 0 || sec > std::numeric_limits<std::int32_t>::max()) {
+    throw std::invalid_argument(fmt::format("timestamp.sec: {} is not in [0, 2^31)", sec));
+  }
   return sec * 1'000'000'000 + nsec;
 }
 

@@ -232,8 +232,11 @@ struct Survey {
   }
   void box(std::size_t o, const LoggedBox& b) {
     stamp(b.t_ns);
-    objects[o].lengths_mm.add(std::llround(b.length_m * kMmPerM));
-    objects[o].widths_mm.add(std::llround(b.width_m * kMmPerM));
+    // A size beyond the limits is refused in the second pass, naming the box; here it only must
+    // not reach llround.
+    const auto mm = [](float size_m) { return std::llround(std::clamp(static_cast<double>(size_m), 0.0, limits::kMaxSize_m) * kMmPerM); };
+    objects[o].lengths_mm.add(mm(b.length_m));
+    objects[o].widths_mm.add(mm(b.width_m));
     objects[o].speed_missing = objects[o].speed_missing || std::isnan(b.speed_mps);
     if (b.t_ns > last_annotation_ns) {
       if (last_annotation_ns != std::numeric_limits<std::int64_t>::min()) {
@@ -376,6 +379,9 @@ Survey survey_log(const fs::path& log, const Mapping& mapping) {
       throw InputError(log.string(), s.topic, fmt::format("no messages on sensor '{}''s topic (the log's topics: {})", s.sensor.id,
                                                           fmt::join(topics, ", ")));
     }
+  }
+  if (!mapping.objects_topic.empty() && !survey.topics_seen.count(mapping.objects_topic)) {
+    throw InputError(log.string(), mapping.objects_topic, "no messages on the objects topic (a mapping without \"objects\" imports none)");
   }
   const MappedEgo& ego = mapping.ego;
   if (ego.from_tf()) {
@@ -526,6 +532,12 @@ void write_ego(std::vector<LoggedEgo>& ego, std::int64_t t0_ns, const fs::path& 
     const LoggedEgo& e = ego[i];
     if (i > 0 && e.t_ns == ego[i - 1].t_ns) throw InputError(log.string(), topic, fmt::format("two ego poses stamped {} ns", e.t_ns));
     EgoSample row{seconds_since(e.t_ns, t0_ns), e.x_m, e.y_m, e.yaw_rad, e.speed_mps, e.yaw_rate_radps};
+    if (!(std::abs(row.x_m) <= limits::kMaxCoordinate_m && std::abs(row.y_m) <= limits::kMaxCoordinate_m && std::isfinite(row.yaw_rad) &&
+          std::abs(row.speed_mps) <= limits::kMaxSpeed_mps && std::abs(row.yaw_rate_radps) <= limits::kMaxYawRate_radps)) {
+      throw InputError(log.string(), topic, fmt::format("the ego pose stamped {} ns lies beyond the limits of schemas/limits.md "
+                                                        "(x {}, y {}, yaw {}, speed {}, yaw rate {})",
+                                                        e.t_ns, row.x_m, row.y_m, row.yaw_rad, row.speed_mps, row.yaw_rate_radps));
+    }
     if (i > 0) {
       if (row.t_s - previous.t_s > kMaxEgoLogStep_s) {
         throw InputError(log.string(), topic, fmt::format("{:.3f} s without an ego pose after {:.6f} s (at most {} s are interpolated)",
@@ -553,11 +565,15 @@ class CycleStream {
   void add(int sensor, ros2::RadarScan& scan) {
     const std::int64_t t_ns = scan.header.stamp.ns();
     const std::pair<std::int64_t, int> key{t_ns, sensor};
-    if (key <= written_) {
-      throw InputError(log_.string(), mapping_.sensors[static_cast<std::size_t>(sensor)].topic,
-                       fmt::format("a scan stamped {} ns comes {:.3f} s after one stamped {} ns in the log: the import puts "
-                                   "scans in order within {} s",
-                                   t_ns, seconds_since(written_.first, t_ns), written_.first, kReorderWindow_ns / 1'000'000'000));
+    const std::string& topic = mapping_.sensors[static_cast<std::size_t>(sensor)].topic;
+    if (key == written_ || pending_.count(key)) {
+      throw InputError(log_.string(), topic, fmt::format("two scans stamped {:.9f} s after the log's start", seconds_since(t_ns, t0_ns_)));
+    }
+    if (key < written_) {
+      throw InputError(log_.string(), topic,
+                       fmt::format("a scan stamped {} ns comes after one stamped {} ns, {:.3f} s later, in the log: the import "
+                                   "puts the radars' scans in order within {} s",
+                                   t_ns, newest_ns_, seconds_since(newest_ns_, t_ns), kReorderWindow_ns / 1'000'000'000));
     }
     pending_.emplace(key, std::move(scan.returns));
     newest_ns_ = std::max(newest_ns_, t_ns);
@@ -591,9 +607,10 @@ class CycleStream {
       t.range_m = static_cast<double>(r.range) * std::cos(static_cast<double>(r.elevation));
       t.azimuth_rad = r.azimuth, t.elevation_rad = r.elevation;
       t.range_rate_mps = r.doppler_velocity, t.amplitude_db = r.amplitude;
-      if (!std::isfinite(t.range_m) || t.range_m < 0.0 || t.range_m > limits::kMaxRange_m ||
-          std::abs(t.azimuth_rad) > limits::kMaxAzimuth_rad || std::abs(t.range_rate_mps) > limits::kMaxSpeed_mps ||
-          !std::isfinite(t.amplitude_db) || std::abs(t.amplitude_db) > limits::kMaxLevel_dB || std::abs(t.elevation_rad) > 1.58) {
+      // Written so that NaN fails every one.
+      if (!(t.range_m >= 0.0 && t.range_m <= limits::kMaxRange_m) || !(std::abs(t.azimuth_rad) <= limits::kMaxAzimuth_rad) ||
+          !(std::abs(t.range_rate_mps) <= limits::kMaxSpeed_mps) || !(std::abs(t.amplitude_db) <= limits::kMaxLevel_dB) ||
+          !(std::abs(t.elevation_rad) <= 1.58)) {
         throw InputError(log_.string(), topic,
                          fmt::format("a return at {:.6f} s beyond the limits of schemas/limits.md (range {}, azimuth {}, "
                                      "elevation {}, doppler_velocity {}, amplitude {})",
@@ -631,12 +648,21 @@ class BoxStream {
 
   void add(std::size_t object, const LoggedBox& box) {
     const std::pair<std::int64_t, std::size_t> key{box.t_ns, object};
-    if (key <= written_) {
+    const std::string& id = survey_.objects[object].id;
+    if (!(box.length_m > 0.0f && box.length_m <= limits::kMaxSize_m && box.width_m > 0.0f && box.width_m <= limits::kMaxSize_m)) {
       throw InputError(log_.string(), mapping_.objects_source(),
-                       fmt::format("object '{}''s box stamped {} ns comes {:.3f} s after one stamped {} ns: the import puts "
-                                   "boxes in order within {} s",
-                                   survey_.objects[object].id, box.t_ns, seconds_since(written_.first, box.t_ns), written_.first,
-                                   kReorderWindow_ns / 1'000'000'000));
+                       fmt::format("entity '{}' at {} ns: a box of {} x {} m (each side in (0, {}] m)", id, box.t_ns, box.length_m,
+                                   box.width_m, limits::kMaxSize_m));
+    }
+    if (key == written_ || order_.count(key)) {
+      throw InputError(log_.string(), mapping_.objects_source(),
+                       fmt::format("entity '{}' twice at {:.6f} s", id, seconds_since(box.t_ns, t0_ns_)));
+    }
+    if (key < written_) {
+      throw InputError(log_.string(), mapping_.objects_source(),
+                       fmt::format("entity '{}''s box stamped {} ns comes after one stamped {} ns, {:.3f} s later: the import "
+                                   "puts the boxes in order within {} s",
+                                   id, box.t_ns, newest_ns_, seconds_since(newest_ns_, box.t_ns), kReorderWindow_ns / 1'000'000'000));
     }
     std::deque<LoggedBox>& q = pending_[object];
     // An object's boxes in time order (its own are rarely out of order: a sorted insert).
@@ -713,7 +739,11 @@ std::pair<Recording, std::size_t> import_log(const fs::path& log, const DatasetI
   for (std::size_t s = 0; s < rec.sensors.size(); ++s) {
     const MappedSensor& mapped = mapping.sensors[s];
     const Histogram& steps = survey.scan_steps_us[s];
-    rec.sensors[s].cycle_time_s = mapped.cycle_time_s.value_or(steps.empty() ? 0.05 : steps.median() / 1e6);
+    if (!mapped.cycle_time_s && steps.empty()) {
+      throw InputError(log.string(), mapped.topic, fmt::format("sensor '{}' has one scan: no step shows its cycle time (give the mapping's "
+                                                               "sensors[{}].cycle_time_s)", mapped.sensor.id, s));
+    }
+    rec.sensors[s].cycle_time_s = mapped.cycle_time_s.value_or(steps.median() / 1e6);
     if (!(rec.sensors[s].cycle_time_s > 0.0 && rec.sensors[s].cycle_time_s <= limits::kMaxCycleTime_s)) {
       throw InputError(log.string(), mapped.topic, fmt::format("the scans' median step {} s is no cycle time", rec.sensors[s].cycle_time_s));
     }

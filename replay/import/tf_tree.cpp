@@ -31,7 +31,10 @@ void TfTree::add(const std::vector<ros2::TransformStamped>& transforms, bool is_
     Edge& edge = it->second;
     if (added) {
       edge.parent = tf.header.frame_id, edge.is_static = is_static;
-    } else if (edge.parent != tf.header.frame_id || edge.is_static != is_static) {
+    } else if (edge.parent == tf.header.frame_id && edge.is_static != is_static) {
+      throw TfError(fmt::format("the transform of '{}' in '{}' comes both on the static topic and the moving one", tf.child_frame_id,
+                                edge.parent));
+    } else if (edge.parent != tf.header.frame_id) {
       throw TfError(fmt::format("frame '{}' has two parents: '{}'{} and '{}'{}", tf.child_frame_id, edge.parent,
                                 edge.is_static ? " (static)" : "", tf.header.frame_id, is_static ? " (static)" : ""));
     }

@@ -548,9 +548,15 @@ void RecordingWriter::finish(const Recording& header, const std::map<std::string
   const fs::path old = parent_ / fmt::format(".{}.old.{}", name_.string(), ::getpid());
   const bool replacing = fs::exists(target_);
   if (replacing) fs::rename(target_, old);
-  fs::rename(temp_, target_);
+  try {
+    fs::rename(temp_, target_);
+  } catch (...) {
+    if (replacing) fs::rename(old, target_);  // the earlier recording back in place
+    throw;
+  }
   finished_ = true;
-  if (replacing) fs::remove_all(old);
+  std::error_code ignored;  // the new recording is in place: a leftover of the old one is no failure
+  if (replacing) fs::remove_all(old, ignored);
 }
 
 TargetColumns target_columns(const Recording& rec) {

@@ -172,7 +172,10 @@ std::size_t Scene::most_reflectors_present() const {
   for (const SceneObject& o : objects) {
     const auto n = static_cast<long long>(o.model.reflector_count());
     if (o.presence.empty()) always += static_cast<std::size_t>(n);
-    for (const TimeInterval& i : o.presence) changes.emplace_back(i.from_s, n), changes.emplace_back(i.until_s, -n);
+    for (const TimeInterval& i : o.presence) {
+      // A span that is not finite is no time at all (a streamed scene's "not yet present").
+      if (std::isfinite(i.from_s) && std::isfinite(i.until_s)) changes.emplace_back(i.from_s, n), changes.emplace_back(i.until_s, -n);
+    }
   }
   // At one time starts before ends: the intervals are closed.
   std::sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return a.first != b.first ? a.first < b.first : a.second > b.second; });

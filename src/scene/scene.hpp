@@ -59,7 +59,9 @@ struct Scene {
   int cycle_count() const;
   // The most reflection centres of objects present at one time (each object's presence closed):
   // what one cycle's ideal target list can hold, far below every object's together where the
-  // objects come and go (a dataset of snapshots: every frame's objects are one scene's).
+  // objects come and go (a dataset of snapshots: every frame's objects are one scene's). A span
+  // that is not finite counts as none: a streamed scene learns its objects' spans as it goes, and
+  // the buffers then grow to what the cycles need.
   std::size_t most_reflectors_present() const;
   double cycle_time_at(int cycle) const { return cycle * cycle_time_s; }
   // Sensor i's cycle time: its own (on its own clock) or the scene's.

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "common/json_reader.hpp"
 #include "sim/simulation.hpp"
@@ -135,6 +136,9 @@ TEST(Scene, TheMostReflectorsPresentAtOneTime) {
   EXPECT_EQ(scene.most_reflectors_present(), 25u);  // 24 + the pole (cars 1 and 4: 24 at 1 s as well)
   object("passenger_car", {{1.0, 1.0}});
   EXPECT_EQ(scene.most_reflectors_present(), 37u);  // three cars at 1 s, and the pole
+  const double inf = std::numeric_limits<double>::infinity();
+  object("passenger_car", {{inf, inf}});  // a streamed scene's "not yet present": no time at all
+  EXPECT_EQ(scene.most_reflectors_present(), 37u);
 }
 
 // A guard rail 3.5 m left of a road along x: its polyline runs against x so that its left (the

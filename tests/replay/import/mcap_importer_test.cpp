@@ -17,6 +17,8 @@
 
 #include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
+#include "fuzz/mcap_targets.hpp"
+#include "io/mcap_writer.hpp"
 #include "io/recording.hpp"
 #include "refusal.hpp"
 #include "replay/import/dataset_importer.hpp"
@@ -240,7 +242,7 @@ TEST_F(McapImport, StreamedToDiskTheSameFilesAndLateScansPutInOrder) {
   const fs::path later = log_of(dir, "zstd", "later", "radarscan", "odometry", "scene", "--scan-delay-ms 3000");
   options.mapping = mapping_;
   const std::string m = refusal_of([&] { import_mcap_to(later, options, dir_ / "later"); });
-  EXPECT_NE(m.find("the import puts scans in order within 2 s"), std::string::npos) << m;
+  EXPECT_NE(m.find("the import puts the radars' scans in order within 2 s"), std::string::npos) << m;
   EXPECT_FALSE(fs::exists(dir_ / "later"));  // nothing half-written
 }
 
@@ -282,6 +284,12 @@ TEST_F(McapImport, WhatIsNotThereOrNotAsMappedIsRefusedByName) {
   options.mapping = write_file("swapped.json", mapping);
   m = refusal_of([&] { import_mcap(log, options); });
   EXPECT_NE(m.find("schema 'nav_msgs/msg/Odometry' in 'cdr': the mapping takes radar_msgs/msg/RadarScan"), std::string::npos) << m;
+  // A boxes topic the log does not have: refused, not an import without objects.
+  mapping = testing::file_bytes(mapping_);
+  mapping.replace(mapping.find("/annotations"), 12, "/annotation");
+  options.mapping = write_file("no_boxes.json", mapping);
+  m = refusal_of([&] { import_mcap(log, options); });
+  EXPECT_NE(m.find("/annotation: no messages on the objects topic"), std::string::npos) << m;
   // A mapping of another format.
   options.mapping = write_file("bad.json", R"({"format": "rcsim-recording", "version": 1})");
   EXPECT_NE(refusal_of([&] { import_mcap(log, options); }).find("bad.json"), std::string::npos);
@@ -306,6 +314,55 @@ TEST_F(McapImport, DamagedLogsAreRefusedNamingTheRecordAndOffset) {
   EXPECT_NE(m.find("flipped.mcap"), std::string::npos) << m;
   EXPECT_NE(m.find("Chunk at byte "), std::string::npos) << m;
   EXPECT_NE(m.find("CRC-32"), std::string::npos) << m;
+}
+
+// Logs that break the rules in one message each, written with rcsim's MCAP writer and the fuzz
+// seeds' hand-laid CDR: each refused naming what is wrong, no recording written.
+TEST(McapImportRules, OneBadMessageIsRefusedByName) {
+  const fs::path dir = rcsim::fuzz::fresh_dir("mcap_rules");
+  rcsim::fuzz::write_file(dir / "mapping.json", rcsim::fuzz::kMcapMapping);
+  DatasetImportOptions options;
+  options.mapping = dir / "mapping.json";
+  // 10 scans at 20 Hz, the ego and a box at 10 Hz; `bad` rewrites scan k's bytes.
+  const auto log = [&](const std::string& name, const std::function<std::string(int, std::string)>& bad) {
+    std::ostringstream out;
+    mcap::Writer writer(out, "ros2");
+    const auto scan = writer.add_channel("/radar/front/scan", "cdr", writer.add_schema("radar_msgs/msg/RadarScan", "ros2msg", ""));
+    const auto odom = writer.add_channel("/odom", "cdr", writer.add_schema("nav_msgs/msg/Odometry", "ros2msg", ""));
+    const auto scene = writer.add_channel("/annotations", "json", writer.add_schema("foxglove.SceneUpdate", "jsonschema", "{}"));
+    const std::int64_t t0_ns = 1'700'000'000'000'000'000;
+    for (int k = 0; k < 10; ++k) {
+      const std::int64_t t_ns = t0_ns + k * 50'000'000;
+      if (k % 2 == 0) {
+        writer.write_message(odom, static_cast<std::uint64_t>(t_ns), rcsim::fuzz::mcap_seed::odometry(t_ns, 0.05 * k));
+        writer.write_message(scene, static_cast<std::uint64_t>(t_ns), rcsim::fuzz::mcap_seed::scene_update(t_ns));
+      }
+      writer.write_message(scan, static_cast<std::uint64_t>(t_ns), bad(k, rcsim::fuzz::mcap_seed::radar_scan(t_ns, 0.05 * k)));
+    }
+    writer.finish();
+    rcsim::fuzz::write_file(dir / name, out.str());
+    return dir / name;
+  };
+  const auto refusal = [&](const fs::path& path) { return refusal_of([&] { import_mcap_to(path, options, dir / "out"); }); };
+  EXPECT_NO_THROW(import_mcap_to(log("good.mcap", [](int, std::string b) { return b; }), options, dir / "out"));
+  const std::string good = testing::file_bytes(dir / "out" / "targets.csv");
+  // Scan 4 stamped as scan 3: two scans of the radar at one time.
+  const std::string twice = refusal(log("twice.mcap", [](int k, std::string b) {
+    return k == 4 ? rcsim::fuzz::mcap_seed::radar_scan(1'700'000'000'000'000'000 + 3 * 50'000'000, 0.0) : b;
+  }));
+  EXPECT_NE(twice.find("two scans stamped 0.150000000 s after the log's start"), std::string::npos) << twice;
+  // A radial speed that is NaN: the first return's doppler_velocity, at byte 40 (the encapsulation
+  // 4, the stamp 8, the frame "front" 4 + 6 + 2 of padding, the returns' count 4, then 12 into it).
+  const std::string nan = refusal(log("nan.mcap", [](int k, std::string b) {
+    if (k == 2) {
+      const float v = std::nanf("");
+      std::memcpy(b.data() + 4 + 8 + 4 + 6 + 2 + 4 + 12, &v, sizeof v);
+    }
+    return b;
+  }));
+  EXPECT_NE(nan.find("beyond the limits of schemas/limits.md"), std::string::npos) << nan;
+  EXPECT_NE(nan.find("doppler_velocity nan"), std::string::npos) << nan;
+  EXPECT_EQ(testing::file_bytes(dir / "out" / "targets.csv"), good) << "the earlier recording stays as it was";
 }
 
 }  // namespace
