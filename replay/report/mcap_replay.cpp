@@ -86,7 +86,7 @@ struct CycleBlock {
 class McapReplayWriter {
  public:
   McapReplayWriter(ReportDatabase& db, std::int64_t run_id, std::ostream& out)
-      : db_(db), run_id_(run_id), run_(report::load_run(db, run_id)), writer_(out) {
+      : db_(db), run_id_(run_id), run_(report::load_run(db, run_id)), writer_(out, "", mcap::Compression::zstd) {
     scene_ = writer_.add_schema("foxglove.SceneUpdate", "jsonschema", foxglove::scene_update_schema());
     transform_ = writer_.add_schema("foxglove.FrameTransform", "jsonschema", foxglove::frame_transform_schema());
     figures_ = writer_.add_schema("rcsim.CycleFigures", "jsonschema", cycle_figures_schema());

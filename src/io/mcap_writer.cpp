@@ -1,6 +1,7 @@
 #include "io/mcap_writer.hpp"
 
 #include <zlib.h>
+#include <zstd.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -66,7 +67,7 @@ std::uint32_t crc32_of(const std::string& bytes) {
       ::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size())));
 }
 
-Writer::Writer(std::ostream& out, const std::string& profile) : out_(out) {
+Writer::Writer(std::ostream& out, const std::string& profile, Compression compression) : out_(out), compression_(compression) {
   out_.write(reinterpret_cast<const char*>(kMagic), sizeof kMagic);
   offset_ = sizeof kMagic;
   std::string header;
@@ -124,10 +125,18 @@ void Writer::flush_chunk() {
   put_u64(chunk, chunk_end_ns_);
   put_u64(chunk, chunk_records_.size());  // uncompressed size
   put_u32(chunk, crc32_of(chunk_records_));
-  put_string(chunk, "");                  // compression: none
-  put_u64(chunk, chunk_records_.size());  // records: uint64 length, then the records
-  chunk += chunk_records_;
-  ChunkIndexRecord index{chunk_start_ns_, chunk_end_ns_, offset_, 0, {}, 0, chunk_records_.size()};
+  std::string stored;  // the records as stored
+  if (compression_ == Compression::zstd) {
+    stored.resize(ZSTD_compressBound(chunk_records_.size()));
+    const std::size_t n = ZSTD_compress(stored.data(), stored.size(), chunk_records_.data(), chunk_records_.size(), 1);
+    if (ZSTD_isError(n) != 0) throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(n));
+    stored.resize(n);
+  }
+  const std::string& records = compression_ == Compression::zstd ? stored : chunk_records_;
+  put_string(chunk, compression_ == Compression::zstd ? "zstd" : "");
+  put_u64(chunk, records.size());  // records: uint64 length, then the records
+  chunk += records;
+  ChunkIndexRecord index{chunk_start_ns_, chunk_end_ns_, offset_, 0, {}, 0, chunk_records_.size(), records.size()};
   write_record(Opcode::chunk, chunk);
   index.length = offset_ - index.offset;
   const std::uint64_t indexes_start = offset_;
@@ -191,8 +200,8 @@ std::uint64_t Writer::finish() {
     put_u32(c, static_cast<std::uint32_t>(offsets.size()));
     c += offsets;
     put_u64(c, ci.message_index_length);
-    put_string(c, "");  // compression
-    put_u64(c, ci.size);  // compressed size: as uncompressed
+    put_string(c, compression_ == Compression::zstd ? "zstd" : "");
+    put_u64(c, ci.compressed_size);
     put_u64(c, ci.size);
     chunk_index_records.push_back(c);
   }

@@ -17,7 +17,7 @@ const std::map<std::string, std::string> kSimulatedFormat = {{"format", "rcsim-m
 
 }  // namespace
 
-McapTargetListWriter::McapTargetListWriter(std::ostream& out, const Scene& scene, ListLevel level) : level_(level), writer_(out) {
+McapTargetListWriter::McapTargetListWriter(std::ostream& out, const Scene& scene, ListLevel level) : level_(level), writer_(out, "", mcap::Compression::zstd) {
   const auto scene_schema = writer_.add_schema("foxglove.SceneUpdate", "jsonschema", foxglove::scene_update_schema());
   const auto transform_schema = writer_.add_schema("foxglove.FrameTransform", "jsonschema", foxglove::frame_transform_schema());
   tf_channel_ = writer_.add_channel("/tf", "json", transform_schema, kSimulatedFormat);

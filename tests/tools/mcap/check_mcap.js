@@ -8,14 +8,23 @@ const fs = require("fs");
 const { McapIndexedReader, McapStreamReader } = require("@mcap/core");
 const foxglove = require("@foxglove/schemas/jsonschema");
 const Ajv = require("ajv");
+const zstd = require("@foxglove/wasm-zstd");
+const lz4 = require("lz4js");
+
+// The chunk compressions rcsim reads (and writes: zstd), as Foxglove's own reader takes them.
+const decompressHandlers = {
+  zstd: (data, size) => zstd.decompress(data, Number(size)),
+  lz4: (data) => Buffer.from(lz4.decompress(data)),
+};
 
 async function main() {
+  await zstd.isLoaded;
   const bytes = fs.readFileSync(process.argv[2]);
   const readable = {
     size: async () => BigInt(bytes.length),
     read: async (offset, length) => bytes.subarray(Number(offset), Number(offset + length)),
   };
-  const reader = await McapIndexedReader.Initialize({ readable });
+  const reader = await McapIndexedReader.Initialize({ readable, decompressHandlers });
   const ajv = new Ajv({ strict: false, allErrors: false });
   const validators = new Map();
   const problems = [];
@@ -47,7 +56,7 @@ async function main() {
       problems.push(`${channel.topic}: ${ajv.errorsText(validate.errors)}`);
     }
   }
-  const stream = new McapStreamReader({ validateCrcs: true });
+  const stream = new McapStreamReader({ validateCrcs: true, decompressHandlers });
   stream.append(bytes);
   let streamed = 0;
   for (let record; (record = stream.nextRecord()); ) if (record.type === "Message") streamed++;
