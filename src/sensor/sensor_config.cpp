@@ -220,7 +220,7 @@ AntennaGeometry parse_antenna(const JsonField& antenna, const FieldOfView& fov) 
 
 ResolutionCell parse_resolution(const JsonField& res) {
   ResolutionCell out;
-  res.expect_only({"range_cell_m", "range_rate_cell_mps", "azimuth_cell_deg", "unambiguous_range_rate_mps"});
+  res.expect_only({"range_cell_m", "range_rate_cell_mps", "azimuth_cell_deg", "unambiguous_range_rate_mps", "spectral_window"});
   out.range_cell_m = positive(res, "range_cell_m");
   out.range_rate_cell_mps = positive(res, "range_rate_cell_mps");
   if (res.has("azimuth_cell_deg")) out.azimuth_cell_rad = deg_to_rad(positive(res, "azimuth_cell_deg", 30.0));
@@ -233,6 +233,14 @@ ResolutionCell parse_resolution(const JsonField& res) {
     }
     out.unambiguous_min_mps = interval.first;
     out.unambiguous_max_mps = interval.second;
+  }
+  if (res.has("spectral_window")) {
+    const std::string window = res.string("spectral_window");
+    if (window == "hann") {
+      out.window = SpectralWindow::hann;
+    } else if (window != "none") {
+      res.fail("spectral_window", fmt::format("must be \"none\" or \"hann\", got \"{}\"", window));
+    }
   }
   return out;
 }

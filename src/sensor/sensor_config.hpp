@@ -66,6 +66,10 @@ struct AntennaGeometry {
   double amplitude_pattern_exponent = 1.0;
 };
 
+// The window of the range and Doppler FFTs, whose main lobe spreads a strong return into the
+// cells beside its own (sim/spectral_leakage.hpp); none: each return in its own cell only.
+enum class SpectralWindow { none, hann };
+
 struct ResolutionCell {
   double range_cell_m = 0.30;
   double range_rate_cell_mps = 0.5;
@@ -76,6 +80,7 @@ struct ResolutionCell {
   // The unambiguous range-rate interval [min, max): measured radial speeds are wrapped into it
   // (Doppler aliasing); min == max: no aliasing.
   double unambiguous_min_mps = 0.0, unambiguous_max_mps = 0.0;
+  SpectralWindow window = SpectralWindow::none;
   bool aliases_range_rate() const { return unambiguous_max_mps > unambiguous_min_mps; }
   bool resolves_azimuth() const { return azimuth_cell_rad > 0.0; }
 };

@@ -11,6 +11,7 @@
 #include "sim/measurement_noise.hpp"
 #include "sim/monopulse.hpp"
 #include "sim/resolution_cells.hpp"
+#include "sim/spectral_leakage.hpp"
 #include "sim/visibility.hpp"
 
 namespace rcsim {
@@ -100,6 +101,8 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   } else {
     estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
   }
+  // detections => plus their leakage into the cells beside theirs (the FFTs' window)   (imaging-radar.md)
+  add_spectral_leakage(config.resolution, config.amplitude.detection_threshold_db, state.detections);
   // detections => the local maxima of the range/range-rate map (CFAR peak search) (detection.hpp)
   if (config.detection.local_maxima_only) keep_local_maxima(config.resolution, state.detections, state.local_maxima);
   // detections => the strongest beam of each range-Doppler cell, where the radar reports one  (imaging-radar.md)

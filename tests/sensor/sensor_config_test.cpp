@@ -23,6 +23,7 @@ TEST(SensorConfigImaging, TheAstyxProfileIsAnArrayThatResolvesAzimuth) {
   EXPECT_EQ(c.extended_objects.max_pieces_per_face, 128);
   EXPECT_EQ(c.extended_objects.surface, ExtendedObjects::Surface::box);
   EXPECT_DOUBLE_EQ(c.extended_objects.box_side_inset_m, 0.3);
+  EXPECT_EQ(c.resolution.window, SpectralWindow::hann);
   EXPECT_GT(c.background.targets_per_cycle, 1000.0);  // more than the Knuth Poisson draw held
   // The paper's sensor is none of that.
   const SensorConfig srr24 = builtin_sensor_config("srr24");
@@ -31,6 +32,7 @@ TEST(SensorConfigImaging, TheAstyxProfileIsAnArrayThatResolvesAzimuth) {
   EXPECT_EQ(srr24.amplitude.unit, AmplitudeUnit::snr_db);
   EXPECT_EQ(srr24.extended_objects.max_pieces_per_face, 16);
   EXPECT_EQ(srr24.extended_objects.surface, ExtendedObjects::Surface::model_faces);
+  EXPECT_EQ(srr24.resolution.window, SpectralWindow::none);
 }
 
 TEST(SensorConfigImaging, ContradictionsAreRefusedNamingTheField) {
@@ -52,6 +54,9 @@ TEST(SensorConfigImaging, ContradictionsAreRefusedNamingTheField) {
   EXPECT_NE(testing::sensor_config_error(doc).find("resolution.unambiguous_range_rate_mps"), std::string::npos);
   doc["resolution"]["unambiguous_range_rate_mps"] = {-5.0};
   EXPECT_NE(testing::sensor_config_error(doc).find("two numbers"), std::string::npos);
+  doc = astyx;
+  doc["resolution"]["spectral_window"] = "hamming";  // not one we model
+  EXPECT_NE(testing::sensor_config_error(doc).find("resolution.spectral_window"), std::string::npos);
   doc = astyx;
   doc["amplitude"]["range_exponent"] = -0.5;
   EXPECT_NE(testing::sensor_config_error(doc).find("amplitude.range_exponent"), std::string::npos);
