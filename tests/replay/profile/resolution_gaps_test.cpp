@@ -42,7 +42,7 @@ TEST(ProfileResolutionGaps, ALatticeGivesItsCellsWithThePairsCountedByHand) {
   EXPECT_TRUE(cells.found);
   EXPECT_DOUBLE_EQ(cells.range_m, 1.5);
   EXPECT_DOUBLE_EQ(cells.range_rate_mps, 0.25);
-  ASSERT_EQ(values.size(), 3u);
+  ASSERT_EQ(values.size(), 4u);
   EXPECT_EQ(values[0].field, "resolution.range_cell_m");
   EXPECT_DOUBLE_EQ(values[0].value.get<double>(), 1.5);
   EXPECT_EQ(values[0].support, 120);
@@ -57,6 +57,10 @@ TEST(ProfileResolutionGaps, ALatticeGivesItsCellsWithThePairsCountedByHand) {
   EXPECT_NE(values[2].evidence.find("not shown: among 60 detections, 0 pair(s) inside one range-Doppler cell at one elevation"),
             std::string::npos)
       << values[2].evidence;
+  // Neighbours a cell apart lie 0.01 rad (0.57 deg) apart in azimuth: no twins, no leakage.
+  EXPECT_EQ(values[3].field, "resolution.spectral_window");
+  EXPECT_EQ(values[3].value, "none");
+  EXPECT_EQ(values[3].evidence.substr(0, 40), "0.0 % of the detections have a twin one ");
   // Two histograms over 4 cells in 60 bins, the cell marked: the 1.5-m gaps (48) in the bin at 1.5 m.
   ASSERT_EQ(figures.size(), 2u);
   EXPECT_DOUBLE_EQ(figures[0].bin_width, 0.1);
@@ -81,12 +85,31 @@ TEST(ProfileResolutionGaps, TwoBeamsOfOneCellDoNotCloseTheRangeRateGap) {
   const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
   EXPECT_DOUBLE_EQ(cells.range_m, 1.5);
   EXPECT_DOUBLE_EQ(cells.range_rate_mps, 0.25);
-  ASSERT_EQ(values.size(), 3u);
+  ASSERT_EQ(values.size(), 4u);
   // 3 pairs among 63 detections, 4.76 %, but fewer than the 20 a gap needs: the base's.
   EXPECT_EQ(values[2].source, ValueSource::base);
   EXPECT_NE(values[2].evidence.find("not shown: among 63 detections, 3 pair(s) inside one range-Doppler cell at one elevation (4.76 %"),
             std::string::npos)
       << values[2].evidence;
+}
+
+TEST(ProfileResolutionGaps, TwinsACellAwayAtOneAzimuthShowALeakingWindow) {
+  // The lattice at one azimuth: 15 of each cycle's 20 detections have a twin one range-rate cell
+  // further (j < 3), 16 one range cell further (i < 4): 75 % and 80 %, over the 5 % of a leak.
+  DetectionPool pool = lattice(3);
+  for (PooledCycle& c : pool.cycles) {
+    for (PooledDetection& d : c.detections) d.azimuth_rad = 0.2;
+  }
+  Cells cells;
+  std::vector<DerivationFigure> figures;
+  const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
+  ASSERT_EQ(values.size(), 4u);
+  EXPECT_EQ(values[3].source, ValueSource::derived);
+  EXPECT_EQ(values[3].value, "hann");
+  EXPECT_EQ(values[3].support, 60);
+  EXPECT_NE(values[3].evidence.find("75.0 % of the detections have a twin one range-rate cell further at their range and azimuth, 80.0 % one range cell further"),
+            std::string::npos)
+      << values[3].evidence;
 }
 
 // An array that resolves azimuth: every cycle, the cell (10 m, -1 m/s) holds a second beam
@@ -110,7 +133,7 @@ TEST(ProfileResolutionGaps, BeamsOfOneCellAtOneElevationShowTheAzimuthCellAtTwoE
   Cells cells;
   std::vector<DerivationFigure> figures;
   const std::vector<DerivedValue> azimuth = derive_resolution(with_twins(0.0175, 0.0), cells, figures);
-  ASSERT_EQ(azimuth.size(), 3u);
+  ASSERT_EQ(azimuth.size(), 4u);
   EXPECT_EQ(azimuth[2].source, ValueSource::derived) << azimuth[2].evidence;
   EXPECT_DOUBLE_EQ(azimuth[2].value.get<double>(), 1.0);
   EXPECT_EQ(azimuth[2].support, 30);
