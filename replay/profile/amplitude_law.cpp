@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <algorithm>
 #include <map>
 
 #include "common/angles.hpp"
@@ -18,6 +19,11 @@ namespace {
 
 // The monopulse pair must stay invertible (eq. (7)) this far beyond the view field.
 constexpr double kInvertibleMarginDeg = 2.0;
+
+// The widest spacing, in 0.05 steps, that keeps eq. (7) invertible that far beyond the view field.
+double max_invertible_spacing(double azimuth_half_deg) {
+  return std::floor(20.0 / (2.0 * std::sin(deg_to_rad(azimuth_half_deg + kInvertibleMarginDeg)))) / 20.0;
+}
 
 struct LawFit {
   double constant_db = 0.0, range_exponent = 0.0, residual_rms_db = 0.0;
@@ -99,6 +105,123 @@ void law_figures(const LawFit& fit, const AntennaGeometry& geometry, const std::
                      {{"bins", true, means}, {"pattern", false, pattern}}});
 }
 
+// The antenna pattern of a radar whose amplitude has no cross-section beside it (a level on its
+// own scale, or an SNR without RCS): the targets differ, but their mix differs little with
+// azimuth. The 90 % quantile of the amplitude per bin of range (25 % wide) and azimuth (0.05 rad,
+// at least 30 detections) is split into a part of range and a part of azimuth, y(r, a) = L(r) +
+// P(a) by alternating least squares; P folded over |azimuth| (bins of at least 200 detections) is
+// what eq. (6)'s two-way pattern must follow, up to a constant.
+struct AzimuthProfile {
+  std::vector<std::pair<double, double>> points;  // |azimuth| / rad, P / dB
+  int cells = 0;
+};
+constexpr double kPatternQuantile = 0.9;
+constexpr double kPatternAzimuthBinRad = 0.05;
+
+AzimuthProfile azimuth_profile(const DetectionPool& pool) {
+  std::map<std::pair<int, int>, std::vector<double>> by_cell;
+  const double log_step = std::log(1.25);
+  for (const PooledCycle& c : pool.cycles) {
+    for (const PooledDetection& d : c.detections) {
+      const int r = static_cast<int>(std::floor(std::log(std::max(d.range_m, 0.1)) / log_step));
+      by_cell[{r, static_cast<int>(std::floor(d.azimuth_rad / kPatternAzimuthBinRad))}].push_back(d.amplitude_db);
+    }
+  }
+  struct Cell {
+    int r, a;
+    double q_db;
+    std::size_t n;
+  };
+  std::vector<Cell> cells;
+  for (auto& [key, v] : by_cell) {
+    if (v.size() < 30) continue;
+    const auto k = static_cast<std::size_t>(kPatternQuantile * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    cells.push_back({key.first, key.second, v[k], v.size()});
+  }
+  std::map<int, double> range_part, azimuth_part;
+  for (const Cell& c : cells) range_part[c.r] = 0.0, azimuth_part[c.a] = 0.0;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    std::map<int, std::pair<double, int>> sums;
+    for (const Cell& c : cells) sums[c.r].first += c.q_db - azimuth_part[c.a], ++sums[c.r].second;
+    for (auto& [r, v] : range_part) v = sums[r].first / sums[r].second;
+    sums.clear();
+    for (const Cell& c : cells) sums[c.a].first += c.q_db - range_part[c.r], ++sums[c.a].second;
+    for (auto& [a, v] : azimuth_part) v = sums[a].first / sums[a].second;
+  }
+  std::map<int, std::size_t> detections_in;
+  for (const Cell& c : cells) detections_in[c.a] += c.n;
+  std::map<int, std::pair<double, int>> folded;  // by |bin centre| in bins (k + 0.5 -> k for k >= 0, -k - 1 for k < 0)
+  for (const auto& [a, part] : azimuth_part) {
+    if (detections_in[a] < 200) continue;
+    auto& f = folded[a >= 0 ? a : -a - 1];
+    f.first += part, ++f.second;
+  }
+  AzimuthProfile out;
+  out.cells = static_cast<int>(cells.size());
+  for (const auto& [k, f] : folded) out.points.emplace_back((k + 0.5) * kPatternAzimuthBinRad, f.first / f.second);
+  return out;
+}
+
+// The RMS about their mean of the differences P - pattern, and that mean.
+std::pair<double, double> offset_residual(const std::vector<std::pair<double, double>>& points, const std::vector<double>& pattern) {
+  double mean = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) mean += points[i].second - pattern[i];
+  mean /= static_cast<double>(points.size());
+  double ss = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) ss += std::pow(points[i].second - pattern[i] - mean, 2);
+  return {std::sqrt(ss / static_cast<double>(points.size())), mean};
+}
+
+// Eq. (6)'s pattern (dipole 0.3-1.5, spacing 0.1 up to max_spacing wavelengths) that the azimuth
+// part follows best, or nothing where fewer than 5 azimuth bins show it.
+std::vector<DerivedValue> derive_relative_pattern(const DetectionPool& pool, const nlohmann::json& base, double max_spacing,
+                                                  std::vector<DerivationFigure>& figures) {
+  const AzimuthProfile profile = azimuth_profile(pool);
+  const std::vector<std::string> fields{"antenna.dipole_length_wavelengths", "antenna.element_spacing_wavelengths"};
+  if (profile.points.size() < 5) {
+    const std::string why = fmt::format("too few azimuth bins with 200 detections ({}) to show the pattern", profile.points.size());
+    return {{fields[0], nullptr, ValueSource::base, why, 0}, {fields[1], nullptr, ValueSource::base, why, 0}};
+  }
+  AntennaGeometry geometry;
+  geometry.amplitude_pattern_exponent = base.value("/antenna/amplitude_pattern_exponent"_json_pointer, 1.0);
+  std::vector<double> azimuth_rad;
+  for (const auto& p : profile.points) azimuth_rad.push_back(p.first);
+  double best_rms = INFINITY, best_offset = 0.0;
+  for (int spacing_20 = 2; spacing_20 <= static_cast<int>(std::floor(max_spacing * 20.0 + 1e-9)); ++spacing_20) {
+    for (int length_20 = 6; length_20 <= 30; ++length_20) {
+      AntennaGeometry candidate = geometry;
+      candidate.dipole_length_wavelengths = 0.05 * length_20, candidate.element_spacing_wavelengths = 0.05 * spacing_20;
+      const auto [rms, offset] = offset_residual(profile.points, pattern_db(azimuth_rad, candidate));
+      if (rms < best_rms) best_rms = rms, best_offset = offset, geometry.dipole_length_wavelengths = candidate.dipole_length_wavelengths,
+                          geometry.element_spacing_wavelengths = candidate.element_spacing_wavelengths;
+    }
+  }
+  const auto [flat_rms, flat_offset] = offset_residual(profile.points, std::vector<double>(profile.points.size(), 0.0));
+  const MonopulseAntenna antenna(geometry);
+  const auto pattern_at = [&](double a_rad) { return amplitude_to_db(std::pow(antenna.sum_magnitude(a_rad), geometry.amplitude_pattern_exponent)); };
+  std::vector<std::pair<double, double>> data, line;
+  for (const auto& [a, p] : profile.points) data.emplace_back(rad_to_deg(a), p - best_offset), line.emplace_back(rad_to_deg(a), pattern_at(a));
+  figures.push_back({"The amplitude's azimuth part", "|azimuth| / deg", "dB",
+                     fmt::format("the 90 % quantile of the amplitude per bin of range and azimuth, less its range part (alternating "
+                                 "least squares over {} bins); the line: eq. (6)'s two-way pattern, dipole {:.2f}, spacing {:.2f} wavelengths",
+                                 profile.cells, geometry.dipole_length_wavelengths, geometry.element_spacing_wavelengths),
+                     {{"azimuth bins", true, data}, {"pattern", false, line}}});
+  const bool on_bound = geometry.dipole_length_wavelengths <= 0.3 + 1e-9 || geometry.element_spacing_wavelengths <= 0.1 + 1e-9;
+  const std::string evidence = fmt::format(
+      "no cross-section beside the amplitude: the 90 % quantile per bin of range and azimuth ({} bins), its azimuth part over "
+      "{} bins of |azimuth| follows eq. (6)'s pattern within {:.2f} dB RMS (flat: {:.2f} dB): {:.1f} dB at 30 deg, {:.1f} dB at "
+      "60 deg{}",
+      profile.cells, profile.points.size(), best_rms, flat_rms, pattern_at(deg_to_rad(30.0)), pattern_at(deg_to_rad(60.0)),
+      on_bound ? "; on the search's bound (0.3 and 0.1 wavelengths): the flattest pattern eq. (6) has" : "");
+  const auto support = static_cast<long long>(pool.detections);
+  return {{fields[0], round_to(geometry.dipole_length_wavelengths, 0.05), ValueSource::derived, evidence, support},
+          {fields[1], round_to(geometry.element_spacing_wavelengths, 0.05), ValueSource::derived,
+           fmt::format("fitted with the dipole length, 0.1 to {:.2f} (0.05 steps) so that eq. (7) stays invertible {:.0f} deg beyond "
+                       "the view field", max_spacing, kInvertibleMarginDeg),
+           support}};
+}
+
 std::vector<DerivedValue> derive_threshold(const std::vector<double>& sorted_db, AmplitudeUnit unit) {
   const double q_db = quantile_of_sorted(sorted_db, 0.001);
   const double threshold_db = std::floor(q_db * 2.0) / 2.0;
@@ -149,14 +272,16 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
                                   "rcsim calibrate --real-drive (the count per object against range)"
                                 : "the recordings hold no rcs_dbsm beside the SNR: the law cannot be told from the targets' "
                                   "cross-sections (rcsim calibrate --real-drive fits it)";
-    for (const std::string& field : law_fields) values.push_back({field, nullptr, ValueSource::base, why, 0});
+    for (std::size_t k = 0; k < 2; ++k) values.push_back({law_fields[k], nullptr, ValueSource::base, why, 0});
+    const double max_spacing = max_invertible_spacing(azimuth_half_deg);
+    for (DerivedValue& v : derive_relative_pattern(pool, base, max_spacing, figures)) values.push_back(std::move(v));
     return values;
   }
   // The radar equation with eq. (6)'s pattern: the dipole length and the spacing (as wide as keeps
   // eq. (7) invertible over the view field) whose pattern leaves the least residual per azimuth bin.
   AntennaGeometry geometry;
   geometry.amplitude_pattern_exponent = base.value("/antenna/amplitude_pattern_exponent"_json_pointer, 2.0);
-  const double max_spacing = std::floor(20.0 / (2.0 * std::sin(deg_to_rad(azimuth_half_deg + kInvertibleMarginDeg)))) / 20.0;
+  const double max_spacing = max_invertible_spacing(azimuth_half_deg);
   LawFit best;
   double best_score = INFINITY, best_length = 0.0, best_spacing = 0.0;
   for (double spacing = 0.5; spacing <= max_spacing + 1e-9; spacing += 0.05) {

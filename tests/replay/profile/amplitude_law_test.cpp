@@ -62,11 +62,14 @@ TEST(ProfileAmplitudeLaw, TheThresholdIsTheHistogramsStartToHalfADecibelBelow) {
   EXPECT_EQ(values[0].support, 1001);
   EXPECT_EQ(values[0].evidence,
             "the amplitude histogram starts abruptly: lowest 14.30 dB, 0.1 % quantile 14.31, 1 % 14.40; 7.1 % within 1 dB above");
-  // A level on the radar's own scale cannot show the law: the four law values are the base's.
+  // A level on the radar's own scale cannot show the law: the law's two values are the base's; the
+  // pattern would show in the amplitude's azimuth part, but every detection lies at one azimuth.
   for (std::size_t i = 1; i < values.size(); ++i) {
     EXPECT_EQ(values[i].source, ValueSource::base) << values[i].field;
     EXPECT_TRUE(values[i].value.is_null()) << values[i].field;
-    EXPECT_NE(values[i].evidence.find("on the radar's own scale (relative_db)"), std::string::npos) << values[i].evidence;
+    EXPECT_NE(values[i].evidence.find(i < 3 ? "on the radar's own scale (relative_db)" : "too few azimuth bins with 200 detections (1)"),
+              std::string::npos)
+        << values[i].evidence;
   }
   EXPECT_EQ(values[1].field, "amplitude.snr_at_1m_for_1m2_db");
   EXPECT_EQ(values[4].field, "antenna.element_spacing_wavelengths");
@@ -117,6 +120,46 @@ TEST(ProfileAmplitudeLaw, AKnownRangeLawAndPatternComeBack) {
   ASSERT_EQ(figures.size(), 3u);
   EXPECT_EQ(figures[1].title, "SNR - RCS against range");
   EXPECT_EQ(figures[2].title, "The law's residual against azimuth");
+}
+
+TEST(ProfileAmplitudeLaw, APatternOnTheRadarsOwnScaleComesBackFromTheAmplitudesAzimuthPart) {
+  // A relative_db radar made with dipole 0.6 and spacing 0.4 wavelengths (exponent 2): at 8 ranges,
+  // one to a 25-% range bin, and 40 azimuths at the centres of the 0.05-rad bins over +-1 rad, 40
+  // detections each with cross-sections 0 to 19.5 dB: the 90 % quantile of each bin is the law at
+  // its range, plus the pattern at its azimuth, plus 17.5 dB. The range and azimuth parts separate
+  // exactly; the 20 folded bins of |azimuth| follow the pattern to rounding, and the search (spacing
+  // up to floor(20 / (2 sin 67 deg)) / 20 = 0.50 for a view of +-65 deg) finds it.
+  DetectionPool pool;
+  pool.amplitude_unit = AmplitudeUnit::relative_db;
+  pool.cycles.resize(1);
+  const double ranges_m[] = {5.0, 7.0, 10.0, 14.0, 20.0, 28.0, 40.0, 56.0};
+  for (const double range_m : ranges_m) {
+    for (int k = -20; k < 20; ++k) {
+      for (int i = 0; i < 40; ++i) {
+        PooledDetection d;
+        d.range_m = range_m, d.azimuth_rad = (k + 0.5) * 0.05;
+        d.amplitude_db = 90.0 - 15.0 * std::log10(range_m) + pattern_db(d.azimuth_rad, 0.6, 0.4) + 0.5 * i;
+        pool.cycles[0].detections.push_back(d);
+      }
+    }
+  }
+  pool.detections = static_cast<long long>(pool.cycles[0].detections.size());
+  std::vector<DerivationFigure> figures;
+  const std::vector<DerivedValue> values = derive_amplitude(pool, kBase, 65.0, figures);
+  ASSERT_EQ(values.size(), 5u);
+  EXPECT_EQ(values[2].source, ValueSource::base);  // the law: the base's
+  EXPECT_EQ(values[3].field, "antenna.dipole_length_wavelengths");
+  EXPECT_EQ(values[3].source, ValueSource::derived) << values[3].evidence;
+  EXPECT_NEAR(values[3].value.get<double>(), 0.6, 1e-9) << values[3].evidence;
+  EXPECT_NEAR(values[4].value.get<double>(), 0.4, 1e-9) << values[4].evidence;
+  EXPECT_EQ(values[3].support, 12800);
+  EXPECT_NE(values[3].evidence.find("(320 bins), its azimuth part over 20 bins of |azimuth| follows eq. (6)'s pattern within 0.00 dB RMS"),
+            std::string::npos)
+      << values[3].evidence;
+  EXPECT_EQ(values[3].evidence.find("bound"), std::string::npos) << values[3].evidence;
+  EXPECT_NE(values[4].evidence.find("0.1 to 0.50 (0.05 steps)"), std::string::npos) << values[4].evidence;
+  ASSERT_EQ(figures.size(), 2u);
+  EXPECT_EQ(figures[1].title, "The amplitude's azimuth part");
 }
 
 }  // namespace rcsim::replay::profile::amplitude_law_test
