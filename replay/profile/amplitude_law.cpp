@@ -2,6 +2,7 @@
 // (docs/sensor-profiles.md, aimotive_lrr: "least squares of SNR - RCS against log10 R and az²",
 // "the residual SNR against azimuth").
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -19,6 +20,11 @@ namespace {
 
 // The monopulse pair must stay invertible (eq. (7)) this far beyond the view field.
 constexpr double kInvertibleMarginDeg = 2.0;
+
+// The base's exponent n of A^phi = |H_sum|^n, 1 where it gives none (the paper's, schemas/sensor-config.md).
+double base_pattern_exponent(const nlohmann::json& base) {
+  return base.value("/antenna/amplitude_pattern_exponent"_json_pointer, 1.0);
+}
 
 // The widest spacing, in 0.05 steps, that keeps eq. (7) invertible that far beyond the view field.
 double max_invertible_spacing(double azimuth_half_deg) {
@@ -173,8 +179,10 @@ std::pair<double, double> offset_residual(const std::vector<std::pair<double, do
   return {std::sqrt(ss / static_cast<double>(points.size())), mean};
 }
 
-// Eq. (6)'s pattern (dipole 0.3-1.5, spacing 0.1 up to max_spacing wavelengths) that the azimuth
-// part follows best, or nothing where fewer than 5 azimuth bins show it.
+// Eq. (6)'s pattern (dipole 0.3-1.5, spacing up to max_spacing wavelengths) that the azimuth part
+// follows best, or nothing where fewer than 5 azimuth bins show it. The spacing from 0.1 for an
+// array that resolves azimuth (the base's resolution.azimuth_cell_deg: the pattern sets only the
+// amplitude), else from 0.5 (a monopulse pair's spacing also sets eq. (7)'s slope).
 std::vector<DerivedValue> derive_relative_pattern(const DetectionPool& pool, const nlohmann::json& base, double max_spacing,
                                                   std::vector<DerivationFigure>& figures) {
   const AzimuthProfile profile = azimuth_profile(pool);
@@ -184,11 +192,13 @@ std::vector<DerivedValue> derive_relative_pattern(const DetectionPool& pool, con
     return {{fields[0], nullptr, ValueSource::base, why, 0}, {fields[1], nullptr, ValueSource::base, why, 0}};
   }
   AntennaGeometry geometry;
-  geometry.amplitude_pattern_exponent = base.value("/antenna/amplitude_pattern_exponent"_json_pointer, 1.0);
+  geometry.amplitude_pattern_exponent = base_pattern_exponent(base);
+  const int min_spacing_20 = base.contains("/resolution/azimuth_cell_deg"_json_pointer) ? 2 : 10;
   std::vector<double> azimuth_rad;
   for (const auto& p : profile.points) azimuth_rad.push_back(p.first);
   double best_rms = INFINITY, best_offset = 0.0;
-  for (int spacing_20 = 2; spacing_20 <= static_cast<int>(std::floor(max_spacing * 20.0 + 1e-9)); ++spacing_20) {
+  const int max_spacing_20 = static_cast<int>(std::floor(max_spacing * 20.0 + 1e-9));
+  for (int spacing_20 = min_spacing_20; spacing_20 <= max_spacing_20; ++spacing_20) {
     for (int length_20 = 6; length_20 <= 30; ++length_20) {
       AntennaGeometry candidate = geometry;
       candidate.dipole_length_wavelengths = 0.05 * length_20, candidate.element_spacing_wavelengths = 0.05 * spacing_20;
@@ -207,18 +217,22 @@ std::vector<DerivedValue> derive_relative_pattern(const DetectionPool& pool, con
                                  "least squares over {} bins); the line: eq. (6)'s two-way pattern, dipole {:.2f}, spacing {:.2f} wavelengths",
                                  profile.cells, geometry.dipole_length_wavelengths, geometry.element_spacing_wavelengths),
                      {{"azimuth bins", true, data}, {"pattern", false, line}}});
-  const bool on_bound = geometry.dipole_length_wavelengths <= 0.3 + 1e-9 || geometry.element_spacing_wavelengths <= 0.1 + 1e-9;
+  std::vector<std::string> bounds;
+  if (geometry.dipole_length_wavelengths <= 0.3 + 1e-9) bounds.push_back("the shortest dipole, 0.3");
+  if (geometry.dipole_length_wavelengths >= 1.5 - 1e-9) bounds.push_back("the longest dipole, 1.5");
+  if (geometry.element_spacing_wavelengths <= 0.05 * min_spacing_20 + 1e-9) bounds.push_back(fmt::format("the narrowest spacing, {:.1f}", 0.05 * min_spacing_20));
+  if (geometry.element_spacing_wavelengths >= 0.05 * max_spacing_20 - 1e-9) bounds.push_back(fmt::format("the widest spacing, {:.2f}", 0.05 * max_spacing_20));
   const std::string evidence = fmt::format(
       "no cross-section beside the amplitude: the 90 % quantile per bin of range and azimuth ({} bins), its azimuth part over "
       "{} bins of |azimuth| follows eq. (6)'s pattern within {:.2f} dB RMS (flat: {:.2f} dB): {:.1f} dB at 30 deg, {:.1f} dB at "
       "60 deg{}",
       profile.cells, profile.points.size(), best_rms, flat_rms, pattern_at(deg_to_rad(30.0)), pattern_at(deg_to_rad(60.0)),
-      on_bound ? "; on the search's bound (0.3 and 0.1 wavelengths): the flattest pattern eq. (6) has" : "");
+      bounds.empty() ? "" : fmt::format("; on the search's bound ({} wavelengths): the optimum may lie beyond it", fmt::join(bounds, ", ")));
   const auto support = static_cast<long long>(pool.detections);
   return {{fields[0], round_to(geometry.dipole_length_wavelengths, 0.05), ValueSource::derived, evidence, support},
           {fields[1], round_to(geometry.element_spacing_wavelengths, 0.05), ValueSource::derived,
-           fmt::format("fitted with the dipole length, 0.1 to {:.2f} (0.05 steps) so that eq. (7) stays invertible {:.0f} deg beyond "
-                       "the view field", max_spacing, kInvertibleMarginDeg),
+           fmt::format("fitted with the dipole length, {:.1f} to {:.2f} (0.05 steps) so that eq. (7) stays invertible {:.0f} deg beyond "
+                       "the view field", 0.05 * min_spacing_20, max_spacing, kInvertibleMarginDeg),
            support}};
 }
 
@@ -280,7 +294,7 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
   // The radar equation with eq. (6)'s pattern: the dipole length and the spacing (as wide as keeps
   // eq. (7) invertible over the view field) whose pattern leaves the least residual per azimuth bin.
   AntennaGeometry geometry;
-  geometry.amplitude_pattern_exponent = base.value("/antenna/amplitude_pattern_exponent"_json_pointer, 2.0);
+  geometry.amplitude_pattern_exponent = base_pattern_exponent(base);
   const double max_spacing = max_invertible_spacing(azimuth_half_deg);
   LawFit best;
   double best_score = INFINITY, best_length = 0.0, best_spacing = 0.0;

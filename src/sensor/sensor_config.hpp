@@ -1,6 +1,7 @@
 #pragma once
 // Sensor configuration (`rcsim-sensor` files, schemas/sensor-config.md): every parameter of the
 // sensor model of paper section III, with the paper's values in the built-in `srr24`.
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -84,6 +85,12 @@ struct ResolutionCell {
   bool aliases_range_rate() const { return unambiguous_max_mps > unambiguous_min_mps; }
   bool resolves_azimuth() const { return azimuth_cell_rad > 0.0; }
 };
+
+// The cells of a radar's range/range-rate map, as its FFTs' bins lie: cell k is centred on k
+// cells (zero Doppler at a cell's centre) and spans half a cell either side. The index of the cell
+// holding x, and x's offset from that cell's centre in cells, in [-0.5, 0.5].
+inline double map_cell_index(double x, double cell) { return std::round(x / cell); }
+inline double map_cell_offset(double x, double cell) { return x / cell - map_cell_index(x, cell); }
 
 // The angle of an array's beam cell: the amplitude-weighted azimuth of its members plus Gaussian
 // noise of this standard deviation (docs/imaging-radar.md).

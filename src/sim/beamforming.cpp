@@ -34,7 +34,7 @@ void estimate_beam_angles(double azimuth_sigma_rad, double pointer_noise_sigma, 
 
 void keep_strongest_beam_per_cell(const ResolutionCell& cell, Detections& detections, std::vector<std::size_t>& order) {
   const auto grid_cell = [&](const Detection& d) {
-    return std::pair(std::floor(d.range_m / cell.range_cell_m), std::floor(d.range_rate_mps / cell.range_rate_cell_mps));
+    return std::pair(map_cell_index(d.range_m, cell.range_cell_m), map_cell_index(d.range_rate_mps, cell.range_rate_cell_mps));
   };
   order.resize(detections.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;

@@ -20,8 +20,9 @@ void estimate_beam_angles(double azimuth_sigma_rad, double pointer_noise_sigma, 
                           const IdealTargets& ideal, Rng* rng, Detections& out);
 
 // One detection per range-Doppler cell (a radar that reports the strongest beam of each cell of
-// its range/range-rate map): the detections fall into the grid of range_cell_m x
-// range_rate_cell_mps cells from 0; in each, only the strongest stays (ties: the earlier one).
+// its range/range-rate map): the detections fall into the map's cells (map_cell_index: centred
+// on whole multiples of range_cell_m and range_rate_cell_mps); in each, only the strongest stays
+// (ties: the earlier one).
 // Order kept. `order` is the caller's buffer.
 void keep_strongest_beam_per_cell(const ResolutionCell& cell, Detections& detections, std::vector<std::size_t>& order);
 

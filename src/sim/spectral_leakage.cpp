@@ -1,5 +1,7 @@
 #include "sim/spectral_leakage.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "common/angles.hpp"
@@ -20,24 +22,34 @@ void add_spectral_leakage(const ResolutionCell& cell, double threshold_db, Detec
   const std::size_t count = detections.size();
   for (std::size_t k = 0; k < count; ++k) {
     const Detection d = detections[k];  // a copy: the vector grows
-    // The offsets from the cell's centre, in cells, on the grid from 0.
-    const double range_cells = d.range_m / cell.range_cell_m, rate_cells = d.range_rate_mps / cell.range_rate_cell_mps;
-    const double offset_range = range_cells - std::floor(range_cells) - 0.5;
-    const double offset_rate = rate_cells - std::floor(rate_cells) - 0.5;
-    const double peak = hann_response(offset_range) * hann_response(offset_rate);
-    const double margin_db = d.amplitude_db - threshold_db;
-    if (margin_db < 0.0) continue;  // its neighbours are weaker still
+    if (!(d.amplitude_db >= threshold_db)) continue;  // its neighbours are weaker still (and NaN leaks nothing)
+    // The cells and the offsets from their centres, in cells (map_cell_index).
+    const double range_index = map_cell_index(d.range_m, cell.range_cell_m);
+    const double rate_index = map_cell_index(d.range_rate_mps, cell.range_rate_cell_mps);
+    const double offset_range = map_cell_offset(d.range_m, cell.range_cell_m);
+    const double offset_rate = map_cell_offset(d.range_rate_mps, cell.range_rate_cell_mps);
+    std::array<double, 2 * kLeakageReachCells + 1> along_range{}, along_rate{};
     for (int i = -kLeakageReachCells; i <= kLeakageReachCells; ++i) {
-      const double along_range = hann_response(i - offset_range);
+      along_range[static_cast<std::size_t>(i + kLeakageReachCells)] = hann_response(i - offset_range);
+      along_rate[static_cast<std::size_t>(i + kLeakageReachCells)] = hann_response(i - offset_rate);
+    }
+    const double peak = along_range[kLeakageReachCells] * along_rate[kLeakageReachCells];
+    // A leak lies in its cell at the detection's offset, kept off the cell's edge so that rounding
+    // cannot put it into the next (or back into the detection's own).
+    constexpr double kOffEdge = 1e-6;
+    const double inside_range = std::clamp(offset_range, -0.5 + kOffEdge, 0.5 - kOffEdge);
+    const double inside_rate = std::clamp(offset_rate, -0.5 + kOffEdge, 0.5 - kOffEdge);
+    for (int i = -kLeakageReachCells; i <= kLeakageReachCells; ++i) {
       for (int j = -kLeakageReachCells; j <= kLeakageReachCells; ++j) {
         if (i == 0 && j == 0) continue;
-        const double relative = along_range * hann_response(j - offset_rate) / peak;
+        const double relative = along_range[static_cast<std::size_t>(i + kLeakageReachCells)] *
+                                along_rate[static_cast<std::size_t>(j + kLeakageReachCells)] / peak;
         if (!(relative > 0.0)) continue;
         const double level_db = d.amplitude_db + amplitude_to_db(relative);
         if (level_db < threshold_db) continue;
         Detection leak = d;
-        leak.range_m = d.range_m + i * cell.range_cell_m;
-        leak.range_rate_mps = d.range_rate_mps + j * cell.range_rate_cell_mps;
+        leak.range_m = (range_index + i + inside_range) * cell.range_cell_m;
+        leak.range_rate_mps = (rate_index + j + inside_rate) * cell.range_rate_cell_mps;
         leak.amplitude_db = level_db;
         if (leak.range_m > 0.0) detections.push_back(leak);
       }

@@ -14,15 +14,17 @@ namespace rcsim {
 // scalloping loss, -1.42 dB), 0.5 at 1 (-6.02 dB), 0.1698 at 1.5, 0 at 2 (the first null).
 double hann_response(double offset_bins);
 
-// How far from its own cell a detection leaks, in cells (the response beyond is -32 dB or less).
+// How far from its own cell a detection leaks, in cells (beyond, the response is at most -30.9 dB
+// relative to the detection's own cell: W(2.5) / W(0.5)).
 inline constexpr int kLeakageReachCells = 2;
 
-// Adds, for each detection, one in each cell of the grid range_cell_m x range_rate_cell_mps (from
-// 0, as keep_strongest_beam_per_cell's) up to kLeakageReachCells away in range and in range rate,
-// where the window's separable response W(i - d_r) W(j - d_v) / (W(d_r) W(d_v)) keeps it at or
-// over threshold_db: d_r, d_v are the detection's offsets from its cell's centre, in cells. The
-// added detection has the detection's azimuth and object and lies whole cells from it. Appended
-// after the detections, in their order (i, then j ascending); nothing for a window of none.
+// Adds, for each detection at or over threshold_db, one in each cell of the range/range-rate map
+// (map_cell_index, as keep_strongest_beam_per_cell's) up to kLeakageReachCells away in range and
+// in range rate, where the window's separable response W(i - d_r) W(j - d_v) / (W(d_r) W(d_v))
+// keeps it at or over threshold_db: d_r, d_v are the detection's offsets from its cell's centre,
+// in cells. The added detection has the detection's azimuth and object and lies whole cells from
+// it (at most 1e-6 cells moved off a cell's edge). Appended after the detections, in their order
+// (i, then j ascending); nothing for a window of none.
 void add_spectral_leakage(const ResolutionCell& cell, double threshold_db, Detections& detections);
 
 }  // namespace rcsim

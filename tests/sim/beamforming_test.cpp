@@ -68,16 +68,19 @@ TEST(Beamforming, OneDetectionPerRangeDopplerCellTheStrongestBeam) {
   ResolutionCell cell;
   cell.range_cell_m = 0.075;
   cell.range_rate_cell_mps = 0.0812;
-  // Range cells: floor(r / 0.075): 10.00 -> 133, 10.02 -> 133, 10.05 -> 134; rate cells: 0 -> 0, 0.09 -> 1.
+  // The map's cells are centred on whole multiples: round(r / 0.075): 10.00 -> 133 (133.33),
+  // 10.01 -> 133 (133.47), 10.02 -> 134 (133.6), 10.05 -> 134; round(rate / 0.0812): 0 -> 0, 0.09 -> 1.
   Detections d{detection_at(10.00, 0.0, 50.0), detection_at(10.02, 0.0, 55.0), detection_at(10.05, 0.0, 47.0),
                detection_at(10.02, 0.09, 46.0), detection_at(10.01, 0.0, 55.0)};
   std::vector<std::size_t> order;
   keep_strongest_beam_per_cell(cell, d, order);
-  ASSERT_EQ(d.size(), 3u);  // cell (133, 0): the first 55 dB one; (134, 0); (133, 1); order kept
+  // Cell (133, 0): 10.01 at 55 dB over 10.00 at 50; (134, 0): 10.02 at 55 over 10.05 at 47; (134, 1). Order kept.
+  ASSERT_EQ(d.size(), 3u);
   EXPECT_DOUBLE_EQ(d[0].range_m, 10.02);
   EXPECT_DOUBLE_EQ(d[0].amplitude_db, 55.0);
-  EXPECT_DOUBLE_EQ(d[1].range_m, 10.05);
-  EXPECT_DOUBLE_EQ(d[2].range_rate_mps, 0.09);
+  EXPECT_DOUBLE_EQ(d[1].range_rate_mps, 0.09);
+  EXPECT_DOUBLE_EQ(d[2].range_m, 10.01);
+  EXPECT_DOUBLE_EQ(d[2].amplitude_db, 55.0);
 }
 
 }  // namespace

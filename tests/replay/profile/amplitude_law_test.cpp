@@ -145,7 +145,9 @@ TEST(ProfileAmplitudeLaw, APatternOnTheRadarsOwnScaleComesBackFromTheAmplitudesA
   }
   pool.detections = static_cast<long long>(pool.cycles[0].detections.size());
   std::vector<DerivationFigure> figures;
-  const std::vector<DerivedValue> values = derive_amplitude(pool, kBase, 65.0, figures);
+  // An array's base (it resolves azimuth): the spacing searched from 0.1 wavelengths.
+  const nlohmann::json array_base = nlohmann::json::parse(R"({"antenna": {"amplitude_pattern_exponent": 2.0}, "resolution": {"azimuth_cell_deg": 1.0}})");
+  const std::vector<DerivedValue> values = derive_amplitude(pool, array_base, 65.0, figures);
   ASSERT_EQ(values.size(), 5u);
   EXPECT_EQ(values[2].source, ValueSource::base);  // the law: the base's
   EXPECT_EQ(values[3].field, "antenna.dipole_length_wavelengths");
@@ -160,6 +162,13 @@ TEST(ProfileAmplitudeLaw, APatternOnTheRadarsOwnScaleComesBackFromTheAmplitudesA
   EXPECT_NE(values[4].evidence.find("0.1 to 0.50 (0.05 steps)"), std::string::npos) << values[4].evidence;
   ASSERT_EQ(figures.size(), 2u);
   EXPECT_EQ(figures[1].title, "The amplitude's azimuth part");
+  // A monopulse base: its spacing sets eq. (7)'s slope too, so the search keeps to 0.5 and up, and
+  // says that the best it found, 0.5, is its bound.
+  std::vector<DerivationFigure> more;
+  const std::vector<DerivedValue> monopulse = derive_amplitude(pool, kBase, 65.0, more);
+  EXPECT_DOUBLE_EQ(monopulse[4].value.get<double>(), 0.5);
+  EXPECT_NE(monopulse[4].evidence.find("0.5 to 0.50 (0.05 steps)"), std::string::npos) << monopulse[4].evidence;
+  EXPECT_NE(monopulse[3].evidence.find("the narrowest spacing, 0.5"), std::string::npos) << monopulse[3].evidence;
 }
 
 }  // namespace rcsim::replay::profile::amplitude_law_test
