@@ -213,9 +213,9 @@ std::vector<DerivedValue> derive_relative_pattern(const DetectionPool& pool, con
   std::vector<std::pair<double, double>> data, line;
   for (const auto& [a, p] : profile.points) data.emplace_back(rad_to_deg(a), p - best_offset), line.emplace_back(rad_to_deg(a), pattern_at(a));
   figures.push_back({"The amplitude's azimuth part", "|azimuth| / deg", "dB",
-                     fmt::format("the 90 % quantile of the amplitude per bin of range and azimuth, less its range part (alternating "
-                                 "least squares over {} bins); the line: eq. (6)'s two-way pattern, dipole {:.2f}, spacing {:.2f} wavelengths",
-                                 profile.cells, geometry.dipole_length_wavelengths, geometry.element_spacing_wavelengths),
+                     fmt::format("90 % quantile per range x azimuth bin less its range part; the line: eq. (6), dipole {:.2f}, "
+                                 "spacing {:.2f} wavelengths",
+                                 geometry.dipole_length_wavelengths, geometry.element_spacing_wavelengths),
                      {{"azimuth bins", true, data}, {"pattern", false, line}}});
   std::vector<std::string> bounds;
   if (geometry.dipole_length_wavelengths <= 0.3 + 1e-9) bounds.push_back("the shortest dipole, 0.3");
