@@ -18,17 +18,20 @@
 namespace rcsim::replay::profile {
 namespace {
 
-// The monopulse pair must stay invertible (eq. (7)) this far beyond the view field.
-constexpr double kInvertibleMarginDeg = 2.0;
+// A_phi = |H_sum|^n of eq. (2): the paper's one-way pattern (1), or the two-way pattern of a radar
+// whose transmit and receive antennas are alike (2).
+constexpr double kPatternExponents[] = {1.0, 2.0};
 
 // The base's exponent n of A^phi = |H_sum|^n, 1 where it gives none (the paper's, schemas/sensor-config.md).
 double base_pattern_exponent(const nlohmann::json& base) {
   return base.value("/antenna/amplitude_pattern_exponent"_json_pointer, 1.0);
 }
 
-// The widest spacing, in 0.05 steps, that keeps eq. (7) invertible that far beyond the view field.
+// The widest spacing, in 0.05 steps, that keeps eq. (7) invertible over the derived view field.
+// No margin beyond it: that edge, the 99.9 % quantile of the estimated azimuths, already lies
+// beyond the true one by the estimates' noise (aimotive_lrr's 17 deg reads 17.8 from its own model).
 double max_invertible_spacing(double azimuth_half_deg) {
-  return std::floor(20.0 / (2.0 * std::sin(deg_to_rad(azimuth_half_deg + kInvertibleMarginDeg)))) / 20.0;
+  return std::floor(20.0 / (2.0 * std::sin(deg_to_rad(azimuth_half_deg)))) / 20.0;
 }
 
 struct LawFit {
@@ -231,8 +234,8 @@ std::vector<DerivedValue> derive_relative_pattern(const DetectionPool& pool, con
   const auto support = static_cast<long long>(pool.detections);
   return {{fields[0], round_to(geometry.dipole_length_wavelengths, 0.05), ValueSource::derived, evidence, support},
           {fields[1], round_to(geometry.element_spacing_wavelengths, 0.05), ValueSource::derived,
-           fmt::format("fitted with the dipole length, {:.1f} to {:.2f} (0.05 steps) so that eq. (7) stays invertible {:.0f} deg beyond "
-                       "the view field", 0.05 * min_spacing_20, max_spacing, kInvertibleMarginDeg),
+           fmt::format("fitted with the dipole length, {:.1f} to {:.2f} (0.05 steps) so that eq. (7) stays invertible over "
+                       "the view field", 0.05 * min_spacing_20, max_spacing),
            support}};
 }
 
@@ -291,28 +294,30 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
     for (DerivedValue& v : derive_relative_pattern(pool, base, max_spacing, figures)) values.push_back(std::move(v));
     return values;
   }
-  // The radar equation with eq. (6)'s pattern: the dipole length and the spacing (as wide as keeps
-  // eq. (7) invertible over the view field) whose pattern leaves the least residual per azimuth bin.
+  // The radar equation with eq. (6)'s pattern: the pattern's exponent (one-way as the paper's, or
+  // two-way), the dipole length and the spacing (as wide as keeps eq. (7) invertible over the view
+  // field) whose pattern leaves the least residual per azimuth bin.
   AntennaGeometry geometry;
-  geometry.amplitude_pattern_exponent = base_pattern_exponent(base);
   const double max_spacing = max_invertible_spacing(azimuth_half_deg);
+  const int max_spacing_20 = static_cast<int>(std::lround(20.0 * max_spacing));
   LawFit best;
-  double best_score = INFINITY, best_length = 0.0, best_spacing = 0.0;
-  for (double spacing = 0.5; spacing <= max_spacing + 1e-9; spacing += 0.05) {
-    for (double length = 0.3; length <= 1.5 + 1e-9; length += 0.05) {
-      AntennaGeometry candidate = geometry;
-      candidate.dipole_length_wavelengths = length, candidate.element_spacing_wavelengths = spacing;
-      const std::vector<double> pattern = pattern_db(azimuth_rad, candidate);
-      std::vector<double> y(snr_minus_rcs_db.size());
-      for (std::size_t i = 0; i < y.size(); ++i) y[i] = snr_minus_rcs_db[i] - pattern[i];
-      const LawFit fit = fit_range_law(log10_range, y);
-      const double score = azimuth_bias_db(azimuth_rad, log10_range, y, fit);
-      if (score < best_score) best = fit, best_length = length, best_spacing = spacing, best_score = score;
+  double best_score = INFINITY;
+  for (const double exponent : kPatternExponents) {
+    for (int spacing_20 = 10; spacing_20 <= max_spacing_20; ++spacing_20) {
+      for (int length_20 = 6; length_20 <= 30; ++length_20) {
+        AntennaGeometry candidate = geometry;
+        candidate.amplitude_pattern_exponent = exponent;
+        candidate.dipole_length_wavelengths = 0.05 * length_20, candidate.element_spacing_wavelengths = 0.05 * spacing_20;
+        const std::vector<double> pattern = pattern_db(azimuth_rad, candidate);
+        std::vector<double> y(snr_minus_rcs_db.size());
+        for (std::size_t i = 0; i < y.size(); ++i) y[i] = snr_minus_rcs_db[i] - pattern[i];
+        const LawFit fit = fit_range_law(log10_range, y);
+        const double score = azimuth_bias_db(azimuth_rad, log10_range, y, fit);
+        if (score < best_score) best = fit, geometry = candidate, best_score = score;
+      }
     }
   }
-  geometry.element_spacing_wavelengths = best_spacing;
   // The paper's 1/R^4 with the same pattern, for comparison.
-  geometry.dipole_length_wavelengths = best_length;
   const std::vector<double> pattern = pattern_db(azimuth_rad, geometry);
   double fourth_power_ss = 0.0, fourth_power_mean = 0.0;
   for (std::size_t i = 0; i < pattern.size(); ++i) fourth_power_mean += snr_minus_rcs_db[i] - pattern[i] + 40.0 * log10_range[i];
@@ -330,16 +335,15 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
   const MonopulseAntenna antenna(geometry);
   law_figures(best, geometry, log10_range, azimuth_rad, snr_minus_rcs_db, figures);
   const auto pattern_at = [&](double a_rad) { return amplitude_to_db(std::pow(antenna.sum_magnitude(a_rad), geometry.amplitude_pattern_exponent)); };
-  values.push_back({"antenna.dipole_length_wavelengths", round_to(best_length, 0.05), ValueSource::derived,
-                    fmt::format("the dipole length (0.3-1.5 wavelengths) whose two-way pattern, with the spacing, leaves the "
-                                "least residual per 0.025-rad bin of azimuth ({:.2f} dB RMS over the bins): {:.1f} dB at 0.1 rad, {:.1f} dB at 0.25 rad",
-                                best_score, pattern_at(0.1), pattern_at(0.25)),
-                    n});
-  values.push_back({"antenna.element_spacing_wavelengths", geometry.element_spacing_wavelengths, ValueSource::derived,
-                    fmt::format("fitted with the dipole length, at most {:.2f} (0.05 steps) so that eq. (7) stays invertible "
-                                "{:.0f} deg beyond the view field",
-                                max_spacing, kInvertibleMarginDeg),
-                    n});
+  const std::string pattern_evidence =
+      fmt::format("the pattern (exponent 1 or 2, dipole 0.3-1.5 wavelengths, spacing 0.5-{:.2f} so that eq. (7) stays invertible "
+                  "over the view field, 0.05 steps) that leaves the least residual per 0.025-rad bin of azimuth ({:.2f} dB RMS over the "
+                  "bins): {:.1f} dB at 0.1 rad, {:.1f} dB at 0.25 rad",
+                  max_spacing, best_score, pattern_at(0.1), pattern_at(0.25));
+  values.push_back({"antenna.amplitude_pattern_exponent", geometry.amplitude_pattern_exponent, ValueSource::derived, pattern_evidence, n});
+  values.push_back({"antenna.dipole_length_wavelengths", round_to(geometry.dipole_length_wavelengths, 0.05), ValueSource::derived, pattern_evidence, n});
+  values.push_back({"antenna.element_spacing_wavelengths", round_to(geometry.element_spacing_wavelengths, 0.05), ValueSource::derived,
+                    pattern_evidence, n});
   return values;
 }
 

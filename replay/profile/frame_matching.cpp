@@ -65,7 +65,22 @@ std::optional<FramePair> match_frames(const PooledCycle& a, const PooledCycle& b
     if (std::abs(std::atan2(q.y(), q.x())) < 0.9 * view.azimuth_half_rad && q.norm() < 0.9 * view.max_range_m) {
       pair.redetections.push_back({da[i]->amplitude_db - threshold_db, seen});
     }
-    if (seen) pair.range_residuals.emplace_back(db[index]->range_m - q.norm(), db[index]->amplitude_db - threshold_db);
+    if (seen) {
+      // Both radial speeds against the stationary world's along one line of sight, the earlier
+      // azimuth's (moved by the ego): its error cancels in the difference.
+      const Vec2 u_a = pa[i].normalized(), u_b = q.normalized();
+      const double residual_a = da[i]->range_rate_mps + v.dot(u_a), residual_b = db[index]->range_rate_mps + v.dot(u_b);
+      pair.matches.push_back({db[index]->range_m - q.norm(), residual_b - residual_a, da[i]->amplitude_db - threshold_db,
+                              db[index]->amplitude_db - threshold_db});
+    }
+  }
+  // What every match shares is the ego's change of speed between the cycles (and the fits' errors),
+  // not noise: the radial-speed differences about their median.
+  std::vector<double> rate_differences;
+  for (const MatchedDetection& m : pair.matches) rate_differences.push_back(m.range_rate_mps);
+  if (!rate_differences.empty()) {
+    const double shared_mps = median(rate_differences);
+    for (MatchedDetection& m : pair.matches) m.range_rate_mps -= shared_mps;
   }
   return pair;
 }

@@ -15,11 +15,19 @@ struct Redetection {
   bool seen = false;       // a stationary detection of the later cycle within the gate
 };
 
+// A stationary detection seen again in the later cycle: how its measurement moved against where the
+// ego's motion puts it, and its SNR margins in both cycles (the noise law's two ends).
+struct MatchedDetection {
+  double range_m = 0.0;         // later range - predicted range
+  double range_rate_mps = 0.0;  // the difference of the two radial speeds' stationary residuals, both along the earlier azimuth
+  double margin_earlier_db = 0.0, margin_later_db = 0.0;
+};
+
 // Two consecutive cycles of one sensor, matched.
 struct FramePair {
   double dt_s = 0.0;  // the time the static world's shift shows
   int recording = 0, sensor = 0, cycle = 0, next_cycle = 0;  // whose cycles, in the pool's numbering
-  std::vector<std::pair<double, double>> range_residuals;  // (range m later - predicted, SNR margin dB later)
+  std::vector<MatchedDetection> matches;
   std::vector<Redetection> redetections;
 };
 

@@ -6,10 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <optional>
 
+#include "common/decibel.hpp"
 #include "common/quantile.hpp"
 #include "replay/profile/derivation_stages.hpp"
+#include "sim/measurement_noise.hpp"
 
 namespace rcsim::replay::profile {
 namespace {
@@ -18,7 +21,6 @@ constexpr double kLowMarginDb = 4.0;    // "at threshold": within this of the th
 constexpr double kHighMarginDb = 11.0;  // "the least noise": this far above it
 constexpr std::size_t kMinSamples = 30;
 constexpr double kCoarsestWrittenStep = 0.005;  // m or m/s
-constexpr double kMadToSigma = 1.4826;  // sigma of a normal distribution per median absolute deviation
 
 // The step of a quantised quantity: every value (99 %) on one lattice of the least distinct gap.
 std::optional<double> lattice_step(const DetectionPool& pool, double (*value)(const PooledDetection&)) {
@@ -49,10 +51,89 @@ double rms(const std::vector<double>& x) {
   return std::sqrt(s / static_cast<double>(x.size()));
 }
 
+// The model's noise law (sim/measurement_noise.hpp): sigma(m) = max(sigma_th 10^(-m/20), sigma_min)
+// at an SNR margin of m dB. A matched pair's difference is normal with the variance of both ends,
+// sigma(m_earlier)^2 + sigma(m_later)^2; a few pairs are wrong matches or a wandering scatterer,
+// uniform over the gate. Both sigmas (and the share of such pairs) by maximum likelihood: a
+// logarithmic grid, then a finer one around its best.
+struct NoiseLaw {
+  double at_threshold = 0.0, least = 0.0, outliers = 0.0;
+  std::size_t pairs = 0, near_threshold = 0, far_above = 0;
+};
+
+// How many pairs show each end of the law: one end near the threshold, both far above it.
+NoiseLaw count_ends(const std::vector<MatchedDetection>& matches) {
+  NoiseLaw law;
+  for (const MatchedDetection& m : matches) {
+    const double nearer_db = std::min(m.margin_earlier_db, m.margin_later_db);
+    law.near_threshold += nearer_db < kLowMarginDb + 2.0 ? 1 : 0;
+    law.far_above += nearer_db >= kHighMarginDb ? 1 : 0;
+  }
+  law.pairs = matches.size();
+  return law;
+}
+
+std::optional<NoiseLaw> fit_noise_law(const std::vector<MatchedDetection>& matches, double (*difference)(const MatchedDetection&)) {
+  NoiseLaw law = count_ends(matches);
+  std::vector<double> d, ratio_a, ratio_b;
+  double gate = 0.0;
+  for (const MatchedDetection& m : matches) {
+    d.push_back(difference(m));
+    ratio_a.push_back(db_to_amplitude(-m.margin_earlier_db)), ratio_b.push_back(db_to_amplitude(-m.margin_later_db));
+    gate = std::max(gate, std::abs(d.back()));
+  }
+  if (law.near_threshold < kMinSamples || law.far_above < kMinSamples || !(gate > 0.0)) return std::nullopt;
+  const auto negative_log_likelihood = [&](double at_threshold, double least, double outliers) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const double sa = noise_sigma(at_threshold, least, ratio_a[i]), sb = noise_sigma(at_threshold, least, ratio_b[i]);
+      const double variance = sa * sa + sb * sb;
+      const double normal = std::exp(-0.5 * d[i] * d[i] / variance) / std::sqrt(2.0 * std::numbers::pi * variance);
+      sum -= std::log((1.0 - outliers) * normal + outliers / (2.0 * gate));
+    }
+    return sum;
+  };
+  double best = INFINITY;
+  const auto search = [&](double th_lo, double min_lo, double factor, int steps) {
+    const double th0 = th_lo, min0 = min_lo;
+    for (int i = 0; i < steps; ++i) {
+      for (int j = 0; j < steps; ++j) {
+        const double at_threshold = th0 * std::pow(factor, i), least = min0 * std::pow(factor, j);
+        if (least > at_threshold) continue;
+        for (const double outliers : {0.005, 0.02, 0.05, 0.1, 0.2}) {
+          const double nll = negative_log_likelihood(at_threshold, least, outliers);
+          if (nll < best) best = nll, law.at_threshold = at_threshold, law.least = least, law.outliers = outliers;
+        }
+      }
+    }
+  };
+  search(1e-3 * gate, 1e-3 * gate, 1.25, 32);  // 0.001 to 1 gate
+  search(law.at_threshold / 1.25, law.least / 1.25, 1.02, 24);
+  return law;
+}
+
+std::string noise_law_evidence(const NoiseLaw& law) {
+  return fmt::format("stationary detections matched frame to frame: maximum likelihood of the model's law, sigma = max(sigma_th "
+                     "A_th / A, sigma_min) at each end, over {} pairs ({} with an end within {:.0f} dB of the threshold, {} with both "
+                     "{:.0f} dB or more above; {:.1f} % taken as wrong matches)",
+                     law.pairs, law.near_threshold, kLowMarginDb + 2.0, law.far_above, kHighMarginDb, 100.0 * law.outliers);
+}
+
+double range_difference(const MatchedDetection& m) { return m.range_m; }
+double range_rate_difference(const MatchedDetection& m) { return m.range_rate_mps; }
+
+std::vector<MatchedDetection> all_matches(const std::vector<FramePair>& frame_pairs) {
+  std::vector<MatchedDetection> matches;
+  for (const FramePair& pair : frame_pairs) matches.insert(matches.end(), pair.matches.begin(), pair.matches.end());
+  return matches;
+}
+
 // The radial speed's noise: a quantised speed's step / sqrt(12), else the stationary fit's residual
 // near the threshold and (the quietest sensor's) far above it.
-std::vector<DerivedValue> range_rate_noise(const DetectionPool& pool, double threshold_db, std::vector<DerivationFigure>& figures) {
+std::vector<DerivedValue> range_rate_noise(const DetectionPool& pool, double threshold_db, const std::vector<FramePair>& frame_pairs,
+                                           std::vector<DerivationFigure>& figures) {
   std::vector<DerivedValue> values;
+  const std::optional<NoiseLaw> law = fit_noise_law(all_matches(frame_pairs), range_rate_difference);
   if (const auto step = lattice_step(pool, range_rate_of)) {
     const double sigma = round_to(*step / std::sqrt(12.0), 0.001);
     const std::string why = fmt::format("the radial speed is quantised in steps of {:.4f} m/s: step / sqrt(12)", *step);
@@ -88,7 +169,19 @@ std::vector<DerivedValue> range_rate_noise(const DetectionPool& pool, double thr
     figures.push_back({"Radial-speed residual of the stationary world against SNR margin", "amplitude - threshold / dB",
                        "RMS residual / (m/s)", "per 2-dB bin with at least 30 inliers of the per-cycle stationary fit",
                        {{"RMS", false, rms_by_margin}}});
-    if (low.size() >= kMinSamples && high.size() >= kMinSamples) {
+    if (law) {
+      // Differences of one scatterer's radial speed along one line of sight: the azimuth's error,
+      // which the stationary fit's residual also holds (v sin(az) d(az)), cancels.
+      const auto support = static_cast<long long>(law->pairs);
+      const std::string residual =
+          low.size() >= kMinSamples && high.size() >= kMinSamples
+              ? fmt::format("; the stationary fit's residual reads {:.3f} and {:.3f} m/s (it holds the azimuth error's share)", rms(low), rms(high))
+              : "";
+      values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", round_to(law->at_threshold, 0.001), ValueSource::derived,
+                        noise_law_evidence(*law) + residual, support});
+      values.push_back({"measurement_noise.range_rate_sigma_min_mps", round_to(law->least, 0.001), ValueSource::derived,
+                        noise_law_evidence(*law) + residual, support});
+    } else if (low.size() >= kMinSamples && high.size() >= kMinSamples) {
       const double at_threshold = rms(low), least = std::min(rms(high), at_threshold);
       values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", round_to(at_threshold, 0.001), ValueSource::derived,
                         fmt::format("RMS residual about the stationary fit of its {} inliers within {:.0f} dB of the threshold",
@@ -131,27 +224,12 @@ DerivedValue cycle_time(const DetectionPool& pool, const std::vector<FramePair>&
 // range's step / sqrt(12), or, for single frames, the range cell / sqrt(12).
 std::vector<DerivedValue> range_noise(const DetectionPool& pool, const Cells& cells, const std::vector<FramePair>& frame_pairs) {
   std::vector<DerivedValue> values;
-  std::vector<std::pair<double, double>> residuals;  // (range m, SNR margin dB)
-  for (const FramePair& pair : frame_pairs) residuals.insert(residuals.end(), pair.range_residuals.begin(), pair.range_residuals.end());
-  std::vector<double> low, high;
-  for (const auto& [residual_m, margin_db] : residuals) {
-    if (margin_db < kLowMarginDb + 2.0) low.push_back(residual_m);
-    if (margin_db >= kHighMarginDb) high.push_back(residual_m);
-  }
-  const auto sigma_per_detection = [](std::vector<double> r) {
-    const double m = median(r);
-    for (double& x : r) x = std::abs(x - m);
-    return kMadToSigma * median(r) / std::sqrt(2.0);
-  };
-  if (low.size() >= kMinSamples && high.size() >= kMinSamples) {
-    const double at_threshold = sigma_per_detection(low), least = std::min(sigma_per_detection(high), at_threshold);
-    values.push_back({"measurement_noise.range_sigma_at_threshold_m", round_to(at_threshold, 0.005), ValueSource::derived,
-                      fmt::format("stationary detections matched frame to frame: MAD sigma / sqrt(2) of the range differences "
-                                  "of {} pairs within {:.0f} dB of the threshold (an upper bound: the scatterer wanders)",
-                                  low.size(), kLowMarginDb + 2.0),
-                      static_cast<long long>(low.size())});
-    values.push_back({"measurement_noise.range_sigma_min_m", round_to(least, 0.005), ValueSource::derived,
-                      fmt::format("the same of {} pairs {:.0f} dB or more above it", high.size(), kHighMarginDb), static_cast<long long>(high.size())});
+  const std::vector<MatchedDetection> matches = all_matches(frame_pairs);
+  if (const std::optional<NoiseLaw> law = fit_noise_law(matches, range_difference)) {
+    const auto support = static_cast<long long>(law->pairs);
+    values.push_back({"measurement_noise.range_sigma_at_threshold_m", round_to(law->at_threshold, 0.005), ValueSource::derived,
+                      noise_law_evidence(*law) + " (an upper bound: the scatterer wanders)", support});
+    values.push_back({"measurement_noise.range_sigma_min_m", round_to(law->least, 0.005), ValueSource::derived, noise_law_evidence(*law), support});
   } else if (const auto step = lattice_step(pool, range_of)) {
     const std::string why = fmt::format("the range is quantised in steps of {:.4f} m: step / sqrt(12)", *step);
     values.push_back({"measurement_noise.range_sigma_at_threshold_m", round_to(*step / std::sqrt(12.0), 0.001), ValueSource::derived, why, pool.detections});
@@ -165,7 +243,10 @@ std::vector<DerivedValue> range_noise(const DetectionPool& pool, const Cells& ce
     values.push_back({"measurement_noise.range_sigma_at_threshold_m", sigma, ValueSource::derived, why, 0});
     values.push_back({"measurement_noise.range_sigma_min_m", sigma, ValueSource::derived, why, 0});
   } else {
-    const std::string why = fmt::format("too few stationary detections matched frame to frame ({} near the threshold, {} far above)", low.size(), high.size());
+    const NoiseLaw counts = count_ends(matches);
+    const std::string why = fmt::format("too few stationary detections matched frame to frame ({} pairs: {} with an end within {:.0f} dB "
+                                        "of the threshold, {} with both {:.0f} dB or more above; {} of each needed)",
+                                        counts.pairs, counts.near_threshold, kLowMarginDb + 2.0, counts.far_above, kHighMarginDb, kMinSamples);
     values.push_back({"measurement_noise.range_sigma_at_threshold_m", nullptr, ValueSource::base, why, 0});
     values.push_back({"measurement_noise.range_sigma_min_m", nullptr, ValueSource::base, why, 0});
   }
@@ -176,7 +257,7 @@ std::vector<DerivedValue> range_noise(const DetectionPool& pool, const Cells& ce
 
 std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& cells, double threshold_db,
                                        const std::vector<FramePair>& frame_pairs, std::vector<DerivationFigure>& figures) {
-  std::vector<DerivedValue> values = range_rate_noise(pool, threshold_db, figures);
+  std::vector<DerivedValue> values = range_rate_noise(pool, threshold_db, frame_pairs, figures);
   values.push_back(cycle_time(pool, frame_pairs, figures));
   const std::vector<DerivedValue> range = range_noise(pool, cells, frame_pairs);
   values.insert(values.end(), range.begin(), range.end());

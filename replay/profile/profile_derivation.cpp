@@ -65,6 +65,27 @@ std::vector<DerivedValue> header_values(const DetectionPool& pool) {
   return values;
 }
 
+// A law derived from the SNR and the cross-sections is the radar equation's; a base on eq. (1)
+// (srr24's) takes it with its own fields dropped and the reference cross-section an ERCS of 1
+// stands for: 1 m^2 (0 dBsm) until calibrate fits the reflectors.
+void adopt_radar_equation(Json& doc, std::vector<DerivedValue>& values) {
+  const auto derived = std::find_if(values.begin(), values.end(), [](const DerivedValue& v) {
+    return v.field == "amplitude.range_exponent" && v.source == ValueSource::derived;
+  });
+  Json& amplitude = doc["amplitude"];
+  if (derived == values.end() || amplitude.value("law", "paper_eq1") == "radar_equation") return;
+  amplitude["law"] = "radar_equation";
+  amplitude.erase("reference_level_db");
+  amplitude.erase("reference_slope_db_per_m");
+  const std::string why = "the base's law is eq. (1); the derived law is the radar equation";
+  values.push_back({"amplitude.law", "radar_equation", ValueSource::derived, why, derived->support});
+  if (!amplitude.contains("reference_rcs_dbsm")) {
+    amplitude["reference_rcs_dbsm"] = 0.0;
+    values.push_back({"amplitude.reference_rcs_dbsm", 0.0, ValueSource::base,
+                      why + ": an ERCS of 1 stands for 1 m^2 (rcsim calibrate --real-drive fits the reflectors)", 0});
+  }
+}
+
 }  // namespace
 
 ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings, const DeriveOptions& options) {
@@ -106,6 +127,7 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
     kept.push_back(std::move(v));
   }
   out.values = std::move(kept);
+  adopt_radar_equation(doc, out.values);
   doc["name"] = options.name;
   doc["description"] = fmt::format("derived by rcsim profile derive from {} detections in {} sensor cycles of {} recording(s) "
                                    "(first: {}); base {}",

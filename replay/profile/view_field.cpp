@@ -10,7 +10,13 @@
 
 namespace rcsim::replay::profile {
 
-double round_to(double x, double step) { return std::round(x / step) * step; }
+double round_to(double x, double step) {
+  // Divided by the steps per unit where they are whole (0.05: 20), so that 14 steps print 0.7, not
+  // 0.7000000000000001.
+  const double per_unit = 1.0 / step;
+  if (std::abs(per_unit - std::round(per_unit)) < 1e-9) return std::round(x * per_unit) / std::round(per_unit);
+  return std::round(x / step) * step;
+}
 
 namespace {
 

@@ -1,9 +1,24 @@
 #include "replay/run/model_recording.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "common/rng.hpp"
+#include "sim/amplitude.hpp"
 #include "sim/simulation.hpp"
 
 namespace rcsim::replay {
+
+namespace {
+
+// A radar whose detections are SNRs on the radar equation reports their cross-sections beside
+// them, as the aiMotive radars do; a recording with any sensor that does not gets no column.
+bool reports_cross_sections(const SensorConfig& config) {
+  return config.reports == ListLevel::detections && config.amplitude.kind == AmplitudeLawKind::radar_equation &&
+         config.amplitude.unit == AmplitudeUnit::snr_db;
+}
+
+}  // namespace
 
 Recording model_recording(const Scene& scene, const std::string& name, std::uint64_t seed,
                           const AnnotationNoise& noise) {
@@ -17,8 +32,19 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
                  {{"clutter", scene.effects.clutter},
                   {"multibounce", scene.effects.multibounce},
                   {"occlusion", scene.effects.occlusion}}}};
+  // Each sensor written as what it is: its reporting level, its amplitude's unit, the radial
+  // speeds it wraps.
+  std::vector<MonopulseAntenna> antennas;
   for (const auto& s : scene.sensors) {
-    rec.sensors.push_back({s.id, s.config.name, s.X_VS.x_m, s.X_VS.y_m, s.X_VS.yaw_rad});
+    RecordingSensor& sensor = rec.sensors.emplace_back();
+    sensor.id = s.id, sensor.type = s.config.name;
+    sensor.x_m = s.X_VS.x_m, sensor.y_m = s.X_VS.y_m, sensor.yaw_rad = s.X_VS.yaw_rad;
+    sensor.reports = s.config.reports;
+    sensor.amplitude_unit = s.config.amplitude.unit;
+    if (s.config.resolution.aliases_range_rate()) {
+      sensor.range_rate_interval_mps = RangeRateInterval{s.config.resolution.unambiguous_min_mps, s.config.resolution.unambiguous_max_mps};
+    }
+    antennas.emplace_back(s.config.antenna);
   }
   rec.boxes.resize(scene.objects.size());
   SimulationOptions options;
@@ -43,11 +69,21 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
       rec.boxes[o].push_back(box);
     }
     for (std::size_t i = 0; i < simulation.sensor_count(); ++i) {
+      const SensorConfig& config = scene.sensors[i].config;
       for (const auto& t : simulation.sensor_state(i).reported) {
-        rec.targets.push_back({t_s, k, static_cast<int>(i), t.id, t.range_m, t.azimuth_rad, t.range_rate_mps,
-                               t.amplitude_db});
+        RecordedTarget& target = rec.targets.emplace_back(RecordedTarget{t_s, k, static_cast<int>(i), t.id, t.range_m,
+                                                                         t.azimuth_rad, t.range_rate_mps, t.amplitude_db});
+        if (reports_cross_sections(config)) {
+          target.rcs_dbsm = radar_cross_section_estimate_dbsm(config.amplitude, antennas[i], t.range_m, t.azimuth_rad, t.amplitude_db);
+        }
       }
     }
+  }
+  // targets.csv gives a column for every target or none.
+  const bool every_cross_section = std::all_of(rec.targets.begin(), rec.targets.end(),
+                                               [](const RecordedTarget& t) { return std::isfinite(t.rcs_dbsm); });
+  if (!every_cross_section) {
+    for (RecordedTarget& t : rec.targets) t.rcs_dbsm = RecordedTarget::kNoValue;
   }
   // Objects never annotated are not listed (a recording lists what was annotated).
   Recording listed = std::move(rec);

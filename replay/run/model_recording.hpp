@@ -1,8 +1,10 @@
 #pragma once
-// A recording made by the reflection-center model itself: the scene simulated at the tracks
-// level and written down as if a sensor had reported it, with the true boxes as annotation
-// (optionally with annotation noise). Used where a known answer is needed: harness tests (the
-// model replayed against itself with the same seed must agree) and the replay benchmark's
+// A recording made by the reflection-center model itself: the scene simulated and each sensor's
+// list written down as if the sensor had reported it (tracks, or the detections of a sensor that
+// reports detections, with the radar's cross-section estimate beside an SNR on the radar
+// equation), with the true boxes as annotation (optionally with annotation noise). Used where a
+// known answer is needed: harness tests (the model replayed against itself with the same seed must
+// agree), `profile derive` given back the profile that made the data, and the replay benchmark's
 // hour-long recording.
 #include <cstdint>
 #include <limits>

@@ -48,6 +48,12 @@ double detection_range_bound_m(const AmplitudeLaw& law, double ercs, double head
   return 0.0;
 }
 
+double radar_cross_section_estimate_dbsm(const AmplitudeLaw& law, const MonopulseAntenna& antenna, double range_m,
+                                         double azimuth_rad, double amplitude_db) {
+  const double pattern_db = antenna.amplitude_pattern_exponent() * amplitude_to_db(antenna.sum_magnitude(azimuth_rad));
+  return law.reference_rcs_dbsm + amplitude_db - reference_range_level_db(law, range_m) - pattern_db;
+}
+
 void apply_detection_threshold(double threshold_db, Detections& detections) {
   std::erase_if(detections, [&](const Detection& d) { return d.amplitude_db < threshold_db; });
 }

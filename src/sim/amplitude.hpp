@@ -24,6 +24,13 @@ bool has_detection_range_bound(const AmplitudeLaw& law);
 // moves the bound out (a safety margin).
 double detection_range_bound_m(const AmplitudeLaw& law, double ercs, double headroom_db = 0.0);
 
+// What a radar that reports cross-sections writes beside a detection: its amplitude read back
+// through eqs. (2), (6) and the radar equation at the measured range and azimuth,
+// sigma = sigma_ref + A_dB - level(R) - 20 n log10 |H_sum(phi)| (docs/amplitude.md). Needs the radar
+// equation (an eq. (1) level has no cross-section); the pattern's null gives +inf.
+double radar_cross_section_estimate_dbsm(const AmplitudeLaw& law, const MonopulseAntenna& antenna, double range_m,
+                                         double azimuth_rad, double amplitude_db);
+
 // The III-B detection decision on a cell's resulting amplitude: keeps detections at or above the
 // threshold.
 void apply_detection_threshold(double threshold_db, Detections& detections);

@@ -58,8 +58,9 @@ void apply_fluctuation(Fluctuation fluctuation, Rng& rng, ResolutionCells& cells
 }
 
 void keep_local_maxima(const ResolutionCell& cell, Detections& detections, LocalMaximaBuffers& buffers) {
-  const double range_window_m = 1.5 * cell.range_cell_m;
-  const double rate_window_mps = 1.5 * cell.range_rate_cell_mps;
+  // Neighbours are the eight map cells around a detection's own (map_cell_index), as a peak search
+  // over the FFT's bins compares; two of them lie less than two cells apart in range.
+  const double range_window_m = 2.0 * cell.range_cell_m;
   const std::size_t n = detections.size();
   auto& order = buffers.by_range;
   order.resize(n);
@@ -68,11 +69,16 @@ void keep_local_maxima(const ResolutionCell& cell, Detections& detections, Local
     return detections[a].range_m < detections[b].range_m;
   });
   const auto range_of = [&](std::size_t k) { return detections[order[k]].range_m; };
-  // `other` dominates `self`: within the range-rate window and stronger (or as strong and earlier).
+  const auto neighbours = [&](const Detection& a, const Detection& b) {
+    return std::abs(map_cell_index(a.range_m, cell.range_cell_m) - map_cell_index(b.range_m, cell.range_cell_m)) <= 1.0 &&
+           std::abs(map_cell_index(a.range_rate_mps, cell.range_rate_cell_mps) -
+                    map_cell_index(b.range_rate_mps, cell.range_rate_cell_mps)) <= 1.0;
+  };
+  // `other` dominates `self`: in a neighbouring cell (or the same) and stronger (or as strong and earlier).
   const auto dominates = [&](std::size_t other, std::size_t self) {
     const Detection& o = detections[other];
     const Detection& d = detections[self];
-    if (std::abs(o.range_rate_mps - d.range_rate_mps) >= rate_window_mps) return false;
+    if (!neighbours(o, d)) return false;
     return o.amplitude_db > d.amplitude_db || (o.amplitude_db == d.amplitude_db && other < self);
   };
   buffers.peak.assign(n, 1);

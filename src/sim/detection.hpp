@@ -34,7 +34,8 @@ double detection_floor_db(const SensorConfig& config);
 void apply_fluctuation(Fluctuation fluctuation, Rng& rng, ResolutionCells& cells);
 
 // Keeps the detections whose amplitude is a local maximum of the range/range-rate map: none
-// stronger within 1.5 range cells and 1.5 range-rate cells (ties: the earlier one stays). Order
+// stronger in its own map cell or the eight around it (map_cell_index; ties: the earlier one
+// stays), so two kept at one radial speed lie at least a range cell apart. Order
 // kept. The buffers are the caller's (no allocation once they have grown).
 struct LocalMaximaBuffers {
   std::vector<std::size_t> by_range;

@@ -16,17 +16,17 @@
 
 namespace rcsim::replay::profile::amplitude_law_test {
 
-// The two-way pattern of eq. (6) in dB for a dipole length and spacing (exponent 2).
-double pattern_db(double azimuth_rad, double length_wavelengths, double spacing_wavelengths) {
+// The pattern of eq. (6) in dB for a dipole length and spacing: two-way (exponent 2) or one-way (1).
+double pattern_db(double azimuth_rad, double length_wavelengths, double spacing_wavelengths, double exponent = 2.0) {
   AntennaGeometry g;
   g.dipole_length_wavelengths = length_wavelengths, g.element_spacing_wavelengths = spacing_wavelengths;
-  g.amplitude_pattern_exponent = 2.0;
-  return amplitude_to_db(std::pow(MonopulseAntenna(g).sum_magnitude(azimuth_rad), 2.0));
+  g.amplitude_pattern_exponent = exponent;
+  return amplitude_to_db(std::pow(MonopulseAntenna(g).sum_magnitude(azimuth_rad), exponent));
 }
 
 // 1001 detections in one cycle: ranges 5 to 155 m, azimuths over +-12 deg (41 values, each in
 // 0.025-rad bins of at least 10), RCS 0 to 9 dBsm, SNR = 70 - 10 x 2.5 log10 R + pattern + RCS.
-DetectionPool known_law(double length_wavelengths, double spacing_wavelengths) {
+DetectionPool known_law(double length_wavelengths, double spacing_wavelengths, double exponent = 2.0) {
   DetectionPool pool;
   pool.cycles.resize(1);
   for (int i = 0; i <= 1000; ++i) {
@@ -34,7 +34,7 @@ DetectionPool known_law(double length_wavelengths, double spacing_wavelengths) {
     d.range_m = 5.0 + 0.15 * i;
     d.azimuth_rad = deg_to_rad(-12.0 + 0.6 * (i % 41));
     d.rcs_dbsm = static_cast<double>(i % 10);
-    d.amplitude_db = 70.0 - 25.0 * std::log10(d.range_m) + pattern_db(d.azimuth_rad, length_wavelengths, spacing_wavelengths) + d.rcs_dbsm;
+    d.amplitude_db = 70.0 - 25.0 * std::log10(d.range_m) + pattern_db(d.azimuth_rad, length_wavelengths, spacing_wavelengths, exponent) + d.rcs_dbsm;
     pool.cycles[0].detections.push_back(d);
   }
   pool.detections = 1001;
@@ -93,33 +93,37 @@ TEST(ProfileAmplitudeLaw, AnSnrWithTooFewCrossSectionsBesideItLeavesTheLawToTheB
 
 TEST(ProfileAmplitudeLaw, AKnownRangeLawAndPatternComeBack) {
   // Made with C = 70 dB, n = 2.5, dipole 0.8 and spacing 0.9 wavelengths (both on the search's
-  // grid; the spacing within the invertible bound for 16 deg: floor(20 / (2 sin 18 deg)) / 20 = 1.6).
-  const DetectionPool pool = known_law(0.8, 0.9);
-  std::vector<DerivationFigure> figures;
-  const std::vector<DerivedValue> values = derive_amplitude(pool, kBase, 16.0, figures);
-  ASSERT_EQ(values.size(), 5u);
-  const auto value_of = [&](const char* field) {
-    for (const DerivedValue& v : values) {
-      if (v.field == field) {
-        EXPECT_EQ(v.source, ValueSource::derived) << field;
-        EXPECT_EQ(v.support, 1001) << field;
-        return v.value.get<double>();
+  // grid; the spacing within the invertible bound for 16 deg: floor(20 / (2 sin 16 deg)) / 20 =
+  // 1.80), the pattern two-way and one-way: each comes back whatever the base's exponent (2).
+  for (const double exponent : {2.0, 1.0}) {
+    const DetectionPool pool = known_law(0.8, 0.9, exponent);
+    std::vector<DerivationFigure> figures;
+    const std::vector<DerivedValue> values = derive_amplitude(pool, kBase, 16.0, figures);
+    ASSERT_EQ(values.size(), 6u);
+    const auto value_of = [&](const char* field) {
+      for (const DerivedValue& v : values) {
+        if (v.field == field) {
+          EXPECT_EQ(v.source, ValueSource::derived) << field;
+          EXPECT_EQ(v.support, 1001) << field;
+          return v.value.get<double>();
+        }
       }
-    }
-    ADD_FAILURE() << field << " missing";
-    return 0.0;
-  };
-  EXPECT_NEAR(value_of("amplitude.snr_at_1m_for_1m2_db"), 70.0, 1e-9);
-  EXPECT_NEAR(value_of("amplitude.range_exponent"), 2.5, 1e-9);
-  EXPECT_NEAR(value_of("antenna.dipole_length_wavelengths"), 0.8, 1e-9);
-  EXPECT_NEAR(value_of("antenna.element_spacing_wavelengths"), 0.9, 1e-9);
-  // The law's evidence gives the residual: nil, the fit being exact.
-  EXPECT_NE(values[1].evidence.find("C 70.00 dB, n 2.500, residual 0.00 dB"), std::string::npos) << values[1].evidence;
-  EXPECT_NE(values[4].evidence.find("at most 1.60 (0.05 steps)"), std::string::npos) << values[4].evidence;
-  // Figures: amplitude against range, SNR - RCS against range with the law, the residual against azimuth.
-  ASSERT_EQ(figures.size(), 3u);
-  EXPECT_EQ(figures[1].title, "SNR - RCS against range");
-  EXPECT_EQ(figures[2].title, "The law's residual against azimuth");
+      ADD_FAILURE() << field << " missing";
+      return 0.0;
+    };
+    EXPECT_NEAR(value_of("amplitude.snr_at_1m_for_1m2_db"), 70.0, 1e-9);
+    EXPECT_NEAR(value_of("amplitude.range_exponent"), 2.5, 1e-9);
+    EXPECT_EQ(value_of("antenna.amplitude_pattern_exponent"), exponent);
+    EXPECT_NEAR(value_of("antenna.dipole_length_wavelengths"), 0.8, 1e-9);
+    EXPECT_NEAR(value_of("antenna.element_spacing_wavelengths"), 0.9, 1e-9);
+    // The law's evidence gives the residual: nil, the fit being exact.
+    EXPECT_NE(values[1].evidence.find("C 70.00 dB, n 2.500, residual 0.00 dB"), std::string::npos) << values[1].evidence;
+    EXPECT_NE(values[5].evidence.find("spacing 0.5-1.80 so that eq. (7) stays invertible"), std::string::npos) << values[5].evidence;
+    // Figures: amplitude against range, SNR - RCS against range with the law, the residual against azimuth.
+    ASSERT_EQ(figures.size(), 3u);
+    EXPECT_EQ(figures[1].title, "SNR - RCS against range");
+    EXPECT_EQ(figures[2].title, "The law's residual against azimuth");
+  }
 }
 
 TEST(ProfileAmplitudeLaw, APatternOnTheRadarsOwnScaleComesBackFromTheAmplitudesAzimuthPart) {
@@ -128,7 +132,7 @@ TEST(ProfileAmplitudeLaw, APatternOnTheRadarsOwnScaleComesBackFromTheAmplitudesA
   // detections each with cross-sections 0 to 19.5 dB: the 90 % quantile of each bin is the law at
   // its range, plus the pattern at its azimuth, plus 17.5 dB. The range and azimuth parts separate
   // exactly; the 20 folded bins of |azimuth| follow the pattern to rounding, and the search (spacing
-  // up to floor(20 / (2 sin 67 deg)) / 20 = 0.50 for a view of +-65 deg) finds it.
+  // up to floor(20 / (2 sin 65 deg)) / 20 = 0.55 for a view of +-65 deg) finds it.
   DetectionPool pool;
   pool.amplitude_unit = AmplitudeUnit::relative_db;
   pool.cycles.resize(1);
@@ -159,7 +163,7 @@ TEST(ProfileAmplitudeLaw, APatternOnTheRadarsOwnScaleComesBackFromTheAmplitudesA
             std::string::npos)
       << values[3].evidence;
   EXPECT_EQ(values[3].evidence.find("bound"), std::string::npos) << values[3].evidence;
-  EXPECT_NE(values[4].evidence.find("0.1 to 0.50 (0.05 steps)"), std::string::npos) << values[4].evidence;
+  EXPECT_NE(values[4].evidence.find("0.1 to 0.55 (0.05 steps)"), std::string::npos) << values[4].evidence;
   ASSERT_EQ(figures.size(), 2u);
   EXPECT_EQ(figures[1].title, "The amplitude's azimuth part");
   // A monopulse base: its spacing sets eq. (7)'s slope too, so the search keeps to 0.5 and up, and
@@ -167,7 +171,7 @@ TEST(ProfileAmplitudeLaw, APatternOnTheRadarsOwnScaleComesBackFromTheAmplitudesA
   std::vector<DerivationFigure> more;
   const std::vector<DerivedValue> monopulse = derive_amplitude(pool, kBase, 65.0, more);
   EXPECT_DOUBLE_EQ(monopulse[4].value.get<double>(), 0.5);
-  EXPECT_NE(monopulse[4].evidence.find("0.5 to 0.50 (0.05 steps)"), std::string::npos) << monopulse[4].evidence;
+  EXPECT_NE(monopulse[4].evidence.find("0.5 to 0.55 (0.05 steps)"), std::string::npos) << monopulse[4].evidence;
   EXPECT_NE(monopulse[3].evidence.find("the narrowest spacing, 0.5"), std::string::npos) << monopulse[3].evidence;
 }
 

@@ -26,8 +26,10 @@ std::vector<Vec2> posts() {
 }
 
 // Cycle k of a sensor driving along x at 10 m/s (0.05 s a cycle), seeing post i with amplitude
-// 20 + i dB (stationary); posts with seen[i] false are missed; range_offset_m adds to post 0's range.
-PooledCycle cycle_at(int k, const std::vector<bool>& seen, double range_offset_m = 0.0, int sensor = 0, int recording = 0) {
+// 20 + i dB (stationary, its radial speed the static world's); posts with seen[i] false are
+// missed; range_offset_m adds to post 0's range, rate_offset_mps to its radial speed.
+PooledCycle cycle_at(int k, const std::vector<bool>& seen, double range_offset_m = 0.0, int sensor = 0, int recording = 0,
+                     double rate_offset_mps = 0.0) {
   PooledCycle c;
   c.recording = recording, c.sensor = sensor, c.cycle = k, c.sensor_cycle = k, c.t_s = 0.05 * k;
   c.X_WV = {0.5 * k, 0.0, 0.0};
@@ -40,6 +42,7 @@ PooledCycle cycle_at(int k, const std::vector<bool>& seen, double range_offset_m
     PooledDetection d;
     d.range_m = p.norm() + (i == 0 ? range_offset_m : 0.0), d.azimuth_rad = std::atan2(p.y(), p.x());
     d.amplitude_db = 20.0 + static_cast<double>(i), d.stationary_residual_mps = 0.0;
+    d.range_rate_mps = -kSpeed_mps * std::cos(d.azimuth_rad) + (i == 0 ? rate_offset_mps : 0.0);
     c.detections.push_back(d);
   }
   // A moving car beside the posts: not stationary (NaN residual), never matched.
@@ -53,11 +56,11 @@ const std::vector<bool> kAll(12, true);
 const ViewLimits kView{deg_to_rad(60.0), 100.0};
 
 TEST(ProfileFrameMatching, TheStepTheRedetectionsAndTheResidualsOfADrivePastPosts) {
-  // Cycle 1 misses post 11; cycle 2 sees post 0 0.1 m too far.
+  // Cycle 1 misses post 11; cycle 2 sees post 0 0.1 m too far and 0.22 m/s too fast.
   std::vector<bool> without_11 = kAll;
   without_11[11] = false;
   DetectionPool pool;
-  pool.cycles = {cycle_at(0, kAll), cycle_at(1, without_11), cycle_at(2, kAll, 0.1)};
+  pool.cycles = {cycle_at(0, kAll), cycle_at(1, without_11), cycle_at(2, kAll, 0.1, 0, 0, 0.22)};
   const std::vector<FramePair> pairs = match_consecutive_cycles(pool, kThreshold_db, kView);
   ASSERT_EQ(pairs.size(), 2u);
   // Every post moved 0.5 m against a speed of 10 m/s: 0.05 s (the median of the posts' own shifts).
@@ -69,16 +72,24 @@ TEST(ProfileFrameMatching, TheStepTheRedetectionsAndTheResidualsOfADrivePastPost
     EXPECT_DOUBLE_EQ(pairs[0].redetections[i].margin_db, 5.0 + static_cast<double>(i));
     EXPECT_EQ(pairs[0].redetections[i].seen, i != 11) << i;
   }
-  ASSERT_EQ(pairs[0].range_residuals.size(), 11u);
-  for (const auto& [residual_m, margin_db] : pairs[0].range_residuals) EXPECT_NEAR(residual_m, 0.0, 1e-9);
-  // Cycle 1 -> 2: the 11 posts cycle 1 saw, all seen again; post 0's range 0.1 m long, at its
-  // margin in cycle 2 (5 dB).
+  ASSERT_EQ(pairs[0].matches.size(), 11u);
+  for (const MatchedDetection& m : pairs[0].matches) {
+    EXPECT_NEAR(m.range_m, 0.0, 1e-9);
+    EXPECT_NEAR(m.range_rate_mps, 0.0, 1e-9);
+  }
+  // Cycle 1 -> 2: the 11 posts cycle 1 saw, all seen again; post 0's range 0.1 m long and its
+  // radial speed 0.22 m/s fast (about the matches' median, 0: 0.22), at its margins (5 dB both).
   ASSERT_EQ(pairs[1].redetections.size(), 11u);
   for (const Redetection& r : pairs[1].redetections) EXPECT_TRUE(r.seen);
-  ASSERT_EQ(pairs[1].range_residuals.size(), 11u);
-  EXPECT_NEAR(pairs[1].range_residuals[0].first, 0.1, 1e-9);
-  EXPECT_DOUBLE_EQ(pairs[1].range_residuals[0].second, 5.0);
-  for (std::size_t i = 1; i < 11; ++i) EXPECT_NEAR(pairs[1].range_residuals[i].first, 0.0, 1e-9) << i;
+  ASSERT_EQ(pairs[1].matches.size(), 11u);
+  EXPECT_NEAR(pairs[1].matches[0].range_m, 0.1, 1e-9);
+  EXPECT_NEAR(pairs[1].matches[0].range_rate_mps, 0.22, 1e-9);
+  EXPECT_DOUBLE_EQ(pairs[1].matches[0].margin_earlier_db, 5.0);
+  EXPECT_DOUBLE_EQ(pairs[1].matches[0].margin_later_db, 5.0);
+  for (std::size_t i = 1; i < 11; ++i) {
+    EXPECT_NEAR(pairs[1].matches[i].range_m, 0.0, 1e-9) << i;
+    EXPECT_NEAR(pairs[1].matches[i].range_rate_mps, 0.0, 1e-9) << i;
+  }
 }
 
 TEST(ProfileFrameMatching, OnlyPostsWellInsideTheViewCountAsRedetections) {
@@ -93,7 +104,7 @@ TEST(ProfileFrameMatching, OnlyPostsWellInsideTheViewCountAsRedetections) {
   // (at most 22.85 m away) and leaves out those at 25.5 m and beyond.
   const std::vector<FramePair> near = match_consecutive_cycles(pool, kThreshold_db, {deg_to_rad(60.0), 28.0});
   EXPECT_EQ(near[0].redetections.size(), 6u);
-  EXPECT_EQ(near[0].range_residuals.size(), 12u);  // the residuals take every match
+  EXPECT_EQ(near[0].matches.size(), 12u);  // the matches take every one
 }
 
 // The largest period of which the steps are whole multiples: 55 ms from steps of one and two

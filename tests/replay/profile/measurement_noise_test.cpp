@@ -1,11 +1,12 @@
 // The noise stage of `rcsim profile derive` (replay/profile/measurement_noise.cpp, declared in
 // derivation_stages.hpp): a quantised quantity's step / sqrt(12), residual RMS by SNR margin,
-// MAD sigmas of matched ranges and the cycle time from the matched steps, each worked by hand on
+// the model's noise law fitted to matched pairs and the cycle time from the matched steps, each worked by hand on
 // detections and frame pairs laid out in code; and what is left to the base or the recordings.
 #include "replay/profile/derivation_stages.hpp"
 
 #include <gtest/gtest.h>
 
+#include <boost/math/special_functions/erf.hpp>
 #include <cmath>
 #include <map>
 #include <string>
@@ -72,25 +73,51 @@ TEST(ProfileMeasurementNoise, ResidualsByMarginAndMatchedRangesByHand) {
       ++n;
     }
   }
-  // 10 frame pairs 0.05 s apart; their range residuals: 40 within 6 dB of the threshold at +-0.1 m
-  // (median 0, MAD 0.1: 1.4826 x 0.1 / sqrt(2) = 0.1048 -> 0.105), 40 at 11 dB or more at +-0.04
-  // m (0.0419 -> 0.04).
+  // 10 frame pairs 0.05 s apart, their matches drawn (at the normal's quantiles) from the model's
+  // law sigma(m) = max(sigma_th 10^(-m/20), sigma_min) with sigma_th 0.1 m and 0.05 m/s, sigma_min
+  // 0.04 m and 0.015 m/s: 30 a pair with one end 1 dB and the other 12 dB above the threshold
+  // (sigma 0.0891 and 0.04 m: the difference's 0.0977 m), 30 with both 12 dB above (0.0566 m).
+  // Both come back within the search's 2-% steps, rounded to 5 mm and 1 mm/s.
+  const auto quantiles = [](int count) {
+    std::vector<double> z;
+    for (int k = 0; k < count; ++k) z.push_back(std::sqrt(2.0) * boost::math::erf_inv(2.0 * (k + 0.5) / count - 1.0));
+    return z;
+  };
+  const auto sigma = [](double at_threshold, double least, double margin_db) {
+    return std::max(at_threshold * std::pow(10.0, -margin_db / 20.0), least);
+  };
+  const auto difference_sigma = [&](double at_threshold, double least, double margin_a_db, double margin_b_db) {
+    return std::hypot(sigma(at_threshold, least, margin_a_db), sigma(at_threshold, least, margin_b_db));
+  };
+  const std::vector<double> z = quantiles(30);
   std::vector<FramePair> pairs(10);
-  for (FramePair& p : pairs) {
-    p.dt_s = 0.05;
-    for (int i = 0; i < 4; ++i) {
-      p.range_residuals.emplace_back(i % 2 == 0 ? 0.1 : -0.1, 2.0);
-      p.range_residuals.emplace_back(i % 2 == 0 ? 0.04 : -0.04, 15.0);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    pairs[p].dt_s = 0.05;
+    for (std::size_t k = p; k < z.size(); k += pairs.size()) {
+      pairs[p].matches.push_back({difference_sigma(0.1, 0.04, 1.0, 12.0) * z[k], difference_sigma(0.05, 0.015, 1.0, 12.0) * z[k], 1.0, 12.0});
+      pairs[p].matches.push_back({difference_sigma(0.1, 0.04, 12.0, 12.0) * z[k], difference_sigma(0.05, 0.015, 12.0, 12.0) * z[k], 12.0, 12.0});
     }
   }
   std::vector<DerivationFigure> figures;
   const auto values = by_field(derive_noise(pool, Cells{}, kThreshold_db, pairs, figures));
-  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_rate_sigma_at_threshold_mps").value.get<double>(), 0.05);
-  EXPECT_EQ(values.at("measurement_noise.range_rate_sigma_at_threshold_mps").support, 100);
-  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_rate_sigma_min_mps").value.get<double>(), 0.02);
-  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").value.get<double>(), 0.105);
-  EXPECT_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").support, 40);
-  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_sigma_min_m").value.get<double>(), 0.04);
+  EXPECT_NEAR(values.at("measurement_noise.range_sigma_at_threshold_m").value.get<double>(), 0.1, 0.0051);
+  EXPECT_NEAR(values.at("measurement_noise.range_sigma_min_m").value.get<double>(), 0.04, 0.0051);
+  EXPECT_NEAR(values.at("measurement_noise.range_rate_sigma_at_threshold_mps").value.get<double>(), 0.05, 0.0021);
+  EXPECT_NEAR(values.at("measurement_noise.range_rate_sigma_min_mps").value.get<double>(), 0.015, 0.0011);
+  EXPECT_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").support, 60);
+  EXPECT_NE(values.at("measurement_noise.range_sigma_min_m").evidence.find("over 60 pairs (30 with an end within 6 dB of the threshold, 30 with both 11 dB or more above"),
+            std::string::npos)
+      << values.at("measurement_noise.range_sigma_min_m").evidence;
+  // Without pairs near the threshold the radial speed's noise is the stationary fit's residual RMS
+  // near the threshold and far above it.
+  std::vector<FramePair> far_only = pairs;
+  for (FramePair& p : far_only) std::erase_if(p.matches, [](const MatchedDetection& m) { return m.margin_earlier_db < 11.0; });
+  std::vector<DerivationFigure> unused;
+  const auto rms_values = by_field(derive_noise(pool, Cells{}, kThreshold_db, far_only, unused));
+  EXPECT_DOUBLE_EQ(rms_values.at("measurement_noise.range_rate_sigma_at_threshold_mps").value.get<double>(), 0.05);
+  EXPECT_EQ(rms_values.at("measurement_noise.range_rate_sigma_at_threshold_mps").support, 100);
+  EXPECT_DOUBLE_EQ(rms_values.at("measurement_noise.range_rate_sigma_min_mps").value.get<double>(), 0.02);
+  EXPECT_EQ(rms_values.at("measurement_noise.range_sigma_min_m").source, ValueSource::base);
   // The cycle time from the 10 steps of exactly 50 ms: each one period, sum(k d) / sum(k^2) = 50 ms
   // (the search's first fit, 52.5 ms, is only where the least-squares period starts).
   EXPECT_EQ(values.at("cycle_time_s").source, ValueSource::derived);
@@ -116,7 +143,7 @@ TEST(ProfileMeasurementNoise, WhatTheDataCannotShowComesFromTheBaseOrTheRecordin
             "too few stationary detections near the threshold (0) or far above it (0)");
   EXPECT_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").source, ValueSource::base);
   EXPECT_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").evidence,
-            "too few stationary detections matched frame to frame (0 near the threshold, 0 far above)");
+            "too few stationary detections matched frame to frame (0 pairs: 0 with an end within 6 dB of the threshold, 0 with both 11 dB or more above; 30 of each needed)");
   EXPECT_EQ(values.at("cycle_time_s").evidence, "the recordings' clock (0 frame pairs matched, too few to show the radar's own)");
   // Single frames with a range cell: the range noise is the cell's quantisation, 0.15 / sqrt(12)
   // = 0.0433 -> 0.043; the cycle time cannot be seen.
