@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <span>
 
 #include "common/decibel.hpp"
 #include "common/quantile.hpp"
@@ -94,21 +95,22 @@ std::optional<NoiseLaw> fit_noise_law(const std::vector<MatchedDetection>& match
     return sum;
   };
   double best = INFINITY;
-  const auto search = [&](double th_lo, double min_lo, double factor, int steps) {
-    const double th0 = th_lo, min0 = min_lo;
+  const auto search = [&](double th_lo, double min_lo, double factor, int steps, std::span<const double> shares) {
     for (int i = 0; i < steps; ++i) {
       for (int j = 0; j < steps; ++j) {
-        const double at_threshold = th0 * std::pow(factor, i), least = min0 * std::pow(factor, j);
+        const double at_threshold = th_lo * std::pow(factor, i), least = min_lo * std::pow(factor, j);
         if (least > at_threshold) continue;
-        for (const double outliers : {0.005, 0.02, 0.05, 0.1, 0.2}) {
+        for (const double outliers : shares) {
           const double nll = negative_log_likelihood(at_threshold, least, outliers);
           if (nll < best) best = nll, law.at_threshold = at_threshold, law.least = least, law.outliers = outliers;
         }
       }
     }
   };
-  search(1e-3 * gate, 1e-3 * gate, 1.25, 32);  // 0.001 to 1 gate
-  search(law.at_threshold / 1.25, law.least / 1.25, 1.02, 24);
+  constexpr double kCoarseShare[] = {0.02}, kShares[] = {0.005, 0.02, 0.05, 0.1, 0.2};
+  search(1e-3 * gate, 1e-3 * gate, 1.25, 32, kCoarseShare);  // 0.001 to 1 gate
+  best = INFINITY;
+  search(law.at_threshold / 1.25, law.least / 1.25, 1.02, 24, kShares);
   return law;
 }
 

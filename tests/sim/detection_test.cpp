@@ -146,8 +146,9 @@ TEST(Detection, FluctuationIsReadAndUnknownNamesRefused) {
 }
 
 
-// keep_local_maxima: detections of a range/range-rate map with 1-m x 0.5-m/s cells, so the window
-// is 1.5 m x 0.75 m/s. object_index tells the detections apart.
+// keep_local_maxima: detections of a range/range-rate map with 1-m x 0.5-m/s cells (cell k centred
+// on k cells: range cell round(R / 1 m), range-rate cell round(v / 0.5 m/s)); a detection's
+// neighbours are those in its own cell or the eight around it. object_index tells them apart.
 Detection at(double range_m, double range_rate_mps, double amplitude_db, int id) {
   Detection d;
   d.range_m = range_m;
@@ -166,8 +167,8 @@ std::vector<int> ids_after_local_maxima(Detections detections) {
 }
 
 TEST(LocalMaxima, ThreeInARowOneCellApartKeepTheStrongest) {
-  // 10, 11, 12 m at 0 m/s: 20, 30, 25 dB. |11 - 10| = |12 - 11| = 1 < 1.5 with 30 dB stronger than
-  // both neighbours: only the middle one stays; 10 and 12 are 2 m apart, outside each other's window.
+  // 10, 11, 12 m at 0 m/s: 20, 30, 25 dB, in range cells 10, 11, 12: the 30-dB one is stronger than
+  // both neighbours: only the middle one stays; cells 10 and 12 are not neighbours.
   EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.0, 0.0, 30.0, 1), at(12.0, 0.0, 25.0, 2)}),
             (std::vector<int>{1}));
   // The same in any input order.
@@ -179,15 +180,19 @@ TEST(LocalMaxima, ThreeInARowOneCellApartKeepTheStrongest) {
 }
 
 TEST(LocalMaxima, TwoRangeRateCellsApartAllStay) {
-  // Range rates 0, 1, 2 m/s: neighbours differ by 1 m/s = 2 cells >= the 0.75 m/s window: all peaks.
+  // Range rates 0, 1, 2 m/s: range-rate cells 0, 2, 4, none neighbours: all peaks.
   EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.0, 1.0, 30.0, 1), at(12.0, 2.0, 25.0, 2)}),
             (std::vector<int>{0, 1, 2}));
-  // Within the window in range rate (0.7 m/s < 0.75) but not in range (1.6 m > 1.5): both stay;
-  // within both (1.4 m, 0.7 m/s): the weaker goes.
+  // Neighbours in range rate (0.7 m/s: cell 1) but not in range (11.6 m: cell 12): both stay;
+  // neighbours in both (11.4 m: cell 11): the weaker goes.
   EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.6, 0.7, 30.0, 1)}), (std::vector<int>{0, 1}));
   EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(11.4, 0.7, 30.0, 1)}), (std::vector<int>{1}));
   EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(10.0, -0.7, 30.0, 1)}), (std::vector<int>{1}));
   EXPECT_EQ(ids_after_local_maxima({at(10.0, 0.0, 20.0, 0), at(10.0, -0.8, 30.0, 1)}), (std::vector<int>{0, 1}));
+  // The cells, not the distance, decide, as a peak search over the FFT's bins: 1.2 m apart in cells
+  // 10 and 12 both stay; 0.8 m apart in one cell (10.6 and 11.4 m: 11) the weaker goes.
+  EXPECT_EQ(ids_after_local_maxima({at(10.4, 0.0, 20.0, 0), at(11.6, 0.0, 30.0, 1)}), (std::vector<int>{0, 1}));
+  EXPECT_EQ(ids_after_local_maxima({at(10.6, 0.0, 20.0, 0), at(11.4, 0.0, 30.0, 1)}), (std::vector<int>{1}));
 }
 
 TEST(LocalMaxima, EqualAmplitudesKeepTheEarlier) {
