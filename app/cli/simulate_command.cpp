@@ -1,6 +1,7 @@
-// rcsim simulate SCENE.json: target lists for every sensor and cycle.
+// rcsim simulate SCENE.json: target lists for every sensor and cycle, or a recording of them.
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -10,6 +11,8 @@
 #include "cli/fidelity_option.hpp"
 #include "cli/seed_option.hpp"
 #include "common/atomic_file.hpp"
+#include "io/recording.hpp"
+#include "replay/run/model_recording.hpp"
 #include "sim/target_list_mcap.hpp"
 #include "sim/target_list_writer.hpp"
 #include "scene/scene.hpp"
@@ -17,6 +20,8 @@
 
 namespace rcsim::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 struct SimulateArgs {
   std::string scene_path;
@@ -29,9 +34,32 @@ struct SimulateArgs {
   std::string output;
 };
 
-void run_simulate(const SimulateArgs& args) {
+// --format recording: the scene as its sensors would have recorded it (rcsim-recording), each at
+// its own reporting level, the true boxes as annotation: a drive whose profile is known, for
+// `rcsim profile derive` or `rcsim replay` to be checked against.
+void write_model_recording(const SimulateArgs& args, const Scene& scene) {
+  const fs::path dir = fs::path(args.output).lexically_normal();
+  const std::string name = (dir.has_filename() ? dir : dir.parent_path()).filename().string();
+  const Recording recording = replay::model_recording(scene, name, args.seed);
+  write_recording(args.output, recording);
+  std::cerr << fmt::format("rcsim simulate: {} cycles of {} sensor(s), {} targets; recording written to {}\n", recording.cycle_count(),
+                           recording.sensors.size(), recording.targets.size(), args.output);
+}
+
+void run_simulate(const SimulateArgs& args, const CLI::App& cmd) {
   const ModelLibrary library = ModelLibrary::builtin();
+  if (args.format == "recording") {
+    if (args.output.empty() || args.output == "-") {
+      throw CLI::ValidationError("--output", "--format recording writes a directory: name it with -o RECORDING_DIR");
+    }
+    for (const char* option : {"--level", "--no-noise", "--fidelity"}) {
+      if (cmd.count(option) > 0) {
+        throw CLI::ValidationError(option, "--format recording writes what each sensor reports, as the full model makes it");
+      }
+    }
+  }
   const Scene scene = load_scene_file(args.scene_path, library);
+  if (args.format == "recording") return write_model_recording(args, scene);
   SimulationOptions options;
   options.level = args.level == "ideal" ? ListLevel::ideal
                   : args.level == "detections" ? ListLevel::detections
@@ -91,11 +119,13 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_flag("--no-noise", args->no_noise, "Turn every random draw off: outputs follow the equations exactly");
   add_fidelity_option(*cmd, args->fidelity);
   cmd->add_flag("--no-culling", args->no_culling, "Visit every object's reflectors (the output is the same; for checking and timing)");
-  cmd->add_option("--format", args->format, "csv | jsonl | mcap (for Foxglove, schemas/mcap-replay.md; needs -o)")
-      ->check(CLI::IsMember({"csv", "jsonl", "mcap"}))
+  cmd->add_option("--format", args->format,
+                  "csv | jsonl | mcap (for Foxglove, schemas/mcap-replay.md; needs -o) | recording (an rcsim-recording directory "
+                  "of what each sensor reports, the true boxes as annotation; needs -o)")
+      ->check(CLI::IsMember({"csv", "jsonl", "mcap", "recording"}))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output file (written atomically); stdout if omitted");
-  cmd->callback([args] { run_simulate(*args); });
+  cmd->callback([args, cmd] { run_simulate(*args, *cmd); });
 }
 
 }  // namespace rcsim::cli

@@ -1,7 +1,9 @@
 // `rcsim simulate` as a user runs it: the same seed gives the same bytes, CSV and JSONL carry the
-// same rows, a bad scene or option is refused naming it, and an earlier output survives a failure.
+// same rows, a recording holds what each sensor reports, a bad scene or option is refused naming
+// it, and an earlier output survives a failure.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -9,6 +11,7 @@
 #include <vector>
 
 #include "app/cli/run_rcsim.hpp"
+#include "io/recording.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::simulate_command_test {
@@ -93,6 +96,38 @@ TEST_F(SimulateCli, EarlierOutputSurvivesAFailedRun) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("truncated.json: line"), std::string::npos) << r.output;
   EXPECT_EQ(read(out), before);
+}
+
+// --format recording: the scene as its sensors would have recorded it, a recording replay and
+// profile derive read; each sensor at its own level (srr24 tracks, aimotive_lrr detections with
+// the radar's cross-section estimate); the same seed gives the same rows; refused without -o or
+// with an option that does not apply.
+TEST_F(SimulateCli, RecordingFormatWritesWhatEachSensorReports) {
+  const auto tracks = dir_ / "tracks", lined = dir_ / "lined", again = dir_ / "again";
+  const auto made = run("simulate " + kExamples + "front_approach.json --format recording -o " + tracks.string());
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  EXPECT_NE(made.output.find("rcsim simulate: 101 cycles of 2 sensor(s), "), std::string::npos) << made.output;
+  const Recording front = read_recording(tracks);
+  EXPECT_EQ(front.name, "tracks");
+  ASSERT_EQ(front.sensors.size(), 2u);
+  EXPECT_EQ(front.sensors[0].reports, ListLevel::tracks);
+  EXPECT_TRUE(std::isnan(front.targets.at(0).rcs_dbsm));
+  const std::string scene = kExamples + "round_trip/lined_road.json --seed 3 --format recording -o ";
+  ASSERT_EQ(run("simulate " + scene + lined.string()).exit_code, 0);
+  ASSERT_EQ(run("simulate " + scene + again.string()).exit_code, 0);
+  const Recording road = read_recording(lined);
+  EXPECT_EQ(road.sensors.at(0).type, "aimotive_lrr");
+  EXPECT_EQ(road.sensors.at(0).reports, ListLevel::detections);
+  EXPECT_GT(road.targets.size(), 5000u);
+  EXPECT_TRUE(std::isfinite(road.targets.at(0).rcs_dbsm));
+  EXPECT_EQ(read(lined / "targets.csv"), read(again / "targets.csv"));
+  const auto no_dir = run("simulate " + kExamples + "front_approach.json --format recording");
+  EXPECT_EQ(no_dir.exit_code, 2);
+  EXPECT_NE(no_dir.output.find("--format recording writes a directory: name it with -o RECORDING_DIR"), std::string::npos) << no_dir.output;
+  const auto level = run("simulate " + kExamples + "front_approach.json --format recording --level detections -o " + (dir_ / "x").string());
+  EXPECT_EQ(level.exit_code, 2);
+  EXPECT_NE(level.output.find("--format recording writes what each sensor reports"), std::string::npos) << level.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
 }
 
 TEST_F(SimulateCli, UnknownLevelIsRefused) {

@@ -51,7 +51,7 @@ TEST(ProfileDerive, TheAimotiveDriveGivesAimotiveLrrsHandValues) {
   expect_derived_near(values, "amplitude.range_exponent", 2.53, 0.2);
   // The radial speed's noise: the hand's 0.045 / 0.013 m/s are the stationary fit's residual, which
   // the evidence still reads (0.044 / 0.014); it holds the azimuth error's share, which on the
-  // model's own drive reads 0.065 / 0.033 for 0.045 / 0.013 (profile_derivation_round_trip_test).
+  // model's own drive reads 0.060 / 0.032 for 0.045 / 0.013 (profile_derivation_round_trip_test).
   // The profile's value, from one scatterer's speed along one line of sight in consecutive
   // cycles, is half the hand's: 0.022 / 0.008 (docs/profile-derive.md).
   const DerivedValue& rate = values.at("measurement_noise.range_rate_sigma_at_threshold_mps");
