@@ -3,6 +3,7 @@
 // the model's noise law fitted to matched pairs and the cycle time from the matched steps, each worked by hand on
 // detections and frame pairs laid out in code; and what is left to the base or the recordings.
 #include "replay/profile/derivation_stages.hpp"
+#include "replay/profile/derivation_checks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,11 +17,7 @@ namespace rcsim::replay::profile::measurement_noise_test {
 
 constexpr double kThreshold_db = 10.0;
 
-std::map<std::string, DerivedValue> by_field(const std::vector<DerivedValue>& values) {
-  std::map<std::string, DerivedValue> out;
-  for (const DerivedValue& v : values) out[v.field] = v;
-  return out;
-}
+using rcsim::testing::by_field;
 
 // 200 detections in two cycles; range and range rate of the i-th as given.
 template <class Range, class Rate>

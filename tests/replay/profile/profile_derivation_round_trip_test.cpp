@@ -13,6 +13,7 @@
 
 #include "common/angles.hpp"
 #include "scene/scene.hpp"
+#include "replay/profile/derivation_checks.hpp"
 #include "replay/profile/profile_derivation.hpp"
 #include "replay/run/model_recording.hpp"
 #include "common/json_reader.hpp"
@@ -29,12 +30,9 @@ TEST(ProfileDeriveRoundTrip, AimotiveLrrComesBackFromItsOwnModel) {
   // The base is the paper's srr24 (its law eq. (1), its pattern one-way): nothing of aimotive_lrr
   // comes from it.
   const ProfileDerivation d = derive_profile({&recording}, {.base = "srr24", .name = "round_trip"});
-  std::map<std::string, DerivedValue> values;
-  for (const DerivedValue& v : d.values) values[v.field] = v;
+  const std::map<std::string, DerivedValue> values = testing::by_field(d.values);
   const auto expect_near = [&](const std::string& field, double truth, double tolerance) {
-    ASSERT_TRUE(values.count(field)) << field;
-    EXPECT_EQ(values.at(field).source, ValueSource::derived) << field << ": " << values.at(field).evidence;
-    EXPECT_NEAR(values.at(field).value.get<double>(), truth, tolerance) << field << ": " << values.at(field).evidence;
+    testing::expect_derived_near(values, field, truth, tolerance);
   };
   const SensorConfig lrr = builtin_sensor_config("aimotive_lrr");
   const MeasurementNoise& noise = lrr.noise;

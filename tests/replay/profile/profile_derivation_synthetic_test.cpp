@@ -8,6 +8,7 @@
 
 #include <map>
 
+#include "replay/profile/derivation_checks.hpp"
 #include "replay/profile/profile_derivation.hpp"
 #include "sensor/sensor_config.hpp"
 #include "synth/reference_simulator.hpp"
@@ -41,12 +42,9 @@ TEST(ProfileDeriveSynthetic, ASynthesisedAimotiveLrrGivesItsRadarBack) {
   const Scene scene = pole_field();
   const Recording recording = synth::make_recording(scene, synth::SynthConfig{}, 3, {"lined_road", "", "test"});
   const ProfileDerivation d = derive_profile({&recording}, {.base = "aimotive_lrr", .name = "synthesised_lrr"});
-  std::map<std::string, DerivedValue> values;
-  for (const DerivedValue& v : d.values) values[v.field] = v;
+  const std::map<std::string, DerivedValue> values = testing::by_field(d.values);
   const auto expect_near = [&](const std::string& field, double truth, double tolerance) {
-    ASSERT_TRUE(values.count(field)) << field;
-    EXPECT_EQ(values.at(field).source, ValueSource::derived) << field << ": " << values.at(field).evidence;
-    EXPECT_NEAR(values.at(field).value.get<double>(), truth, tolerance) << field << ": " << values.at(field).evidence;
+    testing::expect_derived_near(values, field, truth, tolerance);
   };
   const SensorConfig lrr = builtin_sensor_config("aimotive_lrr");
   // Measured: 179 m; 2.86 m (the bins 1.40 m).

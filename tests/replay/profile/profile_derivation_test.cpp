@@ -12,6 +12,7 @@
 #include "io/recording.hpp"
 #include "replay/import/aimotive_importer.hpp"
 #include "replay/import/dataset_importer.hpp"
+#include "replay/profile/derivation_checks.hpp"
 #include "replay/profile/profile_derivation.hpp"
 #include "sensor/sensor_config.hpp"
 #include "test_support.hpp"
@@ -21,19 +22,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::map<std::string, DerivedValue> by_field(const ProfileDerivation& d) {
-  std::map<std::string, DerivedValue> out;
-  for (const DerivedValue& v : d.values) out[v.field] = v;
-  return out;
-}
+using testing::expect_derived_near;
 
-// The value of `field`, derived (not the base's), within `tolerance` of the hand profile's.
-void expect_derived_near(const std::map<std::string, DerivedValue>& values, const std::string& field, double hand, double tolerance) {
-  const auto it = values.find(field);
-  ASSERT_NE(it, values.end()) << field;
-  EXPECT_EQ(it->second.source, ValueSource::derived) << field << ": " << it->second.evidence;
-  EXPECT_NEAR(it->second.value.get<double>(), hand, tolerance) << field << ": " << it->second.evidence;
-}
+std::map<std::string, DerivedValue> by_field(const ProfileDerivation& d) { return testing::by_field(d.values); }
 
 TEST(ProfileDerive, TheAimotiveDriveGivesAimotiveLrrsHandValues) {
   if (!fs::is_directory(testing::kAimotiveRaw)) {
