@@ -21,6 +21,7 @@ struct DerivationFigure {
   std::vector<long long> counts{};
   double marker = 0.0;
   std::string marker_label{};
+  bool y_from_zero = false;  // a quantity that cannot be negative (a noise), its axis from 0
 };
 
 // A histogram of `values` over [0, hi) in `bins` bins, what lies beyond in the last.

@@ -121,6 +121,34 @@ std::string noise_law_evidence(const NoiseLaw& law) {
                      law.pairs, law.near_threshold, kLowMarginDb + 2.0, law.far_above, kHighMarginDb, 100.0 * law.outliers);
 }
 
+// The fit drawn: per 2-dB bin of the nearer end's margin, the pairs' RMS difference / sqrt(2) (dots)
+// and the fitted law's sqrt((sigma(m_earlier)^2 + sigma(m_later)^2) / 2) over the same pairs (line).
+DerivationFigure noise_law_figure(std::string title, std::string y_label, const std::vector<MatchedDetection>& matches,
+                                  double (*difference)(const MatchedDetection&), const NoiseLaw& law) {
+  std::map<int, std::pair<double, double>> sums;  // bin -> (sum of squared differences, of the law's variances)
+  std::map<int, std::size_t> counts;
+  for (const MatchedDetection& m : matches) {
+    const int bin = static_cast<int>(std::floor(std::min(m.margin_earlier_db, m.margin_later_db) / 2.0));
+    const double sa = noise_sigma(law.at_threshold, law.least, db_to_amplitude(-m.margin_earlier_db));
+    const double sb = noise_sigma(law.at_threshold, law.least, db_to_amplitude(-m.margin_later_db));
+    sums[bin].first += difference(m) * difference(m), sums[bin].second += sa * sa + sb * sb;
+    ++counts[bin];
+  }
+  std::vector<std::pair<double, double>> measured, fitted;
+  for (const auto& [bin, sum] : sums) {
+    if (counts[bin] < kMinSamples) continue;
+    const auto n = static_cast<double>(counts[bin]);
+    measured.emplace_back(2.0 * bin + 1.0, std::sqrt(sum.first / n / 2.0));
+    fitted.emplace_back(2.0 * bin + 1.0, std::sqrt(sum.second / n / 2.0));
+  }
+  DerivationFigure figure{std::move(title), "nearer end's amplitude - threshold / dB", std::move(y_label),
+                          "stationary detections matched frame to frame, per 2-dB bin with at least 30 pairs: the RMS difference / "
+                          "sqrt(2), and the fitted law over the same pairs",
+                          {{"pairs", true, measured}, {"fitted law", false, fitted}}};
+  figure.y_from_zero = true;
+  return figure;
+}
+
 double range_difference(const MatchedDetection& m) { return m.range_m; }
 double range_rate_difference(const MatchedDetection& m) { return m.range_rate_mps; }
 
@@ -171,7 +199,10 @@ std::vector<DerivedValue> range_rate_noise(const DetectionPool& pool, double thr
     figures.push_back({"Radial-speed residual of the stationary world against SNR margin", "amplitude - threshold / dB",
                        "RMS residual / (m/s)", "per 2-dB bin with at least 30 inliers of the per-cycle stationary fit",
                        {{"RMS", false, rms_by_margin}}});
+    figures.back().y_from_zero = true;
     if (law) {
+      figures.push_back(noise_law_figure("Radial-speed noise of matched pairs against SNR margin", "noise / (m/s)", all_matches(frame_pairs),
+                                         range_rate_difference, *law));
       // Differences of one scatterer's radial speed along one line of sight: the azimuth's error,
       // which the stationary fit's residual also holds (v sin(az) d(az)), cancels.
       const auto support = static_cast<long long>(law->pairs);
@@ -224,10 +255,12 @@ DerivedValue cycle_time(const DetectionPool& pool, const std::vector<FramePair>&
 
 // The range's noise: matched stationary detections' range differences (a drive), a quantised
 // range's step / sqrt(12), or, for single frames, the range cell / sqrt(12).
-std::vector<DerivedValue> range_noise(const DetectionPool& pool, const Cells& cells, const std::vector<FramePair>& frame_pairs) {
+std::vector<DerivedValue> range_noise(const DetectionPool& pool, const Cells& cells, const std::vector<FramePair>& frame_pairs,
+                                      std::vector<DerivationFigure>& figures) {
   std::vector<DerivedValue> values;
   const std::vector<MatchedDetection> matches = all_matches(frame_pairs);
   if (const std::optional<NoiseLaw> law = fit_noise_law(matches, range_difference)) {
+    figures.push_back(noise_law_figure("Range noise of matched pairs against SNR margin", "noise / m", matches, range_difference, *law));
     const auto support = static_cast<long long>(law->pairs);
     values.push_back({"measurement_noise.range_sigma_at_threshold_m", round_to(law->at_threshold, 0.005), ValueSource::derived,
                       noise_law_evidence(*law) + " (an upper bound: the scatterer wanders)", support});
@@ -261,7 +294,7 @@ std::vector<DerivedValue> derive_noise(const DetectionPool& pool, const Cells& c
                                        const std::vector<FramePair>& frame_pairs, std::vector<DerivationFigure>& figures) {
   std::vector<DerivedValue> values = range_rate_noise(pool, threshold_db, frame_pairs, figures);
   values.push_back(cycle_time(pool, frame_pairs, figures));
-  const std::vector<DerivedValue> range = range_noise(pool, cells, frame_pairs);
+  const std::vector<DerivedValue> range = range_noise(pool, cells, frame_pairs, figures);
   values.insert(values.end(), range.begin(), range.end());
   return values;
 }

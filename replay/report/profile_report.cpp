@@ -19,6 +19,7 @@ std::string figure_svg(const profile::DerivationFigure& f) {
   }
   svg::PlotSpec p;
   p.title = f.title, p.x_label = f.x_label, p.y_label = f.y_label, p.note = f.note;
+  p.y_from_zero = f.y_from_zero;
   const char* colours[] = {svg::kRecordedColour, svg::kSimulatedColour, "#2b8a3e"};
   for (std::size_t i = 0; i < f.series.size(); ++i) {
     p.series.push_back({f.series[i].label, colours[i % 3], f.series[i].dots, false, f.series[i].points});

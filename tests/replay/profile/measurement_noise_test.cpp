@@ -120,8 +120,24 @@ TEST(ProfileMeasurementNoise, ResidualsByMarginAndMatchedRangesByHand) {
   EXPECT_EQ(values.at("cycle_time_s").source, ValueSource::derived);
   EXPECT_DOUBLE_EQ(values.at("cycle_time_s").value.get<double>(), 0.05);
   EXPECT_EQ(values.at("cycle_time_s").support, 10);
-  // Figures: the residual RMS per 2-dB bin of margin (bins at 1 and 13 dB), and the steps' histogram.
-  ASSERT_EQ(figures.size(), 2u);
+  // Figures: the residual RMS per 2-dB bin of margin (bins at 1 and 13 dB), the radial speed's law
+  // against the pairs, the steps' histogram, the range's law against the pairs: per 2-dB bin of the
+  // nearer end (1 dB: 30 pairs, 12 dB: 30), the RMS difference / sqrt(2) and the law's over the
+  // same pairs, within 5 % of each other (the law fitted to them).
+  ASSERT_EQ(figures.size(), 4u);
+  EXPECT_EQ(figures[1].title, "Radial-speed noise of matched pairs against SNR margin");
+  EXPECT_EQ(figures[3].title, "Range noise of matched pairs against SNR margin");
+  for (const std::size_t f : {std::size_t{1}, std::size_t{3}}) {
+    const auto& measured = figures[f].series[0].points;
+    const auto& law = figures[f].series[1].points;
+    ASSERT_EQ(measured.size(), 2u);
+    ASSERT_EQ(law.size(), 2u);
+    EXPECT_DOUBLE_EQ(measured[0].first, 1.0);
+    EXPECT_DOUBLE_EQ(measured[1].first, 13.0);
+    for (std::size_t i = 0; i < 2; ++i) EXPECT_NEAR(measured[i].second / law[i].second, 1.0, 0.05) << figures[f].title << " " << i;
+  }
+  // Range, the 1-dB bin: sigma 0.0891 and 0.04 m at the ends, (0.0891^2 + 0.04^2) / 2 -> 0.069 m.
+  EXPECT_NEAR(figures[3].series[1].points[0].second, 0.069, 0.005);
   const auto& rms = figures[0].series[0].points;
   ASSERT_EQ(rms.size(), 2u);
   EXPECT_DOUBLE_EQ(rms[0].first, 1.0);
