@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -57,6 +58,11 @@ int run_command_line(int argc, char** argv) {
     return kExitInterrupted;
   } catch (const rcsim::InputError& e) {
     std::cerr << "rcsim: error: " << e.what() << '\n';
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A name given that the file system refuses to look up (too long, a loop of links, no
+    // permission) is bad input: named, with why.
+    std::cerr << "rcsim: error: " << (e.path1().empty() ? "" : e.path1().string() + ": ") << e.code().message() << '\n';
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "rcsim: error: " << e.what() << '\n';

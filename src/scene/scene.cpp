@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <set>
 #include <stdexcept>
+#include <system_error>
 
 namespace rcsim {
 namespace {
@@ -109,11 +110,24 @@ std::string resolve_relative(const std::string& base_dir, const std::string& nam
   return p.is_absolute() || base_dir.empty() ? name : (std::filesystem::path(base_dir) / p).string();
 }
 
+namespace {
+
+// A name read as a file: missing, or one the file system refuses to look up (too long, a loop of
+// links), is the same refusal, saying why.
+void require_file(const std::string& path, const std::string& what) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    throw std::invalid_argument(what + " file not found: " + path + (error ? " (" + error.message() + ")" : ""));
+  }
+}
+
+}  // namespace
+
 SensorConfig sensor_config_for_type(const std::string& type, const std::string& base_dir) {
   if (is_builtin_sensor_config(type)) return builtin_sensor_config(type);
   if (looks_like_path(type)) {
     const std::string path = resolve_relative(base_dir, type);
-    if (!std::filesystem::exists(path)) throw std::invalid_argument("sensor configuration file not found: " + path);
+    require_file(path, "sensor configuration");
     return load_sensor_config_file(path);
   }
   throw std::invalid_argument(unknown_sensor_message(type));
@@ -123,7 +137,7 @@ ObjectModel object_model_for_name(const std::string& name, const ModelLibrary& l
   if (library.contains(name)) return library.at(name);
   if (looks_like_path(name)) {
     const std::string path = resolve_relative(base_dir, name);
-    if (!std::filesystem::exists(path)) throw std::invalid_argument("object model file not found: " + path);
+    require_file(path, "object model");
     return load_object_model_file(path);
   }
   std::string known;

@@ -56,6 +56,20 @@ TEST_F(Cli, EveryCommandLineErrorIsExitStatusTwoWithAShortMessage) {
   EXPECT_EQ(run("--version").exit_code, 0);
 }
 
+// A path the file system refuses to look up (a name of 300 bytes, beyond NAME_MAX) is bad input:
+// status 2, its reason named, whichever command met it (replay, import, profile derive, calibrate
+// and campaign status ended with status 1 and a bare "filesystem error", from look-ups that throw).
+TEST_F(Cli, APathTheFileSystemRefusesIsAnInputError) {
+  const std::string too_long = (dir_ / std::string(300, 'a')).string();
+  for (const std::string& args : {"replay " + too_long + " --db " + (dir_ / "r.sqlite").string(),
+                                  "profile derive " + too_long + " -o " + (dir_ / "p.json").string()}) {
+    const auto r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find("File name too long"), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "r.sqlite"));
+  EXPECT_FALSE(fs::exists(dir_ / "p.json"));
+}
 
 }  // namespace rcsim::command_line_test
 
