@@ -104,7 +104,7 @@ void add_import_command(CLI::App& app) {
                   "yaw_rad, speed_mps, yaw_rate_radps); without it the ego motion is estimated from the Doppler")
       ->check(CLI::ExistingFile);
   cmd->add_option("--frames", args->frames,
-                  "(--from astyx) the frames to import by their number in the dataset: 0-199, 200-399, 0,4 or 0-9,20; "
+                  "(--from astyx, vod) the frames to import by their number in the dataset: 0-199, 200-399, 0,4 or 0-9,20; "
                   "default all (a fit set and a held-out set are two imports)")
       ->type_name("LIST")
       ->needs(from);

@@ -443,7 +443,7 @@ DatasetRecording import_aimotive(const fs::path& raw_dir, const DatasetImportOpt
   if (!options.frames.empty()) {
     throw InputError("--frames", "",
                      "an aiMotive sequence is one drive and is imported whole: --frames chooses frames of a dataset of "
-                     "single frames (--from astyx)");
+                     "single frames (--from astyx, vod)");
   }
   const fs::path sequence = aimotive::find_sequence(raw_dir);
   const std::vector<RadarMount> mounts = aimotive::read_radar_mounts(sequence);

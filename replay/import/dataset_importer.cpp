@@ -7,6 +7,7 @@
 #include "replay/import/aimotive_importer.hpp"
 #include "replay/import/astyx_importer.hpp"
 #include "replay/import/mcap_importer.hpp"
+#include "replay/import/vod_importer.hpp"
 
 namespace rcsim::replay {
 
@@ -16,6 +17,8 @@ const std::vector<DatasetImporter>& dataset_importers() {
       {"astyx", "Astyx HiRes2019 frames (imaging radar point clouds, 3D boxes; snapshots, --frames)", import_astyx, nullptr},
       {"mcap", "an MCAP log (ROS 2 bag): radar_msgs/RadarScan, nav_msgs/Odometry or /tf, foxglove.SceneUpdate or OpenLABEL; --mapping",
        import_mcap, import_mcap_to},
+      {"vod", "View-of-Delft frames (ZF FRGen21 3+1D radar point clouds, KITTI boxes, calibration, poses; snapshots, --frames)",
+       import_vod, nullptr},
   };
   return importers;
 }

@@ -721,7 +721,7 @@ std::pair<Recording, std::size_t> import_log(const fs::path& log, const DatasetI
                                                 "(schemas/mcap-mapping.md)");
   }
   if (!options.ego_log.empty()) throw InputError(log.string(), "--ego-log", "an MCAP log carries its ego motion (the mapping's ego topic)");
-  if (!options.frames.empty()) throw InputError(log.string(), "--frames", "takes the frames of a dataset of single frames (--from astyx)");
+  if (!options.frames.empty()) throw InputError(log.string(), "--frames", "takes the frames of a dataset of single frames (--from astyx, vod)");
   const Mapping mapping = read_mapping(options.mapping);
   Survey survey = survey_log(log, mapping);
   if (mapping.ego.from_tf()) ego_from_tf(survey, log, mapping.ego);

@@ -21,12 +21,17 @@ Eigen::Matrix4d read_rigid_transform(const JsonField& field, std::string_view ke
       m(r, c) = v.get<double>();
     }
   }
-  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-  if ((R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3 || R.determinant() < 0.0 ||
-      m.row(3) != Eigen::RowVector4d(0.0, 0.0, 0.0, 1.0)) {
-    field.fail(key, "is no rigid transform (rotation not orthonormal, or last row not 0 0 0 1)");
-  }
+  if (const auto flaw = rigid_transform_flaw(m)) field.fail(key, *flaw);
   return m;
+}
+
+std::optional<std::string> rigid_transform_flaw(const Eigen::Matrix4d& m) {
+  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+  if (!m.allFinite() || (R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3 ||
+      R.determinant() < 0.0 || m.row(3) != Eigen::RowVector4d(0.0, 0.0, 0.0, 1.0)) {
+    return std::string("is no rigid transform (rotation not orthonormal, or last row not 0 0 0 1)");
+  }
+  return std::nullopt;
 }
 
 }  // namespace rcsim::replay

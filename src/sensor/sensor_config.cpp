@@ -60,12 +60,13 @@ AmplitudeLaw parse_amplitude_law(const JsonField& amp) {
   AmplitudeLaw law;
   const std::string kind = amp.has("law") ? amp.string("law") : "paper_eq1";
   if (kind == "paper_eq1") {
-    amp.expect_only({"law", "unit", "reference_level_db", "reference_slope_db_per_m", "detection_threshold_db"});
+    amp.expect_only({"law", "unit", "reference_level_db", "reference_slope_db_per_m", "detection_threshold_db", "noise_floor_db"});
     law.kind = AmplitudeLawKind::paper_eq1;
     law.reference_level_db = level_db(amp, "reference_level_db");
     law.reference_slope_db_per_m = non_negative(amp, "reference_slope_db_per_m");
   } else if (kind == "radar_equation") {
-    amp.expect_only({"law", "unit", "snr_at_1m_for_1m2_db", "reference_rcs_dbsm", "range_exponent", "detection_threshold_db"});
+    amp.expect_only({"law", "unit", "snr_at_1m_for_1m2_db", "reference_rcs_dbsm", "range_exponent", "detection_threshold_db",
+                     "noise_floor_db"});
     law.kind = AmplitudeLawKind::radar_equation;
     law.snr_at_1m_for_1m2_db = level_db(amp, "snr_at_1m_for_1m2_db");
     law.reference_rcs_dbsm = level_db(amp, "reference_rcs_dbsm");
@@ -87,6 +88,19 @@ AmplitudeLaw parse_amplitude_law(const JsonField& amp) {
     } else if (unit != "snr_db") {
       amp.fail("unit", fmt::format("must be \"snr_db\" or \"relative_db\", got \"{}\"", unit));
     }
+  }
+  if (amp.has("noise_floor_db")) {
+    if (law.unit != AmplitudeUnit::relative_db) {
+      amp.fail("noise_floor_db", "an SNR scale's noise lies at 0 dB by definition: only a relative_db scale names its own");
+    }
+    law.noise_floor_db = level_db(amp, "noise_floor_db");
+  }
+  if (law.unit == AmplitudeUnit::relative_db && law.detection_threshold_db <= law.noise_floor_db) {
+    amp.fail("detection_threshold_db",
+             fmt::format("{} dB lies at or below the noise floor ({} dB, noise_floor_db): every cell would be detected on "
+                         "the pointer noise. Give amplitude.noise_floor_db, where this radar's noise lies on its scale "
+                         "(docs/amplitude.md)",
+                         law.detection_threshold_db, law.noise_floor_db));
   }
   return law;
 }

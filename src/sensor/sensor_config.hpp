@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/amplitude_unit.hpp"
+#include "common/decibel.hpp"
 #include "common/list_level.hpp"
 #include "common/json_reader.hpp"
 #include "sensor/stationary_background.hpp"
@@ -36,6 +37,11 @@ struct AmplitudeLaw {
   double reference_rcs_dbsm = 0.0;
   double range_exponent = 4.0;
   double detection_threshold_db = 6.0;  // paper III-B
+  // Where the radar's noise lies on this amplitude scale: the complex pointer noise of eq. (8) has
+  // amplitude pointer_noise_sigma at this level (pointer_noise_amplitude). 0 on an SNR scale, by
+  // definition; a relative scale (a range-compensated level, an RCS) names its own, below its
+  // threshold (docs/amplitude.md).
+  double noise_floor_db = 0.0;
 };
 
 // Target fluctuation (Swerling) of a resolution cell's amplitude from cycle to cycle; with the
@@ -177,6 +183,12 @@ struct SensorConfig {
   MultibounceConfig multibounce;
   StationaryBackground background;  // optional section; empty: none
 };
+
+// The pointer noise's amplitude on the sensor's amplitude scale: pointer_noise_sigma at the
+// scale's noise floor (eq. (8); AmplitudeLaw::noise_floor_db).
+inline double pointer_noise_amplitude(const SensorConfig& config) {
+  return config.pointer_noise_sigma * db_to_amplitude(config.amplitude.noise_floor_db);
+}
 
 SensorConfig parse_sensor_config(const JsonField& root);
 SensorConfig load_sensor_config_file(const std::string& path);

@@ -39,7 +39,7 @@ double detection_floor_db(const SensorConfig& config) {
   double low_db = threshold_db - 120.0, high_db = threshold_db;
   for (int i = 0; i < 60; ++i) {
     const double mid_db = 0.5 * (low_db + high_db);
-    const double pd = detection_probability(fluctuation, mid_db, threshold_db, config.pointer_noise_sigma);
+    const double pd = detection_probability(fluctuation, mid_db, threshold_db, pointer_noise_amplitude(config));
     (pd < kNegligibleDetectionProbability ? low_db : high_db) = mid_db;
   }
   return low_db;

@@ -94,12 +94,12 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   // cells => detections: pointer noise, monopulse angle, resulting amplitude    (eqs. (7)-(8))
   //   (an array that resolves azimuth: each beam cell's own angle, docs/imaging-radar.md)
   if (config.resolution.resolves_azimuth()) {
-    estimate_beam_angles(config.array.azimuth_sigma_rad, config.pointer_noise_sigma, state.cells, state.ideal, rng,
+    estimate_beam_angles(config.array.azimuth_sigma_rad, pointer_noise_amplitude(config), state.cells, state.ideal, rng,
                          state.detections);
   } else if (model.options.fidelity == Fidelity::no_monopulse) {
     estimate_ideal_angles(model.options.angle_noise_sigma_rad, state.cells, state.ideal, rng, state.detections);
   } else {
-    estimate_monopulse_angles(model.antenna, config.pointer_noise_sigma, state.cells, state.ideal, rng, state.detections);
+    estimate_monopulse_angles(model.antenna, pointer_noise_amplitude(config), state.cells, state.ideal, rng, state.detections);
   }
   // detections => plus their leakage into the cells beside theirs (the FFTs' window)   (imaging-radar.md)
   add_spectral_leakage(config.resolution, config.amplitude.detection_threshold_db, state.detections);

@@ -83,3 +83,30 @@ TEST(SensorConfigImaging, ContradictionsAreRefusedNamingTheField) {
 
 }  // namespace
 }  // namespace rcsim
+
+namespace rcsim {
+namespace {
+
+// A relative amplitude scale names where its noise lies (amplitude.noise_floor_db): a threshold at
+// or below it would detect every cell on the pointer noise of eq. (8), and is refused by name.
+TEST(SensorConfigNoiseFloor, ARelativeScaleNamesItsNoiseFloor) {
+  nlohmann::json rcs = testing::builtin_sensor_json("astyx_hires");
+  rcs["amplitude"]["snr_at_1m_for_1m2_db"] = -27.0;  // an RCS-like scale: the threshold -55
+  rcs["amplitude"]["detection_threshold_db"] = -55.0;
+  const std::string refused = testing::sensor_config_error(rcs);
+  EXPECT_NE(refused.find("amplitude.detection_threshold_db"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("noise floor"), std::string::npos) << refused;
+  rcs["amplitude"]["noise_floor_db"] = -100.0;
+  EXPECT_EQ(testing::sensor_config_error(rcs), "");
+  const SensorConfig c = parse_sensor_config(JsonField(rcs, "s.json", ""));
+  EXPECT_EQ(c.amplitude.noise_floor_db, -100.0);
+  EXPECT_NEAR(pointer_noise_amplitude(c), c.pointer_noise_sigma * 1e-5, 1e-20);  // -100 dB: 10^(-5) in amplitude
+  // The SNR scale's floor is 0 dB by definition: naming one there is refused, and the default is 1 x sigma.
+  nlohmann::json srr24 = testing::builtin_sensor_json("srr24");
+  EXPECT_EQ(pointer_noise_amplitude(builtin_sensor_config("srr24")), builtin_sensor_config("srr24").pointer_noise_sigma);
+  srr24["amplitude"]["noise_floor_db"] = -10.0;
+  EXPECT_NE(testing::sensor_config_error(srr24).find("amplitude.noise_floor_db"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rcsim

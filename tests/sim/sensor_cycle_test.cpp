@@ -298,3 +298,44 @@ TEST(SensorCycleReports, ASensorThatReportsDetectionsReportsThemAtTheTracksLevel
 
 }  // namespace
 }  // namespace rcsim
+
+namespace rcsim {
+namespace {
+
+// The model does not care where a relative scale puts its zero: the same radar with every level
+// (law, threshold, noise floor) 100 dB lower detects the same cells, at amplitudes 100 dB lower.
+TEST(SensorCycleNoiseFloor, AShiftedRelativeScaleDetectsTheSameCells) {
+  const auto detections_with = [](double shift_db) {
+    nlohmann::json doc = testing::builtin_sensor_json("astyx_hires");
+    doc["amplitude"]["snr_at_1m_for_1m2_db"] = doc["amplitude"]["snr_at_1m_for_1m2_db"].get<double>() + shift_db;
+    doc["amplitude"]["detection_threshold_db"] = doc["amplitude"]["detection_threshold_db"].get<double>() + shift_db;
+    doc["amplitude"]["noise_floor_db"] = shift_db;
+    doc.erase("background");
+    Scene scene = testing::single_sensor_scene(0.5);
+    scene.sensors[0].config = parse_sensor_config(JsonField(doc, "s.json", ""));
+    scene.cycle_time_s = scene.sensors[0].config.cycle_time_s;
+    testing::add_object(scene, "car", "passenger_car", {testing::sample(0.0, 15.0, 2.0, 0.3, 0.0)});
+    SimulationOptions options;
+    options.level = ListLevel::detections;
+    options.seed = 5;
+    Simulation simulation(scene, options);
+    std::vector<Detection> all;
+    for (int k = 0; k < simulation.cycle_count(); ++k) {
+      simulation.run_cycle(k);
+      const Detections& d = simulation.sensor_state(0).detections;
+      all.insert(all.end(), d.begin(), d.end());
+    }
+    return all;
+  };
+  const std::vector<Detection> reference = detections_with(0.0), shifted = detections_with(-100.0);
+  ASSERT_GT(reference.size(), 10u);
+  ASSERT_EQ(shifted.size(), reference.size());
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    EXPECT_NEAR(shifted[i].amplitude_db, reference[i].amplitude_db - 100.0, 1e-6);
+    EXPECT_NEAR(shifted[i].azimuth_rad, reference[i].azimuth_rad, 1e-9);
+    EXPECT_NEAR(shifted[i].range_m, reference[i].range_m, 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace rcsim
