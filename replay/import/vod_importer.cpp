@@ -231,7 +231,7 @@ RadarVelocity radar_velocity(const std::vector<RadarPoint>& points) {
   // The normal matrix's spread: a frame whose points lie in one plane of elevation (or one line of
   // sight) cannot show vz (or vy); those stay 0.
   const Eigen::Matrix3d N = A.transpose() * A / static_cast<double>(u.size());
-  const bool with_vz = N(2, 2) > 1e-3;
+  const bool with_vz = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(N, Eigen::EigenvaluesOnly).eigenvalues().minCoeff() > 1e-8;
   const Eigen::Matrix2d N2 = N.topLeftCorner<2, 2>();
   if (N2.determinant() < 1e-4) return fit;  // all points along one line of sight
   if (with_vz) {

@@ -176,7 +176,7 @@ TEST(VodVelocity, TheRadarsVelocityFromCompensatedMinusMeasured) {
   std::vector<vod::RadarPoint> points;
   const Eigen::Vector3d v_S(6.0, -0.5, 0.1);
   for (int i = 0; i < 20; ++i) {
-    const Eigen::Vector3d p(10.0 + i, -8.0 + 0.9 * i, -2.0 + 0.2 * i);
+    const Eigen::Vector3d p(10.0 + i, -8.0 + 0.9 * i, -2.0 + 0.8 * (i % 5));  // not on one line: u spans 3-D
     const double v_comp = (i % 3 == 0) ? 2.0 : 0.0;  // moving points count as well: only the difference matters
     points.push_back({p.x(), p.y(), p.z(), 0.0, v_comp - v_S.dot(p.normalized()), v_comp, 0.0, 0});
   }
