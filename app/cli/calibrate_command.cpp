@@ -78,13 +78,27 @@ void print_figures(const std::string& label, const replay::RealDriveFigures& f) 
                            f.background_per_cycle_recorded, f.background_per_cycle_simulated, f.background_range_ks);
 }
 
+// How a real-drive search ended. A flat objective is no convergence: nothing moved it.
+std::string search_outcome(const replay::RealDriveFit& fit) {
+  if (fit.partial) return "interrupted: the best so far (partial)";
+  if (fit.flat) return "the objective is flat (not converged)";
+  return fit.converged ? "converged" : "the evaluation budget spent before the steps converged";
+}
+
+std::string searched_fields(const replay::RealDriveFit& fit) {
+  std::string names;
+  for (const replay::FittedValue& v : fit.values) names += (names.empty() ? "" : ", ") + v.field;
+  return names;
+}
+
 // rcsim calibrate --real-drive (docs/sensor-profiles.md): the profile's free values and the
 // stationary background fitted to real drives by their figures, with the hold-outs.
 void run_real_drive_calibration(const CalibrateArgs& args) {
   std::vector<Recording> recordings;
   for (const auto& dir : recording_dirs(args.recordings)) {
     recordings.push_back(read_recording(dir));
-    replay::check_fittable(recordings.back());
+    replay::check_fittable(recordings.back(), Fidelity::no_tracking);
+    if (args.hold_out) replay::check_hold_out(recordings.back());  // before an hour is spent on the fit
   }
   if (!args.sensor.empty()) {
     // A file named on the command line is relative to the working directory, not the recording.
@@ -111,10 +125,13 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
     fit = replay::fit_real_drive(all, options, search);
   }
   std::cout << fmt::format("fitted: {} evaluations, objective {:.4f}, {}; background {:.1f} targets per sensor cycle\n",
-                           fit.evaluations, fit.objective,
-                           fit.partial ? "interrupted: the best so far (partial)"
-                                       : (fit.converged ? "converged" : "the evaluation budget spent before the steps converged"),
+                           fit.evaluations, fit.objective, search_outcome(fit),
                            fit.sensor_document["background"]["targets_per_cycle"].get<double>());
+  if (fit.flat) {
+    std::cout << fmt::format("  the objective is flat: {:.4f} at each of the {} evaluations; no searched value ({}) changed it, "
+                             "so the values below are the start's, not fitted (docs/calibration.md, a flat objective)\n",
+                             fit.objective, fit.evaluations, searched_fields(fit));
+  }
   nlohmann::ordered_json values = nlohmann::ordered_json::array();
   for (const replay::FittedValue& v : fit.values) {
     std::cout << fmt::format("  {:<52} {:>9.3f} (from {:.3f}; searched {:.3f} .. {:.3f}){}\n", v.field, v.value, v.start, v.lower,
@@ -129,7 +146,7 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
   for (const Recording& r : recordings) fitted_on.push_back({{"recording", r.name}, {"checksum", fmt::format("{:016x}", r.checksum)}});
   index["fitted_on"] = fitted_on;
   index["fit"] = {{"evaluations", fit.evaluations}, {"objective", fit.objective}, {"converged", fit.converged},
-                  {"partial", fit.partial}, {"reference_rcs_dbsm", fit.reference_rcs_dbsm},
+                  {"partial", fit.partial}, {"flat", fit.flat}, {"reference_rcs_dbsm", fit.reference_rcs_dbsm},
                   {"diffuse_relative_ercs_per_sqrt_m", fit.diffuse_relative_ercs_per_sqrt_m},
                   {"occlusion_loss_db", fit.occlusion_loss_db}, {"values", values}};
   print_figures_header();
@@ -149,7 +166,9 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
       for (const replay::HoldOut& h : replay::hold_outs(r, options, search)) {
         print_figures(fmt::format("{}: in sample", h.name.substr(0, 22)), h.in_sample);
         print_figures(fmt::format("{}: held out", h.name.substr(0, 22)), h.held_out);
-        hold_outs.push_back({{"recording", r.name}, {"split", h.name}, {"reference_rcs_dbsm", h.fit.reference_rcs_dbsm},
+        if (h.fit.flat) std::cout << fmt::format("{}: the fit's objective is flat over its {} evaluations\n", h.name, h.fit.evaluations);
+        hold_outs.push_back({{"recording", r.name}, {"split", h.name}, {"flat", h.fit.flat},
+                             {"reference_rcs_dbsm", h.fit.reference_rcs_dbsm},
                              {"diffuse_relative_ercs_per_sqrt_m", h.fit.diffuse_relative_ercs_per_sqrt_m},
                              {"occlusion_loss_db", h.fit.occlusion_loss_db},
                              {"in_sample", replay::figures_to_json(h.in_sample)},
@@ -184,6 +203,7 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
 void run_calibrate(const CalibrateArgs& args) {
   if (args.real_drive) return run_real_drive_calibration(args);
   if (args.hold_out) throw InputError("--hold-out", "", "goes with --real-drive");
+  if (!args.sensor.empty()) throw InputError("--sensor", args.sensor, "goes with --real-drive");
   replay::CalibrationOptions options;
   options.groups = parse_groups(args.fit);
   options.seed = args.seed;
@@ -253,7 +273,8 @@ void add_calibrate_command(CLI::App& app) {
                 "detection rates, by a bounded search (docs/sensor-profiles.md)");
   cmd->add_flag("--hold-out", args->hold_out,
                 "with --real-drive: also fit on the first half of each recording's cycles (frames) and measure on the "
-                "second, and with two radars on one and measure on the other (both ways)");
+                "second (single frames, up to 20: leave one frame out, each frame measured with the fit on the "
+                "others), and with two radars on one and measure on the other (both ways)");
   cmd->add_option("--sensor", args->sensor,
                   "with --real-drive: fit this profile (built-in name or rcsim-sensor file, e.g. from rcsim profile "
                   "derive) for every sensor instead of the recordings' type; replay with the same --sensor and the "

@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "common/input_error.hpp"
 #include "replay/import/importer.hpp"
+#include "sensor/sensor_config.hpp"
 
 namespace rcsim::cli {
 
@@ -45,9 +47,17 @@ inline replay::ImportOptions import_options(const ImportArgs& args) {
   options.smoothing_half_window_s = args.smoothing_half_window_s;
   options.max_gap_s = args.max_gap_s;
   if (!args.sensor.empty()) {
-    // A file named on the command line is relative to the working directory, not the recording.
-    const bool is_path = args.sensor.find('/') != std::string::npos || args.sensor.ends_with(".json");
-    options.sensor_type_override = is_path ? std::filesystem::absolute(args.sensor).string() : args.sensor;
+    // A built-in profile's name, or a file relative to the working directory (not the
+    // recording's); anything else is the option's fault, said before a recording's
+    // sensors[].type could be blamed for it.
+    if (is_builtin_sensor_config(args.sensor)) {
+      options.sensor_type_override = args.sensor;
+    } else if (std::filesystem::is_regular_file(args.sensor)) {
+      options.sensor_type_override = std::filesystem::absolute(args.sensor).string();
+    } else {
+      throw InputError("--sensor", args.sensor,
+                       "no such built-in profile or rcsim-sensor file; " + unknown_sensor_message(args.sensor));
+    }
   }
   if (args.effects.empty()) return options;  // the recording's declared effects, else all three
   options.effects = {};

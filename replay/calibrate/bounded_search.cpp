@@ -25,8 +25,10 @@ SearchResult compass_search(const std::vector<SearchParameter>& parameters,
     steps.push_back(p.step);
   }
   const auto stopped = [&] { return stop != nullptr && stop->load(); };
+  double lowest = INFINITY, highest = -INFINITY;
   const auto evaluate = [&](const std::vector<double>& x) {
     const double value = objective(x);
+    lowest = std::min(lowest, value), highest = std::max(highest, value);
     ++r.evaluations;
     if (progress) progress({r.evaluations, max_evaluations, std::min(value, r.objective), r.best});
     return value;
@@ -74,6 +76,7 @@ SearchResult compass_search(const std::vector<SearchParameter>& parameters,
     for (std::size_t i = 0; i < steps.size(); ++i) steps[i] = parameters[i].step;
   }
   r.stopped = !r.converged && stopped();
+  r.flat = r.evaluations >= 2 && lowest == highest;
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     const double tolerance = 1e-9 * std::max(1.0, std::abs(parameters[i].upper - parameters[i].lower));
     r.on_bound.push_back(std::abs(r.best[i] - parameters[i].lower) <= tolerance || std::abs(r.best[i] - parameters[i].upper) <= tolerance);

@@ -32,6 +32,9 @@ struct SearchResult {
   int evaluations = 0;
   bool converged = false;  // every step below its resolution
   bool stopped = false;    // the caller's stop flag ended it: the best so far
+  // Every evaluation (at least two) gave the same objective: no parameter moved it, so the search
+  // ended where it started and learnt nothing (not converged on an optimum).
+  bool flat = false;
 };
 
 // `objective` is called at most max_evaluations times; `stop` (may be null) is read before each

@@ -258,7 +258,12 @@ class Fitter {
   // A sensor field as its own parameter.
   void add_field(const std::string& key, const Json& doc, const std::string& pointer, ParameterGroup group,
                  double lower, double upper, const std::string& unit) {
-    const double v = doc[Json::json_pointer(pointer)].get<double>();
+    const Json::json_pointer at(pointer);
+    if (!doc.contains(at) || !doc.at(at).is_number()) {
+      throw InputError("--fit", std::string(parameter_group_name(group)),
+                       fmt::format("the sensor profile {} has no {} to fit", doc.value("name", key), pointer));
+    }
+    const double v = doc.at(at).get<double>();
     std::string name = doc.value("name", key) + pointer;
     std::replace(name.begin(), name.end(), '/', '.');
     add(key, name, group, {{pointer, v, 1.0}}, v, lower, upper, unit);
@@ -337,8 +342,20 @@ class Fitter {
       add_model_parameters(key, doc);
       return;
     }
+    // level and slope are eq. (1)'s: a radar-equation profile (real radars, recordings of
+    // detections) has neither, and is fitted to real drives by --real-drive.
+    const bool radar_equation = doc.contains("amplitude") && doc.at("amplitude").value("law", "") == "radar_equation";
+    for (const ParameterGroup g : {ParameterGroup::level, ParameterGroup::slope}) {
+      if (!wanted(g) || !radar_equation) continue;
+      throw InputError("--fit", std::string(parameter_group_name(g)),
+                       fmt::format("the sensor profile {} has the radar-equation amplitude law (amplitude.law), with no "
+                                   "eq. (1) reference {} to fit (the default --fit is ercs,slope); fit a radar-equation "
+                                   "profile to real drives with --real-drive (docs/sensor-profiles.md), or its objects' "
+                                   "reflectors alone with --fit ercs",
+                                   doc.value("name", key), g == ParameterGroup::level ? "level" : "slope"));
+    }
     if (wanted(ParameterGroup::level)) {
-      const double l0 = doc["amplitude"]["reference_level_db"].get<double>();
+      const double l0 = doc.at("amplitude").value("reference_level_db", 0.0);
       add_field(key, doc, "/amplitude/reference_level_db", ParameterGroup::level, l0 - kLevelRangeDb, l0 + kLevelRangeDb, "dB");
     }
     if (wanted(ParameterGroup::slope)) {
@@ -396,12 +413,37 @@ std::string_view parameter_group_name(ParameterGroup group) {
   return "?";
 }
 
-void check_fittable(const Recording& recording) {
+bool compares_tracks(const Recording& recording) {
+  return std::any_of(recording.sensors.begin(), recording.sensors.end(),
+                     [](const RecordingSensor& s) { return s.reports == ListLevel::tracks; });
+}
+
+namespace {
+
+// Whether the model at `fidelity` runs a tracker for some sensor of the recording: its profile
+// reports tracks (src/sim/sensor_cycle.cpp).
+bool simulates_tracker(const Recording& recording, Fidelity fidelity) {
+  if (fidelity == Fidelity::no_tracking) return false;
+  return std::any_of(recording.sensors.begin(), recording.sensors.end(), [&](const RecordingSensor& s) {
+    return sensor_document(s.type, recording.dir.string()).value("reports", "tracks") != "detections";
+  });
+}
+
+}  // namespace
+
+void check_fittable(const Recording& recording, Fidelity fidelity) {
   const std::string dir = recording.dir.string();
   if (recording.targets.empty()) throw InputError(dir, "", "holds no recorded target: nothing to fit the model to");
+  if (recording.objects.empty()) {
+    throw InputError(dir, "objects.csv", "holds no annotated object: nothing to fit the model's objects to");
+  }
   if (recording.cycle_count() < kMinCalibrationCycles) {
-    throw InputError(dir, "", fmt::format("{} cycles; a fit needs {} at least (a track confirms after {} hits)",
-                                          recording.cycle_count(), kMinCalibrationCycles, kMinCalibrationCycles));
+    const bool tracks = compares_tracks(recording);
+    if (tracks || simulates_tracker(recording, fidelity)) {
+      throw InputError(dir, "", fmt::format("{} cycles; a fit needs {} at least (a track confirms after {} hits; {})",
+                                            recording.cycle_count(), kMinCalibrationCycles, kMinCalibrationCycles,
+                                            tracks ? "its sensors report tracks" : "its sensors' profiles track"));
+    }
   }
   const RecordedTarget& first = recording.targets.front();
   const bool all_same = std::all_of(recording.targets.begin(), recording.targets.end(), [&](const RecordedTarget& t) {
@@ -422,7 +464,7 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
   if (!(options.initial_step_db > 0.0) || !(options.final_step_db > 0.0) || options.final_step_db > options.initial_step_db) {
     throw std::invalid_argument("calibrate: steps must satisfy 0 < final_step_db <= initial_step_db");
   }
-  for (const Recording& r : recordings) check_fittable(r);
+  for (const Recording& r : recordings) check_fittable(r, Fidelity::full);
   Fitter fitter(recordings, options);
   CalibrationResult result;
   const std::size_t n = fitter.size();

@@ -82,12 +82,19 @@ struct CalibrationResult {
   std::map<std::string, nlohmann::ordered_json> documents;
 };
 
-// The fewest cycles a recording to fit on may have: a track confirms after 4 hits (paper III-E).
+// The fewest cycles a recording to fit on may have where tracks are compared or simulated: a track
+// confirms after 4 hits (paper III-E). Raw detections with no tracker simulated need one cycle
+// (single frames are first-class).
 inline constexpr int kMinCalibrationCycles = 4;
 
+// Whether some sensor of the recording reports tracks (then tracks are compared), not detections.
+bool compares_tracks(const Recording& recording);
+
 // Refuses, naming the recording (InputError), one that cannot inform a fit: no recorded target,
-// fewer than kMinCalibrationCycles cycles, or every recorded target the same point.
-void check_fittable(const Recording& recording);
+// no annotated object, every recorded target the same point, or fewer than kMinCalibrationCycles
+// cycles where a track must confirm: some sensor reports tracks, or, at `fidelity` (not
+// no_tracking), some sensor's profile simulates a tracker.
+void check_fittable(const Recording& recording, Fidelity fidelity);
 
 // Progress: the step just finished, the objective and the evaluations so far.
 using CalibrationProgress = std::function<void(double step_db, double objective, int evaluations)>;

@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "common/input_error.hpp"
 #include "common/json_reader.hpp"
 #include "common/quantile.hpp"
 #include "replay/calibrate/calibration_fit.hpp"
@@ -38,6 +39,27 @@ Recording restrict_to_sensor(const Recording& recording, int sensor) {
   return out;
 }
 
+namespace {
+
+// A recording's every object has a box (read_recording refuses one without, and the importer
+// starts each object's trajectory at its first box): an object boxed only in cycles that a cut
+// left out goes with them.
+void drop_unboxed_objects(Recording& recording) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < recording.objects.size(); ++i) {
+    if (recording.boxes[i].empty()) continue;
+    if (kept != i) {
+      recording.objects[kept] = std::move(recording.objects[i]);
+      recording.boxes[kept] = std::move(recording.boxes[i]);
+    }
+    ++kept;
+  }
+  recording.objects.resize(kept);
+  recording.boxes.resize(kept);
+}
+
+}  // namespace
+
 Recording restrict_to_cycles(const Recording& recording, int first, int end) {
   if (!(0 <= first && first < end && end <= recording.cycle_count())) throw std::out_of_range("restrict_to_cycles: no such cycles");
   Recording out = recording;
@@ -59,6 +81,7 @@ Recording restrict_to_cycles(const Recording& recording, int first, int end) {
   for (auto& boxes : out.boxes) {
     std::erase_if(boxes, [&](const AnnotatedBox& b) { return b.t_s < from_s || b.t_s > until_s; });
   }
+  drop_unboxed_objects(out);
   out.targets.clear();
   for (const RecordedTarget& t : recording.targets) {
     if (t.cycle < first || t.cycle >= end) continue;
@@ -66,6 +89,39 @@ Recording restrict_to_cycles(const Recording& recording, int first, int end) {
     out.targets.back().cycle -= first;
   }
   out.name = fmt::format("{}[{}:{}]", recording.name, first, end);
+  return out;
+}
+
+Recording without_cycle(const Recording& recording, int held) {
+  if (!(0 <= held && held < recording.cycle_count()) || recording.cycle_count() < 2) {
+    throw std::out_of_range("without_cycle: no such cycle, or no other");
+  }
+  Recording out = recording;
+  if (recording.clock == Clock::per_sensor) {
+    out.cycles.erase(out.cycles.begin() + held);  // the ego log is a trajectory in time: kept whole
+  } else {
+    out.ego.erase(out.ego.begin() + held);
+  }
+  // A box belongs to the cycle nearest its time (a snapshot's box: its frame's).
+  std::vector<double> cycle_t_s;
+  for (int k = 0; k < recording.cycle_count(); ++k) cycle_t_s.push_back(recording.cycle_t_s(k));
+  const auto nearest_cycle = [&](double t_s) {
+    const auto after = std::lower_bound(cycle_t_s.begin(), cycle_t_s.end(), t_s);
+    if (after == cycle_t_s.end()) return static_cast<int>(cycle_t_s.size()) - 1;
+    if (after == cycle_t_s.begin() || *after - t_s < t_s - *(after - 1)) return static_cast<int>(after - cycle_t_s.begin());
+    return static_cast<int>(after - cycle_t_s.begin()) - 1;
+  };
+  for (auto& boxes : out.boxes) {
+    std::erase_if(boxes, [&](const AnnotatedBox& b) { return nearest_cycle(b.t_s) == held; });
+  }
+  drop_unboxed_objects(out);
+  out.targets.clear();
+  for (const RecordedTarget& t : recording.targets) {
+    if (t.cycle == held) continue;
+    out.targets.push_back(t);
+    if (t.cycle > held) --out.targets.back().cycle;
+  }
+  out.name = fmt::format("{}[-{}]", recording.name, held);
   return out;
 }
 
@@ -333,6 +389,7 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   const SearchResult r = compass_search(parameters, objective_of, search.max_evaluations, search.stop, search.progress);
   RealDriveFit best;
   best.objective = r.objective, best.evaluations = r.evaluations, best.converged = r.converged, best.partial = r.stopped;
+  best.flat = r.flat;
   for (std::size_t i = 0; i < parameters.size(); ++i) {
     const SearchParameter& p = parameters[i];
     best.values.push_back({p.name, p.start, r.best[i], p.lower, p.upper, r.on_bound[i]});
@@ -345,13 +402,20 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   return best;
 }
 
-std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options, const RealDriveSearch& search) {
-  if (recording.cycle_count() < 4) {
-    throw std::invalid_argument(fmt::format("{}: {} cycle(s): a hold-out needs at least 4 to fit on half and measure on the other",
-                                            recording.dir.string(), recording.cycle_count()));
+void check_hold_out(const Recording& recording) {
+  // Tracks confirm after kMinCalibrationCycles hits: each half needs some; detections need a cycle
+  // to fit on and one to measure on.
+  const bool tracks = compares_tracks(recording);
+  const int fewest = tracks ? kMinCalibrationCycles : 2;
+  if (recording.cycle_count() < fewest) {
+    throw InputError(recording.dir.string(), "",
+                     fmt::format("{} cycle(s): a hold-out needs at least {} to fit on some and measure on the others{}",
+                                 recording.cycle_count(), fewest, tracks ? " (its sensors report tracks)" : ""));
   }
-  const int half = recording.cycle_count() / 2;
-  const Recording first = restrict_to_cycles(recording, 0, half), second = restrict_to_cycles(recording, half, recording.cycle_count());
+}
+
+std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options, const RealDriveSearch& search) {
+  check_hold_out(recording);
   std::vector<HoldOut> out;
   const auto run = [&](std::string name, const Recording& train, const Recording& test) {
     HoldOut h;
@@ -367,6 +431,16 @@ std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& 
     run(fmt::format("{} -> {}", recording.sensors[0].id, recording.sensors[1].id), sensor_a, sensor_b);
     run(fmt::format("{} -> {}", recording.sensors[1].id, recording.sensors[0].id), sensor_b, sensor_a);
   }
+  if (recording.timeline == Timeline::snapshots && recording.cycle_count() <= kMaxFramesLeftOut) {
+    // Single frames, few: each left out in turn, fitted on the others.
+    for (int k = 0; k < recording.cycle_count(); ++k) {
+      run(fmt::format("frame {} of {} held out", k, recording.cycle_count()), without_cycle(recording, k),
+          restrict_to_cycles(recording, k, k + 1));
+    }
+    return out;
+  }
+  const int half = recording.cycle_count() / 2;
+  const Recording first = restrict_to_cycles(recording, 0, half), second = restrict_to_cycles(recording, half, recording.cycle_count());
   run(recording.timeline == Timeline::snapshots ? "first half of the frames -> second half" : "first half -> second half", first, second);
   return out;
 }

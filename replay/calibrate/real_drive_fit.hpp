@@ -5,7 +5,8 @@
 // bounded search on the real-drive figures (object target counts and detection rates, not GOSPA),
 // the stationary background by its density; then the goal figures in sample and held out: fitted
 // on the front radar and measured on the rear one, the reverse, and fitted on the first half of
-// the drive (or the frames) and measured on the second.
+// the drive (or the frames) and measured on the second, or, for a few single frames, each frame
+// held out in turn.
 #include <atomic>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -24,6 +25,10 @@ Recording restrict_to_sensor(const Recording& recording, int sensor);
 // The recording's cycles [first, end) (ego rows, boxes and targets of those cycles; cycle
 // numbers from 0 again).
 Recording restrict_to_cycles(const Recording& recording, int first, int end);
+// The recording without cycle `held` (a frame left out of single frames): its targets, ego row and
+// boxes (those nearest its time) gone, the later cycles numbered one lower. Both cuts drop the
+// objects left without a box (snapshot data boxes each object in one frame only).
+Recording without_cycle(const Recording& recording, int held);
 
 // A replay of `recording` with `config` in place of the sensor type of the same name, the
 // detection probability in 20-m bins (for real_drive_figures).
@@ -82,6 +87,7 @@ struct RealDriveFit {
   int evaluations = 0;
   bool converged = false;
   bool partial = false;  // stopped before it converged or spent its budget: the best so far
+  bool flat = false;     // every evaluation gave the same objective: the values are the start's, not fitted
 };
 
 // Fits the profile the recordings' sensors share (their one sensor type) to them: the stationary
@@ -100,8 +106,16 @@ struct HoldOut {
   RealDriveFigures in_sample, held_out;
 };
 
-// The hold-outs of one recording: with two sensors, first -> second and second -> first; always the
-// first half of the cycles (frames) -> the second.
+// Single frames (timeline snapshots) up to this many are held out one by one (leave one frame
+// out); more are split in halves, as a drive is.
+inline constexpr int kMaxFramesLeftOut = 20;
+
+// The hold-outs of one recording: with two sensors, first -> second and second -> first; then, for
+// up to kMaxFramesLeftOut single frames, each frame held out in turn (fitted on the others), else
+// the first half of the cycles (frames) -> the second. Refused (InputError naming the recording)
+// with fewer cycles than a split needs: 2 for detections, kMinCalibrationCycles for tracks
+// (compares_tracks, calibration_fit.hpp).
+void check_hold_out(const Recording& recording);
 std::vector<HoldOut> hold_outs(const Recording& recording, const ReplayOptions& options, const RealDriveSearch& search = {});
 
 }  // namespace rcsim::replay

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/run_rcsim.hpp"
+#include "replay/calibrate/snapshot_frames.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 
@@ -150,6 +151,105 @@ TEST_F(CalibrateCli, RecordingsThatCannotInformAFitAreRefusedBeforeAnythingIsWri
       EXPECT_FALSE(fs::exists(out)) << c.name << mode;
     }
   }
+}
+
+// Three single frames of raw detections, each object boxed in its frame only (issue 48): the
+// real-drive fit takes them (no 4-cycle minimum without a tracker), and --hold-out, which crashed
+// (SIGSEGV) on such recordings, leaves each frame out in turn: fitted on the others, measured on it.
+TEST_F(CalibrateCli, SingleFramesAreFittedAndHeldOutOneByOne) {
+  const fs::path rec = dir_ / "frames", out = dir_ / "fit";
+  write_recording(rec, testing::snapshot_frames({.frames = 3}));
+  const auto r = run_rcsim("calibrate " + rec.string() + " --real-drive --hold-out --max-evaluations 4 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NE(r.output.find(fmt::format("frame {} of 3 held out: held out", k)), std::string::npos) << r.output;
+  }
+  const nlohmann::json index = nlohmann::json::parse(testing::read_file(out / "calibration.json"));
+  ASSERT_EQ(index.at("hold_outs").size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    const nlohmann::json& h = index.at("hold_outs").at(static_cast<std::size_t>(k));
+    EXPECT_EQ(h.at("split"), fmt::format("frame {} of 3 held out", k));
+    EXPECT_EQ(h.at("held_out").at("object_targets_recorded"), 4);  // its frame's
+    EXPECT_EQ(h.at("in_sample").at("object_targets_recorded"), 8);  // the two others'
+  }
+  // One frame is fitted, but cannot be held out: nothing would be left to fit on.
+  const fs::path one = dir_ / "one_frame";
+  write_recording(one, testing::snapshot_frames({.frames = 1}));
+  EXPECT_EQ(run_rcsim("calibrate " + one.string() + " --real-drive --max-evaluations 2 -o " + (dir_ / "fit1").string()).exit_code, 0);
+  const auto held = run_rcsim("calibrate " + one.string() + " --real-drive --hold-out -o " + (dir_ / "fit2").string());
+  EXPECT_EQ(held.exit_code, 2) << held.output;
+  EXPECT_NE(held.output.find(one.string() + ": 1 cycle(s): a hold-out needs at least 2"), std::string::npos) << held.output;
+  EXPECT_FALSE(fs::exists(dir_ / "fit2"));
+}
+
+// docs/hardening.md: a recording with no annotated object is refused by both fits, naming it,
+// where it was "fitted" to objective 0.
+TEST_F(CalibrateCli, ARecordingWithoutObjectsIsRefused) {
+  Recording none = testing::snapshot_frames({.frames = 5});
+  none.objects.clear();
+  none.boxes.clear();
+  const fs::path rec = dir_ / "no_objects";
+  write_recording(rec, none);
+  for (const char* mode : {"", " --real-drive"}) {
+    const fs::path out = dir_ / "fit";
+    const auto r = run_rcsim("calibrate " + rec.string() + mode + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << mode << "\n" << r.output;
+    EXPECT_NE(r.output.find(rec.string() + ": objects.csv: holds no annotated object"), std::string::npos) << mode << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out)) << mode;
+  }
+}
+
+// An objective that nothing moves (here: no object ever in view, so no object target to count) is
+// said to be flat, with its value and evaluations, never "converged".
+TEST_F(CalibrateCli, AFlatObjectiveIsSaidToBeFlat) {
+  const fs::path rec = dir_ / "out_of_view", out = dir_ / "fit";
+  write_recording(rec, testing::snapshot_frames({.frames = 3, .objects_in_view = false}));
+  const auto r = run_rcsim("calibrate " + rec.string() + " --real-drive --max-evaluations 8 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find(", converged"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("objective 0.0000, the objective is flat (not converged)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the objective is flat: 0.0000 at each of the 8 evaluations; no searched value "
+                          "(amplitude.reference_rcs_dbsm, "),
+            std::string::npos)
+      << r.output;
+  const nlohmann::json index = nlohmann::json::parse(testing::read_file(out / "calibration.json"));
+  EXPECT_TRUE(index.at("fit").at("flat").get<bool>());
+  EXPECT_FALSE(index.at("fit").at("converged").get<bool>());  // the budget ended it: 8 evaluations
+}
+
+// `calibrate` without --real-drive on a recording of a radar-equation radar (issue 53, trap 1;
+// issue 51): was "[json.exception.type_error.302] type must be number" and status 1. Now the
+// default groups' eq. (1) slope is refused naming --fit and the way out; --fit ercs fits.
+TEST_F(CalibrateCli, ARadarEquationProfileWithoutRealDriveSaysWhatToDo) {
+  const fs::path rec = dir_ / "frames";
+  write_recording(rec, testing::snapshot_frames({.frames = 3}));
+  const auto r = run_rcsim("calibrate " + rec.string() + " -o " + (dir_ / "fit").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(r.output.find("json.exception"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--fit: slope: the sensor profile aimotive_lrr has the radar-equation amplitude law"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("--real-drive"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "fit"));
+  const auto ercs = run_rcsim("calibrate " + rec.string() + " --fit ercs --final-step-db 6 -o " + (dir_ / "ercs").string());
+  EXPECT_EQ(ercs.exit_code, 0) << ercs.output;
+  EXPECT_TRUE(fs::exists(dir_ / "ercs" / "calibration.json"));
+}
+
+// --sensor names the option when its file is missing, and is refused where it does nothing
+// (the GOSPA fit takes the recordings' own sensors).
+TEST_F(CalibrateCli, ASensorOptionThatCannotBeUsedIsNamed) {
+  const fs::path rec = dir_ / "frames";
+  write_recording(rec, testing::snapshot_frames({.frames = 3}));
+  const std::string missing = (dir_ / "missing.json").string();
+  const auto real = run_rcsim("calibrate " + rec.string() + " --real-drive --sensor " + missing + " -o " + (dir_ / "a").string());
+  EXPECT_EQ(real.exit_code, 2) << real.output;
+  EXPECT_NE(real.output.find("--sensor: " + missing + ": no such built-in profile or rcsim-sensor file"), std::string::npos)
+      << real.output;
+  const auto gospa = run_rcsim("calibrate " + rec.string() + " --sensor aimotive_lrr -o " + (dir_ / "b").string());
+  EXPECT_EQ(gospa.exit_code, 2) << gospa.output;
+  EXPECT_NE(gospa.output.find("--sensor: aimotive_lrr: goes with --real-drive"), std::string::npos) << gospa.output;
+  EXPECT_FALSE(fs::exists(dir_ / "a"));
+  EXPECT_FALSE(fs::exists(dir_ / "b"));
 }
 
 }  // namespace

@@ -142,6 +142,24 @@ TEST_F(ReplayCli, AnotherSensorConfigurationIsStoredWithItsRun) {
   EXPECT_LT(simulated(2), simulated(1));  // a higher threshold detects less
 }
 
+// A --sensor that names no file and no built-in profile is the option's fault (issue 48), not the
+// recording's sensors[].type, which it replaces; nothing is stored.
+TEST_F(ReplayCli, AMissingSensorFileNamesTheOption) {
+  const fs::path rec = recording(1.0);
+  const fs::path db = dir_ / "r.sqlite";
+  for (const std::string& sensor : {(dir_ / "missing.json").string(), std::string("srr42")}) {
+    const auto r = run_rcsim("replay " + rec.string() + " --db " + db.string() + " --sensor " + sensor);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--sensor: " + sensor + ": no such built-in profile or rcsim-sensor file"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("sensors[0].type"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(db));
+  }
+  // A name close to a built-in one is answered with it.
+  EXPECT_NE(run_rcsim("replay " + rec.string() + " --db " + db.string() + " --sensor srr42").output.find("\"srr24\""),
+            std::string::npos);
+}
+
 TEST_F(ReplayCli, SceneWritesALoadableSceneAndImportStillDoesSayingSo) {
   const fs::path rec = recording(2.0);
   const fs::path scene = dir_ / "scene.json";

@@ -61,5 +61,23 @@ TEST(CompassSearch, KeepsTheBudgetAndStopsOnRequestWithTheBestSoFar) {
   EXPECT_DOUBLE_EQ(stopped.best[0], 2.0);  // 0 -> 1 -> 2: the best of three
 }
 
+// An objective that no parameter moves (issue 48: every simulated cell detected whatever the
+// level) is said to be flat, not an optimum found; one that moves anywhere is not flat.
+TEST(CompassSearch, SaysWhenTheObjectiveIsFlat) {
+  const auto constant = [](const std::vector<double>&) { return 0.75; };
+  const SearchResult flat = compass_search({{"x", 0.0, -5.0, 5.0, 1.0, 0.1}, {"y", 1.0, 0.0, 2.0, 0.5, 0.1}}, constant, 500);
+  EXPECT_TRUE(flat.flat);
+  EXPECT_GT(flat.evaluations, 2);
+  EXPECT_DOUBLE_EQ(flat.best[0], 0.0);  // where it started
+  EXPECT_DOUBLE_EQ(flat.best[1], 1.0);
+  EXPECT_DOUBLE_EQ(flat.objective, 0.75);
+
+  // Flat but for one corner the search visits: not flat.
+  const auto almost = [](const std::vector<double>& x) { return x[0] <= -4.0 ? 0.5 : 0.75; };
+  EXPECT_FALSE(compass_search({{"x", 0.0, -5.0, 5.0, 4.0, 0.1}}, almost, 500).flat);
+  // One evaluation says nothing about the objective's shape.
+  EXPECT_FALSE(compass_search({{"x", 0.0, -5.0, 5.0, 1.0, 0.1}}, constant, 1).flat);
+}
+
 }  // namespace
 }  // namespace rcsim::replay

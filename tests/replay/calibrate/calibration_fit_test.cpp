@@ -9,6 +9,7 @@
 #include "common/input_error.hpp"
 #include "model/model_library.hpp"
 #include "replay/calibrate/calibration_fit.hpp"
+#include "replay/calibrate/snapshot_frames.hpp"
 #include "replay/run/model_recording.hpp"
 #include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
@@ -62,6 +63,67 @@ TEST(Calibration, FindsThePoleErcsTheRecordingWasMadeWith) {
   EXPECT_GT(result.evaluations, 10);
   // The fitted document holds the value the search ended with.
   EXPECT_DOUBLE_EQ(result.documents.at("model:pole")["point_reflectors"][0]["ercs"].get<double>(), pole.value);
+}
+
+// The message check_fittable refuses `r` with at `fidelity`, or "" if it takes it.
+std::string fittable_refusal(const Recording& r, Fidelity fidelity) {
+  try {
+    replay::check_fittable(r, fidelity);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Single frames of raw detections need no 4 cycles for a track to confirm (issue 48): none is
+// simulated or compared. Tracks keep the minimum, recorded or simulated (srr24 tracks at full).
+TEST(Calibration, FewFramesFitWhereNoTrackConfirms) {
+  const Recording frames = snapshot_frames({.frames = 3});
+  EXPECT_EQ(fittable_refusal(frames, Fidelity::no_tracking), "");
+  EXPECT_EQ(fittable_refusal(frames, Fidelity::full), "");  // aimotive_lrr reports detections
+  Recording one = snapshot_frames({.frames = 1});
+  EXPECT_EQ(fittable_refusal(one, Fidelity::full), "");
+
+  Recording tracks = frames;
+  tracks.sensors[0].reports = ListLevel::tracks;
+  EXPECT_NE(fittable_refusal(tracks, Fidelity::no_tracking).find("3 cycles; a fit needs 4 at least"), std::string::npos);
+  Recording tracking_profile = frames;
+  tracking_profile.sensors[0].type = "srr24";
+  EXPECT_NE(fittable_refusal(tracking_profile, Fidelity::full).find("its sensors' profiles track"), std::string::npos);
+  EXPECT_EQ(fittable_refusal(tracking_profile, Fidelity::no_tracking), "");
+}
+
+// docs/hardening.md: a recording with no annotated object is refused, naming it, by both fits.
+TEST(Calibration, ARecordingWithoutObjectsIsRefused) {
+  Recording none = snapshot_frames({.frames = 5});
+  none.objects.clear();
+  none.boxes.clear();
+  for (const Fidelity f : {Fidelity::full, Fidelity::no_tracking}) {
+    EXPECT_EQ(fittable_refusal(none, f), "snapshot_frames: objects.csv: holds no annotated object: nothing to fit the model's objects to");
+  }
+  EXPECT_THROW(replay::calibrate({none}, CalibrationOptions{}), InputError);
+}
+
+// The default groups (ercs, slope) on a radar-equation profile: slope is eq. (1)'s, which the
+// profile has not; refused naming --fit and pointing to --real-drive (issue 53, trap 1), where it
+// was a JSON library's type error.
+TEST(Calibration, EquationOneGroupsOnARadarEquationProfileAreRefusedNamingTheOption) {
+  const std::vector<Recording> frames{snapshot_frames({.frames = 3})};
+  for (const ParameterGroup g : {ParameterGroup::slope, ParameterGroup::level}) {
+    CalibrationOptions options;
+    options.groups = {ParameterGroup::ercs, g};
+    try {
+      replay::calibrate(frames, options);
+      ADD_FAILURE() << "accepted " << replay::parameter_group_name(g);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(fmt::format("--fit: {}: the sensor profile aimotive_lrr has the radar-equation amplitude law",
+                                       replay::parameter_group_name(g)), 0),
+                0u)
+          << what;
+      EXPECT_NE(what.find("--real-drive"), std::string::npos) << what;
+    }
+  }
 }
 
 TEST(Calibration, MirroredReflectorsShareParametersAndStaySymmetric) {

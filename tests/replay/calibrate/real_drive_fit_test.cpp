@@ -7,6 +7,9 @@
 
 #include <filesystem>
 
+#include "common/input_error.hpp"
+#include "replay/calibrate/calibration_fit.hpp"
+#include "replay/calibrate/snapshot_frames.hpp"
 #include "replay/import/aimotive_importer.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
@@ -42,6 +45,82 @@ TEST(RealDriveFit, RecordingsSplitBySensorAndByCycles) {
   DiscardingSink sink;
   EXPECT_EQ(replay_recording(second, options, sink).cycles, second.cycle_count());
   EXPECT_EQ(replay_recording(b, options, sink).targets_recorded, static_cast<long long>(b.targets.size()));
+}
+
+// Snapshot data boxes each object in its one frame: a cut of the frames leaves some objects
+// without a box, which the importer cannot start a trajectory from (issue 48: calibrate
+// --real-drive --hold-out crashed, SIGSEGV, on every such recording). The cuts drop them.
+TEST(RealDriveFit, CutsOfSingleFramesDropTheObjectsLeftWithoutABox) {
+  const Recording rec = rcsim::testing::snapshot_frames({.frames = 3, .objects_per_frame = 2});
+  ASSERT_EQ(rec.objects.size(), 6u);
+  const Recording tail = restrict_to_cycles(rec, 1, 3);
+  ASSERT_EQ(tail.objects.size(), 4u);
+  EXPECT_EQ(tail.objects.front().id, "car_1_0");
+  ASSERT_EQ(tail.boxes.size(), 4u);
+  for (const auto& boxes : tail.boxes) EXPECT_EQ(boxes.size(), 1u);
+
+  const Recording without = without_cycle(rec, 1);
+  EXPECT_EQ(without.cycle_count(), 2);
+  ASSERT_EQ(without.objects.size(), 4u);
+  EXPECT_EQ(without.objects[1].id, "car_0_1");
+  EXPECT_EQ(without.objects[2].id, "car_2_0");
+  EXPECT_DOUBLE_EQ(without.boxes[2].front().t_s, 2.0);
+  EXPECT_DOUBLE_EQ(without.ego[1].t_s, 2.0);
+  const auto per_frame = static_cast<std::size_t>(2 * 4 + 3);
+  ASSERT_EQ(without.targets.size(), 2 * per_frame);
+  EXPECT_EQ(without.targets.back().cycle, 1);  // frame 2, renumbered
+  EXPECT_DOUBLE_EQ(without.targets.back().t_s, 2.0);
+  EXPECT_THROW(without_cycle(rec, 3), std::out_of_range);
+
+  // Each cut replays, every recorded target accounted for.
+  ReplayOptions options;
+  options.fidelity = Fidelity::no_tracking;
+  DiscardingSink sink;
+  for (const Recording* cut : {&tail, &without}) {
+    SCOPED_TRACE(cut->name);
+    const ReplaySummary s = replay_recording(*cut, options, sink);
+    EXPECT_EQ(s.cycles, cut->cycle_count());
+    EXPECT_EQ(s.targets_recorded, static_cast<long long>(cut->targets.size()));
+  }
+}
+
+// Leave one frame out (issue 48): three frames give three hold-outs, each fitted on the two others
+// and measured on its own frame; no 4-cycle minimum where detections are compared.
+TEST(RealDriveFit, SingleFramesAreHeldOutOneByOne) {
+  const Recording rec = rcsim::testing::snapshot_frames({.frames = 3});
+  ReplayOptions options;
+  options.fidelity = Fidelity::no_tracking;
+  RealDriveSearch search;
+  search.max_evaluations = 3;
+  const std::vector<HoldOut> splits = hold_outs(rec, options, search);
+  ASSERT_EQ(splits.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    const HoldOut& h = splits[static_cast<std::size_t>(k)];
+    SCOPED_TRACE(h.name);
+    EXPECT_EQ(h.name, fmt::format("frame {} of 3 held out", k));
+    EXPECT_EQ(h.fit.evaluations, 3);
+    // Measured on its frame: that frame's 4 object targets; fitted on the others' 8.
+    EXPECT_EQ(h.held_out.object_targets_recorded, 4);
+    EXPECT_EQ(h.in_sample.object_targets_recorded, 8);
+  }
+  // More frames than are left out one by one: the halves.
+  const std::vector<HoldOut> halves =
+      hold_outs(rcsim::testing::snapshot_frames({.frames = kMaxFramesLeftOut + 1}), options, search);
+  ASSERT_EQ(halves.size(), 1u);
+  EXPECT_EQ(halves[0].name, "first half of the frames -> second half");
+}
+
+TEST(RealDriveFit, AHoldOutNeedsACycleToFitOnAndOneToMeasureOn) {
+  EXPECT_THROW(check_hold_out(rcsim::testing::snapshot_frames({.frames = 1})), InputError);
+  EXPECT_NO_THROW(check_hold_out(rcsim::testing::snapshot_frames({.frames = 2})));
+  Recording tracks = rcsim::testing::snapshot_frames({.frames = 3});
+  tracks.sensors[0].reports = ListLevel::tracks;  // a track confirms after 4 hits: halves of 4 at least
+  try {
+    check_hold_out(tracks);
+    ADD_FAILURE() << "accepted 3 cycles of tracks";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("3 cycle(s): a hold-out needs at least 4"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RealDriveFit, FiguresByHandFromASummary) {
