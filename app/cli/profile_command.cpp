@@ -25,8 +25,10 @@ struct DeriveArgs {
 void print_derivation(const replay::profile::ProfileDerivation& d, const std::string& output) {
   std::cout << fmt::format("rcsim profile derive: {} detections in {} sensor cycles; base {}\n\n", d.detections, d.sensor_cycles, d.base);
   for (const auto& v : d.values) {
-    std::cout << fmt::format("{:<52} {:>16}  {:<9} {}{}\n", v.field, replay::profile::value_text(v.value), replay::profile::value_source_name(v.source),
-                             v.evidence, v.support > 0 ? fmt::format(" [{}]", v.support) : "");
+    // field, value, source (derived, derived weak, recording, base), the interval from the evidence, the evidence
+    std::cout << fmt::format("{:<52} {:>16}  {:<13} {:<22} {}{}\n", v.field, replay::profile::value_text(v.value),
+                             replay::profile::source_text(v), replay::profile::interval_text(v), v.evidence,
+                             v.support > 0 ? fmt::format(" [{}]", v.support) : "");
   }
   std::cout << fmt::format("\n{0}: written. Fit what the data cannot show (the base's values) with rcsim calibrate RECORDING "
                            "--real-drive --sensor {0} -o FIT, then replay with rcsim replay RECORDING --sensor {0} "
@@ -56,8 +58,12 @@ void run_derive(const DeriveArgs& args) {
   if (!args.json) return print_derivation(d, args.output);
   nlohmann::ordered_json values = nlohmann::ordered_json::array();
   for (const auto& v : d.values) {
-    values.push_back({{"field", v.field}, {"value", v.value}, {"source", replay::profile::value_source_name(v.source)},
-                      {"evidence", v.evidence}, {"support", v.support}});
+    nlohmann::ordered_json value{{"field", v.field}, {"value", v.value}, {"source", replay::profile::value_source_name(v.source)},
+                                 {"weak", v.weak}};
+    value["interval"] = v.has_interval() ? nlohmann::ordered_json::array({v.low, v.high}) : nlohmann::ordered_json();
+    value["evidence"] = v.evidence;
+    value["support"] = v.support;
+    values.push_back(std::move(value));
   }
   std::cout << nlohmann::ordered_json{{"profile", args.output}, {"base", d.base}, {"detections", d.detections}, {"values", values}}.dump(2) << '\n';
 }

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <algorithm>
+#include <array>
 #include <map>
 
 #include "common/angles.hpp"
@@ -17,6 +18,16 @@
 
 namespace rcsim::replay::profile {
 namespace {
+
+// A grid search's objective "within its noise" of the least: at most 10 % (and 0.05 dB) above it.
+// The values of the candidates within it span the derived value's interval.
+bool near_least(double score, double least) { return score <= least + std::max(0.1 * least, 0.05); }
+struct GridSpan {
+  double low = INFINITY, high = -INFINITY;
+  void add(double v) { low = std::min(low, v), high = std::max(high, v); }
+};
+// A pattern's interval is weak where the near-best candidates span more than this many wavelengths.
+constexpr double kWeakPatternSpanWavelengths = 0.3;
 
 // A_phi = |H_sum|^n of eq. (2): the paper's one-way pattern (1), or the two-way pattern of a radar
 // whose transmit and receive antennas are alike (2).
@@ -36,6 +47,7 @@ double max_invertible_spacing(double azimuth_half_deg) {
 
 struct LawFit {
   double constant_db = 0.0, range_exponent = 0.0, residual_rms_db = 0.0;
+  double constant_se_db = 0.0, range_exponent_se = 0.0;  // least squares' standard errors
 };
 
 // y = C - 10 n log10 R by least squares.
@@ -48,7 +60,10 @@ LawFit fit_range_law(const std::vector<double>& log10_range, const std::vector<d
   }
   const Eigen::Vector2d x = a.colPivHouseholderQr().solve(b);
   const Eigen::VectorXd residual = a * x - b;
-  return {x(0), x(1), std::sqrt(residual.squaredNorm() / static_cast<double>(y.size()))};
+  const double dof = std::max(1.0, static_cast<double>(y.size()) - 2.0);
+  const Eigen::Matrix2d covariance = (residual.squaredNorm() / dof) * (a.transpose() * a).inverse();
+  return {x(0), x(1), std::sqrt(residual.squaredNorm() / static_cast<double>(y.size())), std::sqrt(std::max(0.0, covariance(0, 0))),
+          std::sqrt(std::max(0.0, covariance(1, 1)))};
 }
 
 // SNR - RCS at a detection: C - 10 n log10 R + the two-way pattern of eq. (6), |H_sum|^p in dB.
@@ -201,11 +216,13 @@ std::vector<DerivedValue> derive_relative_pattern(const DetectionPool& pool, con
   for (const auto& p : profile.points) azimuth_rad.push_back(p.first);
   double best_rms = INFINITY, best_offset = 0.0;
   const int max_spacing_20 = static_cast<int>(std::floor(max_spacing * 20.0 + 1e-9));
+  std::vector<std::array<double, 3>> scored;  // rms, dipole, spacing
   for (int spacing_20 = min_spacing_20; spacing_20 <= max_spacing_20; ++spacing_20) {
     for (int length_20 = 6; length_20 <= 30; ++length_20) {
       AntennaGeometry candidate = geometry;
       candidate.dipole_length_wavelengths = 0.05 * length_20, candidate.element_spacing_wavelengths = 0.05 * spacing_20;
       const auto [rms, offset] = offset_residual(profile.points, pattern_db(azimuth_rad, candidate));
+      scored.push_back({rms, candidate.dipole_length_wavelengths, candidate.element_spacing_wavelengths});
       if (rms < best_rms) best_rms = rms, best_offset = offset, geometry.dipole_length_wavelengths = candidate.dipole_length_wavelengths,
                           geometry.element_spacing_wavelengths = candidate.element_spacing_wavelengths;
     }
@@ -232,11 +249,24 @@ std::vector<DerivedValue> derive_relative_pattern(const DetectionPool& pool, con
       profile.cells, profile.points.size(), best_rms, flat_rms, pattern_at(deg_to_rad(30.0)), pattern_at(deg_to_rad(60.0)),
       bounds.empty() ? "" : fmt::format("; on the search's bound ({} wavelengths): the optimum may lie beyond it", fmt::join(bounds, ", ")));
   const auto support = static_cast<long long>(pool.detections);
-  return {{fields[0], round_to(geometry.dipole_length_wavelengths, 0.05), ValueSource::derived, evidence, support},
-          {fields[1], round_to(geometry.element_spacing_wavelengths, 0.05), ValueSource::derived,
-           fmt::format("fitted with the dipole length, {:.1f} to {:.2f} (0.05 steps) so that eq. (7) stays invertible over "
-                       "the view field", 0.05 * min_spacing_20, max_spacing),
-           support}};
+  GridSpan dipole, spacing;
+  for (const auto& [rms, d, sp] : scored) {
+    if (near_least(rms, best_rms)) dipole.add(d), spacing.add(sp);
+  }
+  // Weak: on the search's bound, few bins, or the near-best patterns spread wide.
+  const bool few_bins = profile.points.size() < 8;
+  const bool dipole_weak = !bounds.empty() || few_bins || dipole.high - dipole.low > kWeakPatternSpanWavelengths;
+  const bool spacing_weak = !bounds.empty() || few_bins || spacing.high - spacing.low > kWeakPatternSpanWavelengths;
+  const std::string within = fmt::format("; the patterns within 10 % of the least RMS span dipole {:.2f}-{:.2f}, spacing {:.2f}-{:.2f}",
+                                         dipole.low, dipole.high, spacing.low, spacing.high);
+  return {with_interval({fields[0], round_to(geometry.dipole_length_wavelengths, 0.05), ValueSource::derived, evidence + within, support},
+                        dipole.low, dipole.high, dipole_weak),
+          with_interval({fields[1], round_to(geometry.element_spacing_wavelengths, 0.05), ValueSource::derived,
+                         fmt::format("fitted with the dipole length, {:.1f} to {:.2f} (0.05 steps) so that eq. (7) stays invertible over "
+                                     "the view field{}",
+                                     0.05 * min_spacing_20, max_spacing, within),
+                         support},
+                        spacing.low, spacing.high, spacing_weak)};
 }
 
 std::vector<DerivedValue> derive_threshold(const std::vector<double>& sorted_db, AmplitudeUnit unit) {
@@ -244,12 +274,17 @@ std::vector<DerivedValue> derive_threshold(const std::vector<double>& sorted_db,
   const double threshold_db = std::floor(q_db * 2.0) / 2.0;
   const auto n = static_cast<long long>(sorted_db.size());
   const auto within_1db = std::upper_bound(sorted_db.begin(), sorted_db.end(), threshold_db + 1.0) - sorted_db.begin();
-  return {{"amplitude.detection_threshold_db", threshold_db, ValueSource::derived,
-           fmt::format("the {} histogram starts abruptly: lowest {:.2f} dB, 0.1 % quantile {:.2f}, 1 % {:.2f}; {:.1f} % "
-                       "within 1 dB above",
-                       unit == AmplitudeUnit::snr_db ? "SNR" : "amplitude", sorted_db.front(), q_db,
-                       quantile_of_sorted(sorted_db, 0.01), 100.0 * static_cast<double>(within_1db) / static_cast<double>(n)),
-           n}};
+  // Its interval: from the lowest amplitude to the 1 % quantile; weak below 1000 detections (the
+  // 0.1 % quantile then rests on less than one below it).
+  const bool few = n < 1000;
+  return {with_interval({"amplitude.detection_threshold_db", threshold_db, ValueSource::derived,
+                         fmt::format("the {} histogram starts abruptly: lowest {:.2f} dB, 0.1 % quantile {:.2f}, 1 % {:.2f}; {:.1f} % "
+                                     "within 1 dB above{}",
+                                     unit == AmplitudeUnit::snr_db ? "SNR" : "amplitude", sorted_db.front(), q_db,
+                                     quantile_of_sorted(sorted_db, 0.01), 100.0 * static_cast<double>(within_1db) / static_cast<double>(n),
+                                     few ? "; weak: fewer than 1000 detections" : ""),
+                         n},
+                        std::min(threshold_db, sorted_db.front()), std::max(threshold_db, quantile_of_sorted(sorted_db, 0.01)), few)};
 }
 
 }  // namespace
@@ -302,6 +337,12 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
   const int max_spacing_20 = static_cast<int>(std::lround(20.0 * max_spacing));
   LawFit best;
   double best_score = INFINITY;
+  struct Scored {
+    double score;
+    AntennaGeometry geometry;
+    LawFit fit;
+  };
+  std::vector<Scored> scored;
   for (const double exponent : kPatternExponents) {
     for (int spacing_20 = 10; spacing_20 <= max_spacing_20; ++spacing_20) {
       for (int length_20 = 6; length_20 <= 30; ++length_20) {
@@ -313,6 +354,7 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
         for (std::size_t i = 0; i < y.size(); ++i) y[i] = snr_minus_rcs_db[i] - pattern[i];
         const LawFit fit = fit_range_law(log10_range, y);
         const double score = azimuth_bias_db(azimuth_rad, log10_range, y, fit);
+        scored.push_back({score, candidate, fit});
         if (score < best_score) best = fit, geometry = candidate, best_score = score;
       }
     }
@@ -330,8 +372,27 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
                                       "residual {:.2f} dB (n = 4: {:.2f} dB)",
                                       best.constant_db, best.range_exponent, best.residual_rms_db,
                                       std::sqrt(fourth_power_ss / static_cast<double>(pattern.size())));
-  values.push_back({"amplitude.snr_at_1m_for_1m2_db", round_to(best.constant_db, 0.1), ValueSource::derived, law, n});
-  values.push_back({"amplitude.range_exponent", round_to(best.range_exponent, 0.01), ValueSource::derived, law, n});
+  // The intervals: the laws and patterns of every candidate within the objective's noise of the
+  // best, each law widened by twice its standard errors.
+  GridSpan constant, exponent_n, dipole, spacing, pattern_exponent;
+  for (const Scored& c : scored) {
+    if (!near_least(c.score, best_score)) continue;
+    constant.add(c.fit.constant_db - 2.0 * c.fit.constant_se_db), constant.add(c.fit.constant_db + 2.0 * c.fit.constant_se_db);
+    exponent_n.add(c.fit.range_exponent - 2.0 * c.fit.range_exponent_se), exponent_n.add(c.fit.range_exponent + 2.0 * c.fit.range_exponent_se);
+    dipole.add(c.geometry.dipole_length_wavelengths), spacing.add(c.geometry.element_spacing_wavelengths);
+    pattern_exponent.add(c.geometry.amplitude_pattern_exponent);
+  }
+  // Weak: fewer than 1000 detections with a cross-section, or the near-best laws spread over more
+  // than 1 dB or 0.2 in n (the tolerances: +-0.5 dB, +-0.2).
+  const bool few = n < 1000;
+  const std::string within = fmt::format("; within 10 % of the least residual: C {:.2f}-{:.2f} dB, n {:.3f}-{:.3f} (with 2 standard errors), "
+                                         "dipole {:.2f}-{:.2f}, spacing {:.2f}-{:.2f}, exponent {:g}-{:g}",
+                                         constant.low, constant.high, exponent_n.low, exponent_n.high, dipole.low, dipole.high, spacing.low,
+                                         spacing.high, pattern_exponent.low, pattern_exponent.high);
+  values.push_back(with_interval({"amplitude.snr_at_1m_for_1m2_db", round_to(best.constant_db, 0.1), ValueSource::derived, law + within, n},
+                                 constant.low, constant.high, few || constant.high - constant.low > 1.0));
+  values.push_back(with_interval({"amplitude.range_exponent", round_to(best.range_exponent, 0.01), ValueSource::derived, law + within, n},
+                                 exponent_n.low, exponent_n.high, few || exponent_n.high - exponent_n.low > 0.4));
   const MonopulseAntenna antenna(geometry);
   law_figures(best, geometry, log10_range, azimuth_rad, snr_minus_rcs_db, figures);
   const auto pattern_at = [&](double a_rad) { return amplitude_to_db(std::pow(antenna.sum_magnitude(a_rad), geometry.amplitude_pattern_exponent)); };
@@ -340,10 +401,15 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
                   "over the view field, 0.05 steps) that leaves the least residual per 0.025-rad bin of azimuth ({:.2f} dB RMS over the "
                   "bins): {:.1f} dB at 0.1 rad, {:.1f} dB at 0.25 rad",
                   max_spacing, best_score, pattern_at(0.1), pattern_at(0.25));
-  values.push_back({"antenna.amplitude_pattern_exponent", geometry.amplitude_pattern_exponent, ValueSource::derived, pattern_evidence, n});
-  values.push_back({"antenna.dipole_length_wavelengths", round_to(geometry.dipole_length_wavelengths, 0.05), ValueSource::derived, pattern_evidence, n});
-  values.push_back({"antenna.element_spacing_wavelengths", round_to(geometry.element_spacing_wavelengths, 0.05), ValueSource::derived,
-                    pattern_evidence, n});
+  values.push_back(with_interval({"antenna.amplitude_pattern_exponent", geometry.amplitude_pattern_exponent, ValueSource::derived,
+                                  pattern_evidence + within, n},
+                                 pattern_exponent.low, pattern_exponent.high, few || pattern_exponent.high > pattern_exponent.low));
+  values.push_back(with_interval({"antenna.dipole_length_wavelengths", round_to(geometry.dipole_length_wavelengths, 0.05), ValueSource::derived,
+                                  pattern_evidence + within, n},
+                                 dipole.low, dipole.high, few || dipole.high - dipole.low > kWeakPatternSpanWavelengths));
+  values.push_back(with_interval({"antenna.element_spacing_wavelengths", round_to(geometry.element_spacing_wavelengths, 0.05),
+                                  ValueSource::derived, pattern_evidence + within, n},
+                                 spacing.low, spacing.high, few || spacing.high - spacing.low > kWeakPatternSpanWavelengths));
   return values;
 }
 

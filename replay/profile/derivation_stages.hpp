@@ -27,12 +27,16 @@ std::vector<DerivedValue> derive_amplitude(const DetectionPool& pool, const nloh
 
 // The cells, from the gaps between pairs of one sensor cycle: no two detections share a range-
 // Doppler cell, so pairs at one radial speed lie a range cell apart and pairs at one range a
-// range-rate cell apart.
+// range-rate cell apart. A cell the pairs do not show (no emptier within it than beside it, as
+// from continuous values) is the base's, said why; `cells` then holds the base's (found: the
+// range cell was derived).
 struct Cells {
   double range_m = 0.0, range_rate_mps = 0.0;
   bool found = false;
+  double range_low_m = 0.0, range_high_m = 0.0;  // the range cell's interval (found)
 };
-std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, Cells& cells, std::vector<DerivationFigure>& figures);
+std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, const nlohmann::json& base, Cells& cells,
+                                           std::vector<DerivationFigure>& figures);
 
 // Measurement noise: a quantised quantity's step / sqrt(12); else the radial speed's residual
 // about the stationary fit by SNR margin, and the range's from stationary detections matched

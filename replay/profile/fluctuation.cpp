@@ -122,12 +122,18 @@ std::vector<DerivedValue> derive_fluctuation(const std::vector<FramePair>& frame
   for (std::size_t m = 0; m < kModels.size(); ++m) {
     if (m != best) others += fmt::format("{}{} {:.3f}", others.empty() ? "" : ", ", kModels[m].name, fits[m].rms);
   }
-  return {{"detection.fluctuation", kModels[best].name, ValueSource::derived,
-           fmt::format("{} stationary detections followed to the next cycle: seen again {:.2f} at {:.0f} dB over the threshold, "
-                       "{:.2f} at {:.0f} dB; {} fits best (RMS {:.3f}, plateau {:.2f}; {})",
-                       observations, bins.front().rate, bins.front().margin_db, bins.back().rate, bins.back().margin_db,
-                       kModels[best].name, fits[best].rms, fits[best].plateau, others),
-           static_cast<long long>(observations)}};
+  // A word has no interval; it is weak where another model fits within 10 % of the best's RMS.
+  bool close = false;
+  for (std::size_t m = 0; m < kModels.size(); ++m) close = close || (m != best && fits[m].rms < 1.1 * fits[best].rms);
+  DerivedValue value{"detection.fluctuation", kModels[best].name, ValueSource::derived,
+                     fmt::format("{} stationary detections followed to the next cycle: seen again {:.2f} at {:.0f} dB over the threshold, "
+                                 "{:.2f} at {:.0f} dB; {} fits best (RMS {:.3f}, plateau {:.2f}; {}){}",
+                                 observations, bins.front().rate, bins.front().margin_db, bins.back().rate, bins.back().margin_db,
+                                 kModels[best].name, fits[best].rms, fits[best].plateau, others,
+                                 close ? "; weak: another model fits within 10 %" : ""),
+                     static_cast<long long>(observations)};
+  value.weak = close;
+  return {value};
 }
 
 }  // namespace rcsim::replay::profile

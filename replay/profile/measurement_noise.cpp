@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -60,6 +61,14 @@ double rms(const std::vector<double>& x) {
 struct NoiseLaw {
   double at_threshold = 0.0, least = 0.0, outliers = 0.0;
   std::size_t pairs = 0, near_threshold = 0, far_above = 0;
+  // The fine grid's span where the likelihood stays within its noise (the negative log-likelihood
+  // within 2 of the least: about 95 %); on the grid's edge where it reaches it.
+  double at_threshold_low = 0.0, at_threshold_high = 0.0, least_low = 0.0, least_high = 0.0;
+  // Weak: the span wider than the issue's +-30 %, or fewer than 100 pairs showing an end.
+  bool weak(double low, double high, double value) const {
+    return near_threshold < kWeakEnds || far_above < kWeakEnds || high - low > 0.6 * value;
+  }
+  static constexpr std::size_t kWeakEnds = 100;
 };
 
 // How many pairs show each end of the law: one end near the threshold, both far above it.
@@ -95,6 +104,8 @@ std::optional<NoiseLaw> fit_noise_law(const std::vector<MatchedDetection>& match
     return sum;
   };
   double best = INFINITY;
+  std::vector<std::array<double, 3>> fine;  // nll, at_threshold, least of the fine grid
+  bool record = false;
   const auto search = [&](double th_lo, double min_lo, double factor, int steps, std::span<const double> shares) {
     for (int i = 0; i < steps; ++i) {
       for (int j = 0; j < steps; ++j) {
@@ -102,6 +113,7 @@ std::optional<NoiseLaw> fit_noise_law(const std::vector<MatchedDetection>& match
         if (least > at_threshold) continue;
         for (const double outliers : shares) {
           const double nll = negative_log_likelihood(at_threshold, least, outliers);
+          if (record) fine.push_back({nll, at_threshold, least});
           if (nll < best) best = nll, law.at_threshold = at_threshold, law.least = least, law.outliers = outliers;
         }
       }
@@ -110,15 +122,34 @@ std::optional<NoiseLaw> fit_noise_law(const std::vector<MatchedDetection>& match
   constexpr double kCoarseShare[] = {0.02}, kShares[] = {0.005, 0.02, 0.05, 0.1, 0.2};
   search(1e-3 * gate, 1e-3 * gate, 1.25, 32, kCoarseShare);  // 0.001 to 1 gate
   best = INFINITY;
+  record = true;
   search(law.at_threshold / 1.25, law.least / 1.25, 1.02, 24, kShares);
+  law.at_threshold_low = law.least_low = INFINITY, law.at_threshold_high = law.least_high = 0.0;
+  for (const auto& [nll, at_threshold, least] : fine) {
+    if (nll > best + 2.0) continue;
+    law.at_threshold_low = std::min(law.at_threshold_low, at_threshold), law.at_threshold_high = std::max(law.at_threshold_high, at_threshold);
+    law.least_low = std::min(law.least_low, least), law.least_high = std::max(law.least_high, least);
+  }
   return law;
 }
 
 std::string noise_law_evidence(const NoiseLaw& law) {
   return fmt::format("stationary detections matched frame to frame: maximum likelihood of the model's law, sigma = max(sigma_th "
                      "A_th / A, sigma_min) at each end, over {} pairs ({} with an end within {:.0f} dB of the threshold, {} with both "
-                     "{:.0f} dB or more above; {:.1f} % taken as wrong matches)",
-                     law.pairs, law.near_threshold, kLowMarginDb + 2.0, law.far_above, kHighMarginDb, 100.0 * law.outliers);
+                     "{:.0f} dB or more above; {:.1f} % taken as wrong matches); within 2 of the least negative log-likelihood: "
+                     "sigma_th {:.4f}-{:.4f}, sigma_min {:.4f}-{:.4f}",
+                     law.pairs, law.near_threshold, kLowMarginDb + 2.0, law.far_above, kHighMarginDb, 100.0 * law.outliers,
+                     law.at_threshold_low, law.at_threshold_high, law.least_low, law.least_high);
+}
+
+// The two values of a fitted law, each with its interval and mark.
+std::vector<DerivedValue> noise_law_values(const NoiseLaw& law, const char* at_threshold_field, const char* least_field, double step,
+                                           const std::string& at_threshold_evidence, const std::string& least_evidence) {
+  const auto support = static_cast<long long>(law.pairs);
+  return {with_interval({at_threshold_field, round_to(law.at_threshold, step), ValueSource::derived, at_threshold_evidence, support},
+                        law.at_threshold_low, law.at_threshold_high, law.weak(law.at_threshold_low, law.at_threshold_high, law.at_threshold)),
+          with_interval({least_field, round_to(law.least, step), ValueSource::derived, least_evidence, support}, law.least_low,
+                        law.least_high, law.weak(law.least_low, law.least_high, law.least))};
 }
 
 // The fit drawn: per 2-dB bin of the nearer end's margin, the pairs' RMS difference / sqrt(2) (dots)
@@ -167,8 +198,11 @@ std::vector<DerivedValue> range_rate_noise(const DetectionPool& pool, double thr
   if (const auto step = lattice_step(pool, range_rate_of)) {
     const double sigma = round_to(*step / std::sqrt(12.0), 0.001);
     const std::string why = fmt::format("the radial speed is quantised in steps of {:.4f} m/s: step / sqrt(12)", *step);
-    values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", sigma, ValueSource::derived, why, pool.detections});
-    values.push_back({"measurement_noise.range_rate_sigma_min_mps", sigma, ValueSource::derived, why, pool.detections});
+    // The step is read exactly: the interval is the value.
+    values.push_back(with_interval({"measurement_noise.range_rate_sigma_at_threshold_mps", sigma, ValueSource::derived, why, pool.detections},
+                                   sigma, sigma, false));
+    values.push_back(with_interval({"measurement_noise.range_rate_sigma_min_mps", sigma, ValueSource::derived, why, pool.detections}, sigma,
+                                   sigma, false));
   } else {
     // The least noise is the quietest sensor's far above the threshold: a sensor's residual there
     // also holds its mounting's and the fit's errors.
@@ -205,24 +239,31 @@ std::vector<DerivedValue> range_rate_noise(const DetectionPool& pool, double thr
                                          range_rate_difference, *law));
       // Differences of one scatterer's radial speed along one line of sight: the azimuth's error,
       // which the stationary fit's residual also holds (v sin(az) d(az)), cancels.
-      const auto support = static_cast<long long>(law->pairs);
       const std::string residual =
           low.size() >= kMinSamples && high.size() >= kMinSamples
               ? fmt::format("; the stationary fit's residual reads {:.3f} and {:.3f} m/s (it holds the azimuth error's share)", rms(low), rms(high))
               : "";
-      values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", round_to(law->at_threshold, 0.001), ValueSource::derived,
-                        noise_law_evidence(*law) + residual, support});
-      values.push_back({"measurement_noise.range_rate_sigma_min_mps", round_to(law->least, 0.001), ValueSource::derived,
-                        noise_law_evidence(*law) + residual, support});
+      for (DerivedValue& v : noise_law_values(*law, "measurement_noise.range_rate_sigma_at_threshold_mps", "measurement_noise.range_rate_sigma_min_mps",
+                                              0.001, noise_law_evidence(*law) + residual, noise_law_evidence(*law) + residual)) {
+        values.push_back(std::move(v));
+      }
     } else if (low.size() >= kMinSamples && high.size() >= kMinSamples) {
       const double at_threshold = rms(low), least = std::min(rms(high), at_threshold);
-      values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", round_to(at_threshold, 0.001), ValueSource::derived,
-                        fmt::format("RMS residual about the stationary fit of its {} inliers within {:.0f} dB of the threshold",
-                                    low.size(), kLowMarginDb),
-                        static_cast<long long>(low.size())});
-      values.push_back({"measurement_noise.range_rate_sigma_min_mps", round_to(least, 0.001), ValueSource::derived,
-                        fmt::format("the same of the quietest sensor's {} inliers {:.0f} dB or more above it", high.size(), kHighMarginDb),
-                        static_cast<long long>(high.size())});
+      // An RMS of n normal residuals: about +-2 / sqrt(2 n) of itself (95 %); weak below 100.
+      const auto rms_interval = [](DerivedValue v, double sigma, std::size_t n) {
+        const double half = 2.0 * sigma / std::sqrt(2.0 * static_cast<double>(n));
+        return with_interval(std::move(v), sigma - half, sigma + half, n < 100);
+      };
+      values.push_back(rms_interval({"measurement_noise.range_rate_sigma_at_threshold_mps", round_to(at_threshold, 0.001), ValueSource::derived,
+                                     fmt::format("RMS residual about the stationary fit of its {} inliers within {:.0f} dB of the threshold",
+                                                 low.size(), kLowMarginDb),
+                                     static_cast<long long>(low.size())},
+                                    at_threshold, low.size()));
+      values.push_back(rms_interval({"measurement_noise.range_rate_sigma_min_mps", round_to(least, 0.001), ValueSource::derived,
+                                     fmt::format("the same of the quietest sensor's {} inliers {:.0f} dB or more above it", high.size(),
+                                                 kHighMarginDb),
+                                     static_cast<long long>(high.size())},
+                                    least, high.size()));
     } else {
       const std::string why = fmt::format("too few stationary detections near the threshold ({}) or far above it ({})", low.size(), high.size());
       values.push_back({"measurement_noise.range_rate_sigma_at_threshold_mps", nullptr, ValueSource::base, why, 0});
@@ -242,11 +283,19 @@ DerivedValue cycle_time(const DetectionPool& pool, const std::vector<FramePair>&
   if (period_s) {
     figures.push_back(histogram_figure("Time between consecutive cycles, from the static world's shift", "step / s", steps_s,
                                        3.0 * *period_s, 60, *period_s, "cycle time"));
-    return {"cycle_time_s", round_to(*period_s, 0.0001), ValueSource::derived,
-            fmt::format("the static world's shift between consecutive cycles over the speed: {} steps, median {:.1f} ms, "
-                        "each a whole multiple of {:.1f} ms (the recordings' clock: {:.1f} ms)",
-                        steps_s.size(), 1e3 * median(steps_s), 1e3 * *period_s, 1e3 * pool.recorded_cycle_time_s),
-            static_cast<long long>(steps_s.size())};
+    // The interval: the 5 % and 95 % quantiles of each step over its whole multiple of the period.
+    std::vector<double> per_cycle_s;
+    for (const double step_s : steps_s) per_cycle_s.push_back(step_s / std::max(1.0, std::round(step_s / *period_s)));
+    std::sort(per_cycle_s.begin(), per_cycle_s.end());
+    const bool few = steps_s.size() < 30;
+    return with_interval({"cycle_time_s", round_to(*period_s, 0.0001), ValueSource::derived,
+                          fmt::format("the static world's shift between consecutive cycles over the speed: {} steps, median {:.1f} ms, "
+                                      "each a whole multiple of {:.1f} ms (the recordings' clock: {:.1f} ms){}",
+                                      steps_s.size(), 1e3 * median(steps_s), 1e3 * *period_s, 1e3 * pool.recorded_cycle_time_s,
+                                      few ? "; weak: fewer than 30 steps" : ""),
+                          static_cast<long long>(steps_s.size())},
+                         std::min(*period_s, quantile_of_sorted(per_cycle_s, 0.05)), std::max(*period_s, quantile_of_sorted(per_cycle_s, 0.95)),
+                         few);
   }
   if (pool.snapshots) return {"cycle_time_s", nullptr, ValueSource::base, "not observable: single frames, none follows another", 0};
   return {"cycle_time_s", round_to(pool.recorded_cycle_time_s, 0.0001), ValueSource::recording,
@@ -261,22 +310,28 @@ std::vector<DerivedValue> range_noise(const DetectionPool& pool, const Cells& ce
   const std::vector<MatchedDetection> matches = all_matches(frame_pairs);
   if (const std::optional<NoiseLaw> law = fit_noise_law(matches, range_difference)) {
     figures.push_back(noise_law_figure("Range noise of matched pairs against SNR margin", "noise / m", matches, range_difference, *law));
-    const auto support = static_cast<long long>(law->pairs);
-    values.push_back({"measurement_noise.range_sigma_at_threshold_m", round_to(law->at_threshold, 0.005), ValueSource::derived,
-                      noise_law_evidence(*law) + " (an upper bound: the scatterer wanders)", support});
-    values.push_back({"measurement_noise.range_sigma_min_m", round_to(law->least, 0.005), ValueSource::derived, noise_law_evidence(*law), support});
+    for (DerivedValue& v : noise_law_values(*law, "measurement_noise.range_sigma_at_threshold_m", "measurement_noise.range_sigma_min_m", 0.005,
+                                            noise_law_evidence(*law) + " (an upper bound: the scatterer wanders)", noise_law_evidence(*law))) {
+      values.push_back(std::move(v));
+    }
   } else if (const auto step = lattice_step(pool, range_of)) {
     const std::string why = fmt::format("the range is quantised in steps of {:.4f} m: step / sqrt(12)", *step);
-    values.push_back({"measurement_noise.range_sigma_at_threshold_m", round_to(*step / std::sqrt(12.0), 0.001), ValueSource::derived, why, pool.detections});
-    values.push_back({"measurement_noise.range_sigma_min_m", round_to(*step / std::sqrt(12.0), 0.001), ValueSource::derived, why, pool.detections});
+    const double sigma = round_to(*step / std::sqrt(12.0), 0.001);
+    values.push_back(with_interval({"measurement_noise.range_sigma_at_threshold_m", sigma, ValueSource::derived, why, pool.detections}, sigma,
+                                   sigma, false));
+    values.push_back(with_interval({"measurement_noise.range_sigma_min_m", sigma, ValueSource::derived, why, pool.detections}, sigma, sigma,
+                                   false));
   } else if (cells.found && pool.snapshots) {
     // Single frames: nothing to match. A range read off a cell's centre is uniform over the cell.
     const double sigma = round_to(cells.range_m / std::sqrt(12.0), 0.001);
     const std::string why = fmt::format("assumed: the range cell ({:.3f} m) / sqrt(12), the quantisation of a cell's centre (single "
                                         "frames: nothing to match frame to frame)",
                                         cells.range_m);
-    values.push_back({"measurement_noise.range_sigma_at_threshold_m", sigma, ValueSource::derived, why, 0});
-    values.push_back({"measurement_noise.range_sigma_min_m", sigma, ValueSource::derived, why, 0});
+    // An assumption, not a reading: weak, its interval the range cell's over sqrt(12).
+    values.push_back(with_interval({"measurement_noise.range_sigma_at_threshold_m", sigma, ValueSource::derived, why + "; weak: an assumption", 0},
+                                   cells.range_low_m / std::sqrt(12.0), cells.range_high_m / std::sqrt(12.0), true));
+    values.push_back(with_interval({"measurement_noise.range_sigma_min_m", sigma, ValueSource::derived, why + "; weak: an assumption", 0},
+                                   cells.range_low_m / std::sqrt(12.0), cells.range_high_m / std::sqrt(12.0), true));
   } else {
     const NoiseLaw counts = count_ends(matches);
     const std::string why = fmt::format("too few stationary detections matched frame to frame ({} pairs: {} with an end within {:.0f} dB "

@@ -1,8 +1,10 @@
 #include "replay/profile/profile_derivation.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/angles.hpp"
 #include "common/input_error.hpp"
@@ -26,8 +28,17 @@ const char* value_source_name(ValueSource source) {
 }
 
 std::string value_text(const nlohmann::json& value) {
+  if (value.is_null()) return "none";
   if (value.is_number_float()) return fmt::format("{:g}", value.get<double>());
   return value.is_string() ? value.get<std::string>() : value.dump();
+}
+
+std::string source_text(const DerivedValue& value) {
+  return value.weak ? fmt::format("{}, weak", value_source_name(value.source)) : value_source_name(value.source);
+}
+
+std::string interval_text(const DerivedValue& value) {
+  return value.has_interval() ? fmt::format("[{:.4g}, {:.4g}]", value.low, value.high) : "";
 }
 
 namespace {
@@ -86,6 +97,87 @@ void adopt_radar_equation(Json& doc, std::vector<DerivedValue>& values) {
   }
 }
 
+// What the pooled detections show of a value the base gives: the range of their radial speeds
+// and of their ranges.
+struct DataExtent {
+  double min_range_rate_mps = INFINITY, max_range_rate_mps = -INFINITY;
+  double nearest_m = INFINITY, farthest_m = 0.0;
+};
+DataExtent data_extent(const DetectionPool& pool) {
+  DataExtent e;
+  for (const PooledCycle& c : pool.cycles) {
+    for (const PooledDetection& d : c.detections) {
+      e.min_range_rate_mps = std::min(e.min_range_rate_mps, d.range_rate_mps);
+      e.max_range_rate_mps = std::max(e.max_range_rate_mps, d.range_rate_mps);
+      e.nearest_m = std::min(e.nearest_m, d.range_m);
+      e.farthest_m = std::max(e.farthest_m, d.range_m);
+    }
+  }
+  return e;
+}
+
+const DerivedValue* find_value(const std::vector<DerivedValue>& values, const std::string& field) {
+  const auto it = std::find_if(values.begin(), values.end(), [&](const DerivedValue& v) { return v.field == field; });
+  return it == values.end() ? nullptr : &*it;
+}
+
+// A base value the data contradict is replaced, said so, never kept silently: a Doppler interval
+// the recordings' radial speeds run beyond (an aliasing radar reports within its interval) is
+// dropped, a minimum range beyond the nearest detection is the nearest detection's.
+void replace_contradicted_base_values(Json& doc, const DetectionPool& pool, std::vector<DerivedValue>& values) {
+  const DataExtent e = data_extent(pool);
+  const auto interval_pointer = "/resolution/unambiguous_range_rate_mps"_json_pointer;
+  if (!find_value(values, "resolution.unambiguous_range_rate_mps") && doc.contains(interval_pointer)) {
+    const double lo = doc.at(interval_pointer).at(0).get<double>(), hi = doc.at(interval_pointer).at(1).get<double>();
+    // A radial speed on the interval's edge is in it: a CSV's last decimal.
+    constexpr double kEdgeMps = 1e-3;
+    if (e.min_range_rate_mps < lo - kEdgeMps || e.max_range_rate_mps > hi + kEdgeMps) {
+      doc["resolution"].erase("unambiguous_range_rate_mps");
+      values.push_back(with_interval({"resolution.unambiguous_range_rate_mps", nullptr, ValueSource::derived,
+                                      fmt::format("the base's interval [{:.4g}, {:.4g}] m/s dropped (no Doppler aliasing): the "
+                                                  "recordings' radial speeds run from {:.2f} to {:.2f} m/s, beyond it, and their "
+                                                  "header gives none",
+                                                  lo, hi, e.min_range_rate_mps, e.max_range_rate_mps),
+                                      pool.detections},
+                                     e.min_range_rate_mps, e.max_range_rate_mps, false));
+    } else {
+      values.push_back({"resolution.unambiguous_range_rate_mps", doc.at(interval_pointer), ValueSource::base,
+                        fmt::format("the base's; the recordings' header gives none, and their radial speeds ({:.2f} to {:.2f} m/s) "
+                                    "lie within it",
+                                    e.min_range_rate_mps, e.max_range_rate_mps),
+                        0});
+    }
+  }
+  const auto min_range_pointer = "/field_of_view/min_range_m"_json_pointer;
+  const DerivedValue* min_range = find_value(values, "field_of_view.min_range_m");
+  if (min_range && min_range->source == ValueSource::base && doc.contains(min_range_pointer) &&
+      doc.at(min_range_pointer).get<double>() > e.nearest_m) {
+    const double base_m = doc.at(min_range_pointer).get<double>(), nearest_m = std::floor(e.nearest_m * 10.0) / 10.0;
+    doc["field_of_view"]["min_range_m"] = nearest_m;
+    DerivedValue& v = values[static_cast<std::size_t>(min_range - values.data())];
+    v = with_interval({"field_of_view.min_range_m", nearest_m, ValueSource::derived,
+                       fmt::format("the base's {:.2f} m replaced: the nearest detection lies at {:.2f} m, nearer ({})", base_m, e.nearest_m,
+                                   v.evidence),
+                       pool.detections},
+                      nearest_m, e.nearest_m, true);
+  }
+}
+
+// Every value of the profile that no stage derived and no header gave: the base's, listed so
+// (the structure of the model, what calibrate fits, what no stage reads).
+void list_base_leaves(const Json& node, const std::string& prefix, std::vector<DerivedValue>& values) {
+  for (const auto& [key, child] : node.items()) {
+    const std::string field = prefix.empty() ? key : prefix + "." + key;
+    if (prefix.empty() && (key == "format" || key == "version" || key == "name" || key == "description" || key == "background")) continue;
+    if (child.is_object()) {
+      list_base_leaves(child, field, values);
+    } else if (!find_value(values, field)) {
+      values.push_back({field, child, ValueSource::base, "not derived: the base's (no stage reads it; rcsim calibrate --real-drive fits the "
+                        "level, occlusion and diffuse return)", 0});
+    }
+  }
+}
+
 }  // namespace
 
 ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings, const DeriveOptions& options) {
@@ -106,7 +198,7 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
   add(derive_amplitude(pool, base.document, derived_number("field_of_view.azimuth_half_deg"), out.figures));
   const double threshold_db = derived_number("amplitude.detection_threshold_db");
   Cells cells;
-  add(derive_resolution(pool, cells, out.figures));
+  add(derive_resolution(pool, base.document, cells, out.figures));
   const ViewLimits view{deg_to_rad(derived_number("field_of_view.azimuth_half_deg")), derived_number("field_of_view.max_range_m")};
   const std::vector<FramePair> frame_pairs = match_consecutive_cycles(pool, threshold_db, view);
   add(derive_noise(pool, cells, threshold_db, frame_pairs, out.figures));
@@ -128,11 +220,20 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
   }
   out.values = std::move(kept);
   adopt_radar_equation(doc, out.values);
-  doc["name"] = options.name;
-  doc["description"] = fmt::format("derived by rcsim profile derive from {} detections in {} sensor cycles of {} recording(s) "
-                                   "(first: {}); base {}",
-                                   pool.detections, pool.cycles.size(), recordings.size(), recordings.front()->name, out.base);
+  replace_contradicted_base_values(doc, pool, out.values);
   doc.erase("background");
+  list_base_leaves(doc, "", out.values);
+  doc["name"] = options.name;
+  std::vector<std::string> from_base, weak;
+  for (const DerivedValue& v : out.values) {
+    if (v.source == ValueSource::base) from_base.push_back(v.field);
+    if (v.weak) weak.push_back(v.field);
+  }
+  doc["description"] = fmt::format("derived by rcsim profile derive from {} detections in {} sensor cycles of {} recording(s) "
+                                   "(first: {}); base {}; taken from the base: {}; derived but weakly shown by the data: {}",
+                                   pool.detections, pool.cycles.size(), recordings.size(), recordings.front()->name, out.base,
+                                   from_base.empty() ? "none" : fmt::format("{}", fmt::join(from_base, ", ")),
+                                   weak.empty() ? "none" : fmt::format("{}", fmt::join(weak, ", ")));
 
   // The stationary background, with the derived profile in place of the recordings' type.
   SensorConfig config = parse_sensor_config(JsonField(doc, options.name, ""));
@@ -150,11 +251,17 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
   const StationaryBackground background = fit_stationary_background(probe_pointers, replay_options, config);
   if (background.targets_per_cycle > 0.0) {
     doc["background"] = stationary_background_to_json(background);
-    out.values.push_back({"background.targets_per_cycle", round_to(background.targets_per_cycle, 0.1), ValueSource::derived,
-                          fmt::format("the recorded targets replay classes as stationary background, over {} x {} bins of range "
-                                      "and azimuth",
-                                      background.range_bins(), background.azimuth_bins()),
-                          static_cast<long long>(std::llround(background.targets_per_cycle * static_cast<double>(pool.cycles.size())))});
+    // Its interval: the count's Poisson spread, +-2 sqrt(N) over the cycles; weak in fewer than 10 cycles.
+    const double cycles = static_cast<double>(pool.cycles.size());
+    const double total = background.targets_per_cycle * cycles, half = 2.0 * std::sqrt(total) / cycles;
+    const bool few_cycles = pool.cycles.size() < 10;
+    out.values.push_back(with_interval({"background.targets_per_cycle", round_to(background.targets_per_cycle, 0.1), ValueSource::derived,
+                                        fmt::format("the recorded targets replay classes as stationary background, over {} x {} bins of "
+                                                    "range and azimuth{}",
+                                                    background.range_bins(), background.azimuth_bins(),
+                                                    few_cycles ? "; weak: fewer than 10 cycles" : ""),
+                                        static_cast<long long>(std::llround(total))},
+                                       std::max(0.0, background.targets_per_cycle - half), background.targets_per_cycle + half, few_cycles));
   }
   parse_sensor_config(JsonField(doc, options.name, ""));  // what is written is a profile replay reads as it is
   return out;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "common/angles.hpp"
 #include "common/quantile.hpp"
@@ -114,6 +115,19 @@ Distances pair_gaps(const DetectionPool& pool, Key key, Other other, double key_
 struct Gap {
   double distance = 0.0;
   bool edge = false;
+  // The interval from the evidence: an edge's, from where the density first rises half as sharply
+  // (2-fold, half the pairs beyond) to where it rises twice as sharply (8-fold); no edge: the 0.5 %
+  // to 2 % quantiles.
+  double low = 0.0, high = 0.0;
+  // Pairs just beyond it ([b, 2 b)) and just within it ((0, b), the same value apart): a cell the
+  // pairs leave no emptier within than beside is not shown by them (continuous Doppler: the 1 %
+  // quantile of a smooth spread).
+  std::ptrdiff_t beside = 0, within = 0;
+  bool supported() const { return distance > 0.0 && beside >= static_cast<std::ptrdiff_t>(kMinPairs) && beside >= kEdgeContrast * within; }
+  // Shown, but barely: no edge, too few pairs beside it to place it, or a wide interval.
+  bool weak() const { return !edge || beside < kWeakBeside || high - low > kWeakSpread * distance; }
+  static constexpr std::ptrdiff_t kWeakBeside = 200;
+  static constexpr double kWeakSpread = 0.2;
 };
 Gap gap_edge(const Distances& distances) {
   const std::vector<double>& sorted = distances.sorted;
@@ -122,13 +136,31 @@ Gap gap_edge(const Distances& distances) {
   // Beyond the edge at least 1 pair in 1000: a dense scene's few pairs at the CSV's last decimal
   // are no edge.
   const auto min_above = std::max<std::ptrdiff_t>(kMinPairs, static_cast<std::ptrdiff_t>(distances.size() / 1000));
-  for (auto it = first; it != sorted.end() && *it <= scan_end; ++it) {
-    const double b = *it;
-    const auto above = std::lower_bound(it, sorted.end(), 1.5 * b) - it;
-    const auto below = it - std::lower_bound(first, it, 0.5 * b);
-    if (above >= min_above && above >= kEdgeContrast * std::max<std::ptrdiff_t>(below, 1)) return {b, true};
+  // The first b at which the pairs in [b, 1.5 b) are `contrast` times those in [b/2, b), with at
+  // least `least` beyond; the end of the scan where none.
+  const auto first_rise = [&](double contrast, std::ptrdiff_t least, std::vector<double>::const_iterator from) -> std::optional<double> {
+    for (auto it = from; it != sorted.end() && *it <= scan_end; ++it) {
+      const double b = *it;
+      const auto above = std::lower_bound(it, sorted.end(), 1.5 * b) - it;
+      const auto below = it - std::lower_bound(first, it, 0.5 * b);
+      if (above >= least && static_cast<double>(above) >= contrast * static_cast<double>(std::max<std::ptrdiff_t>(below, 1))) return b;
+    }
+    return std::nullopt;
+  };
+  Gap gap;
+  if (const auto b = first_rise(kEdgeContrast, min_above, first)) {
+    gap.distance = *b, gap.edge = true;
+    gap.low = first_rise(0.5 * kEdgeContrast, std::max<std::ptrdiff_t>(1, min_above / 2), first).value_or(*b);
+    const auto at_b = std::lower_bound(first, sorted.end(), *b);
+    gap.high = first_rise(2.0 * kEdgeContrast, min_above, at_b).value_or(scan_end);
+  } else {
+    gap.distance = distances.quantile(kGapQuantile);
+    gap.low = distances.quantile(0.005), gap.high = distances.quantile(0.02);
   }
-  return {distances.quantile(kGapQuantile), false};
+  gap.low = std::min(gap.low, gap.distance), gap.high = std::max(gap.high, gap.distance);
+  gap.beside = std::lower_bound(sorted.begin(), sorted.end(), 2.0 * gap.distance) - std::lower_bound(sorted.begin(), sorted.end(), gap.distance);
+  gap.within = std::lower_bound(first, sorted.end(), gap.distance) - first;
+  return gap;
 }
 
 // The pairs of one cycle inside one range-Doppler cell (the very same radial speed, within half a
@@ -198,13 +230,13 @@ DerivedValue azimuth_cell(const DetectionPool& pool, const Cells& cells, std::ve
   const double cell_deg = rad_to_deg(gap.distance);
   figures.push_back(distances_figure("Azimuth distances of pairs inside one range-Doppler cell, at one elevation", "asin(|du|) / rad",
                                      gaps, 4.0 * gap.distance, gap.distance, "azimuth cell"));
-  return {"resolution.azimuth_cell_deg", round_to(cell_deg, 0.1), ValueSource::derived,
+  return with_interval({"resolution.azimuth_cell_deg", round_to(cell_deg, 0.1), ValueSource::derived,
           fmt::format("{} pairs inside one range-Doppler cell at one elevation ({:.1f} % of the detections; {} more at two "
                       "elevations): {} {:.2f} deg (1 % quantile {:.2f}, 5 % {:.2f})",
                       gaps.size(), 100.0 * share, pairs.elevation_pairs,
                       gap.edge ? "their density rises 4-fold at" : "no edge stands out; their 1 % quantile", cell_deg,
                       rad_to_deg(gaps.quantile(kGapQuantile)), rad_to_deg(gaps.quantile(0.05))),
-          static_cast<long long>(gaps.size())};
+          static_cast<long long>(gaps.size())}, rad_to_deg(gap.low), rad_to_deg(gap.high), gap.weak());
 }
 
 // A radar whose FFT windows leak (resolution.spectral_window) reports a strong return again one
@@ -254,49 +286,99 @@ DerivedValue spectral_window(const DetectionPool& pool, const Cells& cells) {
 
 }  // namespace
 
-std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, Cells& cells, std::vector<DerivationFigure>& figures) {
+std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, const nlohmann::json& base, Cells& cells,
+                                           std::vector<DerivationFigure>& figures) {
   // Two rounds: the range cell from pairs at one radial speed, the range-rate cell from pairs
   // within half that range cell, the range cell again from pairs within a quarter of the range-rate
-  // cell.
+  // cell (where that one is shown).
   Distances range_gaps = pair_gaps(pool, range_rate_of, range_of, kSameRangeRateMps);
   Distances range_rate_gaps;
-  std::pair<bool, bool> edges;
+  Gap range_gap, range_rate_gap;
+  bool read = false;
   for (int round = 0; round < 2 && range_gaps.size() >= kMinPairs; ++round) {
-    const Gap range_gap = gap_edge(range_gaps);
-    const double range_m = range_gap.distance;
+    const Gap this_range_gap = gap_edge(range_gaps);
     // Pairs at the very same radial speed within half a range cell are two beams of one cell (an
     // imaging array's); the range-rate cell is the gap beyond them.
-    Distances rate_gaps = pair_gaps(pool, range_of, range_rate_of, 0.5 * range_m, kSameValue);
+    Distances rate_gaps = pair_gaps(pool, range_of, range_rate_of, 0.5 * this_range_gap.distance, kSameValue);
     if (rate_gaps.size() < kMinPairs) break;
-    const Gap range_rate_gap = gap_edge(rate_gaps);
-    const double range_rate_mps = range_rate_gap.distance;
-    if (!(range_m > 0.0 && range_rate_mps > 0.0)) break;
-    cells = {range_m, range_rate_mps, true};
-    edges = {range_gap.edge, range_rate_gap.edge};
+    const Gap this_rate_gap = gap_edge(rate_gaps);
+    if (!(this_range_gap.distance > 0.0 && this_rate_gap.distance > 0.0)) break;
+    range_gap = this_range_gap, range_rate_gap = this_rate_gap, read = true;
     range_rate_gaps = std::move(rate_gaps);
-    if (round == 0) range_gaps = pair_gaps(pool, range_rate_of, range_of, 0.25 * cells.range_rate_mps);
+    if (round == 0 && range_rate_gap.supported()) {
+      Distances again = pair_gaps(pool, range_rate_of, range_of, 0.25 * range_rate_gap.distance);
+      if (again.size() < kMinPairs) break;
+      range_gaps = std::move(again);
+    } else {
+      break;
+    }
   }
-  if (!cells.found) {
-    const std::string why = fmt::format("too few pairs of detections in one cycle at one radial speed ({}) to show a gap", range_gaps.size());
-    return {{"resolution.range_cell_m", nullptr, ValueSource::base, why, 0},
-            {"resolution.range_rate_cell_mps", nullptr, ValueSource::base, why, 0}};
-  }
-  const auto described = [](const Distances& gaps, double gap, bool edge, const char* unit, const char* pairs) {
-    return fmt::format("{} pairs {}: {} {:.3f} {} (1 % quantile {:.3f}, 5 % {:.3f})", gaps.size(), pairs,
-                       edge ? "their density rises 4-fold at" : "no edge stands out; their 1 % quantile", gap, unit,
-                       gaps.quantile(kGapQuantile), gaps.quantile(0.05));
+  const auto base_cell = [&](const char* pointer) {
+    const auto p = nlohmann::json::json_pointer(pointer);
+    return base.contains(p) ? base.at(p).get<double>() : 0.0;
   };
-  std::vector<DerivedValue> values{
-      {"resolution.range_cell_m", round_to(cells.range_m, cells.range_m < 0.5 ? 0.001 : 0.01), ValueSource::derived,
-       described(range_gaps, cells.range_m, edges.first, "m", "at one radial speed"), static_cast<long long>(range_gaps.size())},
-      {"resolution.range_rate_cell_mps", round_to(cells.range_rate_mps, 0.001), ValueSource::derived,
-       described(range_rate_gaps, cells.range_rate_mps, edges.second, "m/s", "within half a range cell"), static_cast<long long>(range_rate_gaps.size())}};
-  figures.push_back(distances_figure("Range distances of pairs at one radial speed", "range distance / m", range_gaps, 4.0 * cells.range_m,
-                                     cells.range_m, "range cell"));
+  const double base_range_m = base_cell("/resolution/range_cell_m"), base_range_rate_mps = base_cell("/resolution/range_rate_cell_mps");
+  if (!read) {
+    const std::string why = fmt::format("too few pairs of detections in one cycle at one radial speed ({}) to show a gap", range_gaps.size());
+    cells = {base_range_m, base_range_rate_mps, false};
+    std::vector<DerivedValue> values{{"resolution.range_cell_m", nullptr, ValueSource::base, why, 0},
+                                     {"resolution.range_rate_cell_mps", nullptr, ValueSource::base, why, 0}};
+    if (base_range_m > 0.0 && base_range_rate_mps > 0.0) {
+      values.push_back(azimuth_cell(pool, cells, figures));
+      values.push_back(spectral_window(pool, cells));
+    }
+    return values;
+  }
+  const auto described = [](const Distances& gaps, const Gap& gap, const char* unit, const char* pairs) {
+    return fmt::format("{} pairs {}: {} {:.3f} {} (1 % quantile {:.3f}, 5 % {:.3f}); {} pairs beside it (up to twice), {} within it{}",
+                       gaps.size(), pairs, gap.edge ? "their density rises 4-fold at" : "no edge stands out; their 1 % quantile",
+                       gap.distance, unit, gaps.quantile(kGapQuantile), gaps.quantile(0.05), gap.beside, gap.within,
+                       gap.weak() ? fmt::format("; weak: {}", !gap.edge ? "no edge, a quantile"
+                                                              : gap.beside < Gap::kWeakBeside ? "few pairs beside it"
+                                                                                              : "its edge rises slowly (a wide interval)")
+                                  : "");
+  };
+  // A cell the pairs do not show (no emptier within than beside it: continuous values, a smooth
+  // spread) is not derived: the base's, said why.
+  const auto unsupported = [](const Gap& gap, const char* unit, double base_value) {
+    return fmt::format("not shown by the pairs: {} within {:.4f} {} and {} beside it (up to twice) - no gap, as from continuous values "
+                       "or too few pairs (a cell needs {} beside and {} times as many as within); the base's {:g}",
+                       gap.within, gap.distance, unit, gap.beside, kMinPairs, kEdgeContrast, base_value);
+  };
+  std::vector<DerivedValue> values;
+  const long long range_support = static_cast<long long>(range_gaps.size());
+  const long long rate_support = static_cast<long long>(range_rate_gaps.size());
+  if (!range_gap.supported()) {
+    // The range-rate pairs were chosen within half of it: neither is shown.
+    cells = {base_range_m, base_range_rate_mps, false};
+    values.push_back({"resolution.range_cell_m", nullptr, ValueSource::base, unsupported(range_gap, "m", base_range_m), range_support});
+    values.push_back({"resolution.range_rate_cell_mps", nullptr, ValueSource::base,
+                      "not shown: its pairs are those within half a range cell, which the pairs do not show", rate_support});
+  } else {
+    cells = {range_gap.distance, range_rate_gap.supported() ? range_rate_gap.distance : base_range_rate_mps, true, range_gap.low,
+             range_gap.high};
+    const double range_step = range_gap.distance < 0.5 ? 0.001 : 0.01;
+    values.push_back(with_interval({"resolution.range_cell_m", round_to(range_gap.distance, range_step), ValueSource::derived,
+                                    described(range_gaps, range_gap, "m", "at one radial speed"), range_support},
+                                   range_gap.low, range_gap.high, range_gap.weak()));
+    if (range_rate_gap.supported()) {
+      values.push_back(with_interval({"resolution.range_rate_cell_mps", round_to(range_rate_gap.distance, 0.001), ValueSource::derived,
+                                      described(range_rate_gaps, range_rate_gap, "m/s", "within half a range cell"), rate_support},
+                                     range_rate_gap.low, range_rate_gap.high, range_rate_gap.weak()));
+    } else {
+      values.push_back({"resolution.range_rate_cell_mps", nullptr, ValueSource::base,
+                        unsupported(range_rate_gap, "m/s", base_range_rate_mps), rate_support});
+    }
+  }
+  figures.push_back(distances_figure("Range distances of pairs at one radial speed", "range distance / m", range_gaps, 4.0 * range_gap.distance,
+                                     range_gap.distance, range_gap.supported() ? "range cell" : "no gap (the base's cell)"));
   figures.push_back(distances_figure("Radial-speed distances of pairs within half a range cell", "radial-speed distance / (m/s)",
-                                     range_rate_gaps, 4.0 * cells.range_rate_mps, cells.range_rate_mps, "range-rate cell"));
-  values.push_back(azimuth_cell(pool, cells, figures));
-  values.push_back(spectral_window(pool, cells));
+                                     range_rate_gaps, 4.0 * range_rate_gap.distance, range_rate_gap.distance,
+                                     range_rate_gap.supported() ? "range-rate cell" : "no gap (the base's cell)"));
+  if (cells.range_m > 0.0 && cells.range_rate_mps > 0.0) {
+    values.push_back(azimuth_cell(pool, cells, figures));
+    values.push_back(spectral_window(pool, cells));
+  }
   return values;
 }
 

@@ -38,12 +38,13 @@ void write_profile_report(std::ostream& out, const profile::ProfileDerivation& d
                      "<b>derived</b> (read off the recordings), from the <b>recording</b>'s header, or the <b>base</b>'s "
                      "(the data cannot show it; rcsim calibrate --real-drive fits some of those).</p>\n",
                      d.detections, d.sensor_cycles, xml_escape(d.base), xml_escape(profile_file));
-  out << "<h2>Values</h2>\n<div class=\"scroll\"><table><tr><th>field</th><th>value</th><th>source</th><th>evidence</th>"
-         "<th>support</th></tr>\n";
+  out << "<h2>Values</h2>\n<div class=\"scroll\"><table><tr><th>field</th><th>value</th><th>source</th><th>interval</th>"
+         "<th>evidence</th><th>support</th></tr>\n";
   for (const auto& v : d.values) {
-    out << fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td class=\"num\">{}</td></tr>\n",
-                       xml_escape(v.field), xml_escape(profile::value_text(v.value)), profile::value_source_name(v.source),
-                       xml_escape(v.evidence), v.support > 0 ? std::to_string(v.support) : "");
+    out << fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td>{}</td><td class=\"num\">{}</td><td>{}</td><td "
+                       "class=\"num\">{}</td></tr>\n",
+                       xml_escape(v.field), xml_escape(profile::value_text(v.value)), xml_escape(profile::source_text(v)),
+                       xml_escape(profile::interval_text(v)), xml_escape(v.evidence), v.support > 0 ? std::to_string(v.support) : "");
   }
   out << "</table></div>\n<h2>The fits</h2>\n<div class=\"figs\">\n";
   for (const auto& f : d.figures) out << figure_svg(f) << '\n';

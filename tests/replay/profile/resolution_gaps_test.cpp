@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace rcsim::replay::profile::resolution_gaps_test {
@@ -38,7 +39,7 @@ TEST(ProfileResolutionGaps, ALatticeGivesItsCellsWithThePairsCountedByHand) {
   const DetectionPool pool = lattice(3);
   Cells cells;
   std::vector<DerivationFigure> figures;
-  const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
+  const std::vector<DerivedValue> values = derive_resolution(pool, nlohmann::json::object(), cells, figures);
   EXPECT_TRUE(cells.found);
   EXPECT_DOUBLE_EQ(cells.range_m, 1.5);
   EXPECT_DOUBLE_EQ(cells.range_rate_mps, 0.25);
@@ -47,7 +48,13 @@ TEST(ProfileResolutionGaps, ALatticeGivesItsCellsWithThePairsCountedByHand) {
   EXPECT_DOUBLE_EQ(values[0].value.get<double>(), 1.5);
   EXPECT_EQ(values[0].support, 120);
   EXPECT_EQ(values[0].evidence,
-            "120 pairs at one radial speed: their density rises 4-fold at 1.500 m (1 % quantile 1.500, 5 % 1.500)");
+            "120 pairs at one radial speed: their density rises 4-fold at 1.500 m (1 % quantile 1.500, 5 % 1.500); 48 pairs beside "
+            "it (up to twice), 0 within it; weak: few pairs beside it");
+  // The edge is sharp (none below it, 48 at it): its interval is the cell itself; but 48 pairs
+  // beside it are few (200 place it firmly): weak.
+  EXPECT_DOUBLE_EQ(values[0].low, 1.5);
+  EXPECT_DOUBLE_EQ(values[0].high, 1.5);
+  EXPECT_TRUE(values[0].weak);
   EXPECT_EQ(values[1].field, "resolution.range_rate_cell_mps");
   EXPECT_DOUBLE_EQ(values[1].value.get<double>(), 0.25);
   EXPECT_EQ(values[1].support, 90);
@@ -82,7 +89,7 @@ TEST(ProfileResolutionGaps, TwoBeamsOfOneCellDoNotCloseTheRangeRateGap) {
   }
   Cells cells;
   std::vector<DerivationFigure> figures;
-  const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
+  const std::vector<DerivedValue> values = derive_resolution(pool, nlohmann::json::object(), cells, figures);
   EXPECT_DOUBLE_EQ(cells.range_m, 1.5);
   EXPECT_DOUBLE_EQ(cells.range_rate_mps, 0.25);
   ASSERT_EQ(values.size(), 4u);
@@ -102,7 +109,7 @@ TEST(ProfileResolutionGaps, TwinsACellAwayAtOneAzimuthShowALeakingWindow) {
   }
   Cells cells;
   std::vector<DerivationFigure> figures;
-  const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
+  const std::vector<DerivedValue> values = derive_resolution(pool, nlohmann::json::object(), cells, figures);
   ASSERT_EQ(values.size(), 4u);
   EXPECT_EQ(values[3].source, ValueSource::derived);
   EXPECT_EQ(values[3].value, "hann");
@@ -132,7 +139,7 @@ TEST(ProfileResolutionGaps, BeamsOfOneCellAtOneElevationShowTheAzimuthCellAtTwoE
   };
   Cells cells;
   std::vector<DerivationFigure> figures;
-  const std::vector<DerivedValue> azimuth = derive_resolution(with_twins(0.0175, 0.0), cells, figures);
+  const std::vector<DerivedValue> azimuth = derive_resolution(with_twins(0.0175, 0.0), nlohmann::json::object(), cells, figures);
   ASSERT_EQ(azimuth.size(), 4u);
   EXPECT_EQ(azimuth[2].source, ValueSource::derived) << azimuth[2].evidence;
   EXPECT_DOUBLE_EQ(azimuth[2].value.get<double>(), 1.0);
@@ -140,11 +147,45 @@ TEST(ProfileResolutionGaps, BeamsOfOneCellAtOneElevationShowTheAzimuthCellAtTwoE
   EXPECT_NE(azimuth[2].evidence.find("30 pairs inside one range-Doppler cell at one elevation (4.8 % of the detections; 0 more at two elevations)"),
             std::string::npos)
       << azimuth[2].evidence;
-  const std::vector<DerivedValue> elevation = derive_resolution(with_twins(0.0, std::asin(0.02)), cells, figures);
+  const std::vector<DerivedValue> elevation = derive_resolution(with_twins(0.0, std::asin(0.02)), nlohmann::json::object(), cells, figures);
   EXPECT_EQ(elevation[2].source, ValueSource::base);
   EXPECT_NE(elevation[2].evidence.find("0 pair(s) inside one range-Doppler cell at one elevation (0.00 %"), std::string::npos)
       << elevation[2].evidence;
   EXPECT_NE(elevation[2].evidence.find("30 at two elevations"), std::string::npos) << elevation[2].evidence;
+}
+
+TEST(ProfileResolutionGaps, ContinuousRadialSpeedsShowNoRangeRateCellItIsTheBases) {
+  // 3 cycles of 200 detections at 40 ranges 1.5 m apart (a lattice: the range cell shows) whose
+  // radial speeds are continuous over +-2 m/s (a radar that interpolates Doppler): the radial-speed distances of
+  // pairs within half a range cell spread evenly from zero, as many within their 1 % quantile as
+  // beside it. No gap: the base's 0.2 m/s, said why; the range cell stays derived.
+  DetectionPool pool;
+  std::uint64_t state = 48;
+  for (int k = 0; k < 3; ++k) {
+    PooledCycle& c = pool.cycles.emplace_back();
+    for (int n = 0; n < 200; ++n) {
+      PooledDetection d;
+      d.range_m = 10.0 + 1.5 * (n % 40);
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // a seeded uniform draw
+      d.range_rate_mps = -2.0 + 4.0 * static_cast<double>(state >> 11) / 9007199254740992.0;
+      d.azimuth_rad = 0.001 * n;
+      c.detections.push_back(d);
+    }
+    pool.detections += 200;
+  }
+  const nlohmann::json base = {{"resolution", {{"range_cell_m", 1.4}, {"range_rate_cell_mps", 0.2}}}};
+  Cells cells;
+  std::vector<DerivationFigure> figures;
+  const std::vector<DerivedValue> values = derive_resolution(pool, base, cells, figures);
+  ASSERT_GE(values.size(), 2u);
+  EXPECT_EQ(values[0].source, ValueSource::derived) << values[0].evidence;
+  EXPECT_EQ(values[1].field, "resolution.range_rate_cell_mps");
+  EXPECT_EQ(values[1].source, ValueSource::base) << values[1].evidence;
+  EXPECT_NE(values[1].evidence.find("not shown by the pairs"), std::string::npos) << values[1].evidence;
+  EXPECT_NE(values[1].evidence.find("the base's 0.2"), std::string::npos) << values[1].evidence;
+  EXPECT_DOUBLE_EQ(cells.range_rate_mps, 0.2);
+  EXPECT_EQ(values[0].source, ValueSource::derived) << values[0].evidence;
+  EXPECT_DOUBLE_EQ(values[0].value.get<double>(), 1.5);
 }
 
 TEST(ProfileResolutionGaps, TooFewPairsLeaveBothCellsToTheBase) {
@@ -161,7 +202,7 @@ TEST(ProfileResolutionGaps, TooFewPairsLeaveBothCellsToTheBase) {
   pool.detections = 8;
   Cells cells;
   std::vector<DerivationFigure> figures;
-  const std::vector<DerivedValue> values = derive_resolution(pool, cells, figures);
+  const std::vector<DerivedValue> values = derive_resolution(pool, nlohmann::json::object(), cells, figures);
   EXPECT_FALSE(cells.found);
   EXPECT_TRUE(figures.empty());
   ASSERT_EQ(values.size(), 2u);

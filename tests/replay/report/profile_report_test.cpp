@@ -27,7 +27,8 @@ ProfileDerivation hand_derivation() {
   d.detections = 1200;
   d.sensor_cycles = 40;
   d.values = {
-      {"field_of_view.azimuth_half_deg", 16.8, ValueSource::derived, "99.9 % quantile of |azimuth| <x>", 1180},
+      replay::profile::with_interval({"field_of_view.azimuth_half_deg", 16.8, ValueSource::derived, "99.9 % quantile of |azimuth| <x>", 1180},
+                                     16.5, 17.2, true),
       {"cycle_time_s", 0.05, ValueSource::recording, "header", 0},
       {"noise", nlohmann::json{{"a", 1}}, ValueSource::base, "", 0},
   };
@@ -51,15 +52,15 @@ TEST(ProfileReport, HeaderAndOneRowPerValueEscaped) {
       << html;
   // A derived value with its support; a value of the header and one of the base without (support 0
   // leaves the cell empty); a JSON value as JSON, escaped.
-  EXPECT_NE(html.find("<tr><td>field_of_view.azimuth_half_deg</td><td class=\"num\">16.8</td><td>derived</td>"
-                      "<td>99.9 % quantile of |azimuth| &lt;x&gt;</td><td class=\"num\">1180</td></tr>"),
+  EXPECT_NE(html.find("<tr><td>field_of_view.azimuth_half_deg</td><td class=\"num\">16.8</td><td>derived, weak</td>"
+                      "<td class=\"num\">[16.5, 17.2]</td><td>99.9 % quantile of |azimuth| &lt;x&gt;</td><td class=\"num\">1180</td></tr>"),
             std::string::npos)
       << html;
-  EXPECT_NE(html.find("<tr><td>cycle_time_s</td><td class=\"num\">0.05</td><td>recording</td><td>header</td>"
+  EXPECT_NE(html.find("<tr><td>cycle_time_s</td><td class=\"num\">0.05</td><td>recording</td><td class=\"num\"></td><td>header</td>"
                       "<td class=\"num\"></td></tr>"),
             std::string::npos)
       << html;
-  EXPECT_NE(html.find("<tr><td>noise</td><td class=\"num\">{&quot;a&quot;:1}</td><td>base</td><td></td>"),
+  EXPECT_NE(html.find("<tr><td>noise</td><td class=\"num\">{&quot;a&quot;:1}</td><td>base</td><td class=\"num\"></td><td></td>"),
             std::string::npos)
       << html;
   EXPECT_EQ(html.find("<x>"), std::string::npos);
