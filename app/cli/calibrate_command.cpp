@@ -232,6 +232,11 @@ void run_calibrate(const CalibrateArgs& args) {
   print_fits(fmt::format("fitted on all {} (objective: mean GOSPA after / before = {:.3f})", recordings.size(),
                          result.objective_after),
              result.recordings);
+  if (result.flat) {
+    std::cout << fmt::format("\nthe objective is flat: {:.4f} at each of the {} evaluations; no parameter changed it, so "
+                             "nothing was fitted (docs/calibration.md, a flat objective)\n",
+                             result.objective_after, result.evaluations);
+  }
 
   std::vector<replay::RecordingFit> held_out;
   if (args.cross_validate) {

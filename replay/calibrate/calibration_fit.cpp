@@ -495,6 +495,7 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
   };
   double best = objective(figures);
   result.objective_before = best;
+  bool moved_objective = false;
 
   auto& parameters = fitter.parameters();
   for (double step_db = options.initial_step_db; step_db >= options.final_step_db * (1.0 - 1e-12); step_db *= 0.5) {
@@ -511,6 +512,7 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
           }
           ++result.evaluations;
           const double f = objective(g);
+          moved_objective = moved_objective || f != result.objective_before;
           if (f < best - 1e-9) {
             best = f;
             figures = std::move(g);
@@ -525,6 +527,7 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
     if (progress) progress(step_db, best, result.evaluations);
   }
   result.objective_after = best;
+  result.flat = result.evaluations >= 2 && !moved_objective;
   result.parameters = parameters;
   result.documents = fitter.documents();
   // A start calibration's documents the recordings do not use are carried over unchanged.
@@ -592,7 +595,7 @@ void write_calibration(const std::string& dir, const CalibrationResult& result, 
   Json fitted_on = Json::array();
   for (const Recording& r : recordings) fitted_on.push_back({{"recording", r.name}, {"checksum", fmt::format("{:016x}", r.checksum)}});
   index["fitted_on"] = fitted_on;
-  index["objective"] = {{"before", result.objective_before}, {"after", result.objective_after}};
+  index["objective"] = {{"before", result.objective_before}, {"after", result.objective_after}, {"flat", result.flat}};
   index["recordings"] = fits_json(result.recordings);
   index["cross_validation"] = held_out != nullptr ? fits_json(*held_out) : Json();
   Json parameters = Json::array();

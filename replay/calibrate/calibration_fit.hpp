@@ -78,6 +78,8 @@ struct CalibrationResult {
   std::vector<RecordingFit> recordings;
   double objective_before = 1.0, objective_after = 1.0;  // mean GOSPA ratio plus count penalty
   int evaluations = 0;  // objective evaluations (each replays the recordings a parameter touches)
+  // Every evaluation (at least two) gave the start's objective: no parameter moved it, nothing fitted.
+  bool flat = false;
   // The fitted rcsim-sensor and rcsim-object-model documents, keyed as CalibrationParameter::document.
   std::map<std::string, nlohmann::ordered_json> documents;
 };

@@ -59,6 +59,7 @@ TEST(Calibration, FindsThePoleErcsTheRecordingWasMadeWith) {
   EXPECT_NEAR(20.0 * std::log10(pole.value), -12.0, 1.5) << pole.value;
   ASSERT_EQ(result.recordings.size(), 1u);
   EXPECT_LT(result.recordings[0].gospa_after_m, 0.5 * result.recordings[0].gospa_before_m);
+  EXPECT_FALSE(result.flat);
   EXPECT_LT(result.objective_after, result.objective_before);
   EXPECT_GT(result.evaluations, 10);
   // The fitted document holds the value the search ended with.
@@ -102,6 +103,19 @@ TEST(Calibration, ARecordingWithoutObjectsIsRefused) {
     EXPECT_EQ(fittable_refusal(none, f), "snapshot_frames: objects.csv: holds no annotated object: nothing to fit the model's objects to");
   }
   EXPECT_THROW(replay::calibrate({none}, CalibrationOptions{}), InputError);
+}
+
+// The multibounce loss on a recording made without multibounce (its declared effects, which the
+// replay follows) moves nothing: the objective is flat, and said to be, not fitted.
+TEST(Calibration, AnObjectiveNoParameterMovesIsFlat) {
+  const std::vector<Recording> close_front{read_recording(std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / "close_front")};
+  CalibrationOptions options;
+  options.groups = {ParameterGroup::multibounce};
+  options.initial_step_db = options.final_step_db = 6.0;
+  const auto result = replay::calibrate(close_front, options);
+  EXPECT_TRUE(result.flat);
+  EXPECT_GE(result.evaluations, 2);
+  EXPECT_DOUBLE_EQ(result.objective_after, result.objective_before);
 }
 
 // The default groups (ercs, slope) on a radar-equation profile: slope is eq. (1)'s, which the
