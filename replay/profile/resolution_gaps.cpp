@@ -66,6 +66,12 @@ class OctaveHistogram {
     return std::numeric_limits<double>::infinity();
   }
   std::size_t total() const { return total_; }
+  // The distances of 0 (two detections at one value: beams of one cell, a written value's last decimal).
+  std::size_t zeros() const {
+    std::size_t zeros = total_;
+    for (const auto& [bin, n] : counts_) zeros -= n;
+    return zeros;
+  }
 
  private:
   static constexpr double kBinsPerOctave = 64.0;
@@ -97,7 +103,10 @@ Distances pair_gaps(const DetectionPool& pool, Key key, Other other, double key_
   Distances gaps;
   gaps.total = histogram.total();
   if (gaps.total == 0) return gaps;
-  const auto rank_5 = static_cast<std::size_t>(std::floor(0.05 * static_cast<double>(gaps.total - 1))) + 1;
+  // The 5 % quantile of the distances above 0: where many pairs lie at one value (an imaging
+  // array's beams of one cell at one range), the low tail read lies beyond them.
+  const std::size_t zeros = histogram.zeros(), nonzero = gaps.total - zeros;
+  const auto rank_5 = zeros + static_cast<std::size_t>(std::floor(0.05 * static_cast<double>(nonzero > 0 ? nonzero - 1 : 0))) + 1;
   const double cut = 4.0 * histogram.upper_bound_of_rank(std::min(rank_5, gaps.total - 1));
   for_each_gap([&](double gap) {
     if (gap <= cut) gaps.sorted.push_back(gap);
@@ -132,7 +141,16 @@ struct Gap {
 Gap gap_edge(const Distances& distances) {
   const std::vector<double>& sorted = distances.sorted;
   const auto first = std::upper_bound(sorted.begin(), sorted.end(), kSameValue);
-  const double scan_end = distances.quantile(0.05);
+  // Quantiles of the distances above the same value (pairs at one value are beams of one cell).
+  const auto same = static_cast<std::size_t>(first - sorted.begin());
+  const auto above_same = [&](double q) {
+    if (first == sorted.end()) return distances.quantile(q);
+    const double h = static_cast<double>(same) + q * static_cast<double>(distances.size() - same - 1);
+    const auto lo = std::min(static_cast<std::size_t>(std::floor(h)), sorted.size() - 1);
+    const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+    return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+  };
+  const double scan_end = above_same(0.05);
   // Beyond the edge at least 1 pair in 1000: a dense scene's few pairs at the CSV's last decimal
   // are no edge.
   const auto min_above = std::max<std::ptrdiff_t>(kMinPairs, static_cast<std::ptrdiff_t>(distances.size() / 1000));
@@ -154,8 +172,8 @@ Gap gap_edge(const Distances& distances) {
     const auto at_b = std::lower_bound(first, sorted.end(), *b);
     gap.high = first_rise(2.0 * kEdgeContrast, min_above, at_b).value_or(scan_end);
   } else {
-    gap.distance = distances.quantile(kGapQuantile);
-    gap.low = distances.quantile(0.005), gap.high = distances.quantile(0.02);
+    gap.distance = above_same(kGapQuantile);
+    gap.low = above_same(0.005), gap.high = above_same(0.02);
   }
   gap.low = std::min(gap.low, gap.distance), gap.high = std::max(gap.high, gap.distance);
   gap.beside = std::lower_bound(sorted.begin(), sorted.end(), 2.0 * gap.distance) - std::lower_bound(sorted.begin(), sorted.end(), gap.distance);
@@ -291,6 +309,11 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, const nlo
   // Two rounds: the range cell from pairs at one radial speed, the range-rate cell from pairs
   // within half that range cell, the range cell again from pairs within a quarter of the range-rate
   // cell (where that one is shown).
+  const auto base_cell = [&](const char* pointer) {
+    const auto p = nlohmann::json::json_pointer(pointer);
+    return base.contains(p) ? base.at(p).get<double>() : 0.0;
+  };
+  const double base_range_m = base_cell("/resolution/range_cell_m"), base_range_rate_mps = base_cell("/resolution/range_rate_cell_mps");
   Distances range_gaps = pair_gaps(pool, range_rate_of, range_of, kSameRangeRateMps);
   Distances range_rate_gaps;
   Gap range_gap, range_rate_gap;
@@ -299,7 +322,9 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, const nlo
     const Gap this_range_gap = gap_edge(range_gaps);
     // Pairs at the very same radial speed within half a range cell are two beams of one cell (an
     // imaging array's); the range-rate cell is the gap beyond them.
-    Distances rate_gaps = pair_gaps(pool, range_of, range_rate_of, 0.5 * this_range_gap.distance, kSameValue);
+    // A range cell the pairs do not show: the pairs within half the base's (where it has one).
+    const double window_m = this_range_gap.supported() || !(base_range_m > 0.0) ? this_range_gap.distance : base_range_m;
+    Distances rate_gaps = pair_gaps(pool, range_of, range_rate_of, 0.5 * window_m, kSameValue);
     if (rate_gaps.size() < kMinPairs) break;
     const Gap this_rate_gap = gap_edge(rate_gaps);
     if (!(this_range_gap.distance > 0.0 && this_rate_gap.distance > 0.0)) break;
@@ -313,11 +338,6 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, const nlo
       break;
     }
   }
-  const auto base_cell = [&](const char* pointer) {
-    const auto p = nlohmann::json::json_pointer(pointer);
-    return base.contains(p) ? base.at(p).get<double>() : 0.0;
-  };
-  const double base_range_m = base_cell("/resolution/range_cell_m"), base_range_rate_mps = base_cell("/resolution/range_rate_cell_mps");
   if (!read) {
     const std::string why = fmt::format("too few pairs of detections in one cycle at one radial speed ({}) to show a gap", range_gaps.size());
     cells = {base_range_m, base_range_rate_mps, false};
@@ -349,11 +369,21 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, const nlo
   const long long range_support = static_cast<long long>(range_gaps.size());
   const long long rate_support = static_cast<long long>(range_rate_gaps.size());
   if (!range_gap.supported()) {
-    // The range-rate pairs were chosen within half of it: neither is shown.
-    cells = {base_range_m, base_range_rate_mps, false};
+    // The range-rate pairs were chosen within half the base's range cell.
     values.push_back({"resolution.range_cell_m", nullptr, ValueSource::base, unsupported(range_gap, "m", base_range_m), range_support});
-    values.push_back({"resolution.range_rate_cell_mps", nullptr, ValueSource::base,
-                      "not shown: its pairs are those within half a range cell, which the pairs do not show", rate_support});
+    cells = {base_range_m, base_range_rate_mps, false};
+    if (range_rate_gap.supported() && base_range_m > 0.0) {
+      cells.range_rate_mps = range_rate_gap.distance;
+      values.push_back(with_interval({"resolution.range_rate_cell_mps", round_to(range_rate_gap.distance, 0.001), ValueSource::derived,
+                                      described(range_rate_gaps, range_rate_gap, "m/s", "within half the base's range cell"), rate_support},
+                                     range_rate_gap.low, range_rate_gap.high, range_rate_gap.weak()));
+    } else {
+      values.push_back({"resolution.range_rate_cell_mps", nullptr, ValueSource::base,
+                        range_rate_gap.supported() ? "not shown: its pairs are those within half a range cell, which neither the pairs "
+                                                     "nor the base show"
+                                                   : unsupported(range_rate_gap, "m/s", base_range_rate_mps),
+                        rate_support});
+    }
   } else {
     cells = {range_gap.distance, range_rate_gap.supported() ? range_rate_gap.distance : base_range_rate_mps, true, range_gap.low,
              range_gap.high};

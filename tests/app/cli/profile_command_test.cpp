@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include "app/cli/run_rcsim.hpp"
 #include "common/json_reader.hpp"
 #include "scratch_dir.hpp"
@@ -64,6 +66,39 @@ TEST_F(ProfileCli, DeriveWritesAProfileReplayReadsAndAReportWithItsFits) {
   EXPECT_NE(html.find("amplitude.range_exponent"), std::string::npos);
   const auto replayed = run_rcsim(fmt::format("replay {} --sensor {} --db {}", rec.string(), profile.string(), (dir_ / "r.sqlite").string()));
   EXPECT_EQ(replayed.exit_code, 0) << replayed.output;
+}
+
+// Every value with its source, weak mark and interval (issue 48), printed, in --json and in the
+// report, on the model's own drive (docs/examples/round_trip/lined_road.json) derived from srr24:
+// the base's values listed as such, the derived numbers each with an interval.
+TEST_F(ProfileCli, DeriveGivesEachValueItsIntervalAndMarkInTheTableTheJsonAndTheReport) {
+  const fs::path rec = dir_ / "lined", profile = dir_ / "lined.json", page = dir_ / "lined.html";
+  const std::string scene = (fs::path(RCSIM_SOURCE_DIR) / "docs/examples/round_trip/lined_road.json").string();
+  ASSERT_EQ(run_rcsim(fmt::format("simulate {} --seed 7 --format recording -o {}", scene, rec.string())).exit_code, 0);
+  const auto json = run_rcsim(fmt::format("profile derive {} --base srr24 -o {} --json --report {}", rec.string(), profile.string(), page.string()));
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  const nlohmann::json printed = nlohmann::json::parse(json.output);
+  int derived_numbers = 0, base_values = 0;
+  for (const nlohmann::json& v : printed.at("values")) {
+    ASSERT_TRUE(v.contains("weak") && v.contains("interval")) << v.dump();
+    if (v.at("source") == "base") ++base_values;
+    if (v.at("source") != "derived" || !v.at("value").is_number()) continue;
+    ++derived_numbers;
+    ASSERT_TRUE(v.at("interval").is_array()) << v.dump();
+    EXPECT_LE(v.at("interval").at(0).get<double>(), v.at("value").get<double>() + 1e-9) << v.dump();
+    EXPECT_GE(v.at("interval").at(1).get<double>(), v.at("value").get<double>() - 1e-9) << v.dump();
+  }
+  EXPECT_GE(derived_numbers, 15);
+  EXPECT_GE(base_values, 10);  // occlusion, extended objects, clutter, multibounce, tracking, ...
+  const std::string html = read_file(page);
+  EXPECT_NE(html.find("<th>source</th><th>interval</th>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>occlusion.loss_db</td>"), std::string::npos);
+  const auto table = run_rcsim(fmt::format("profile derive {} --base srr24 -o {}", rec.string(), profile.string()));
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_NE(table.output.find("occlusion.loss_db"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("resolution.range_cell_m"), std::string::npos) << table.output;
+  const std::string description = load_sensor_config_file(profile.string()).description;
+  EXPECT_NE(description.find("taken from the base: "), std::string::npos) << description;
 }
 
 }  // namespace

@@ -82,10 +82,18 @@ TEST(ProfileDerive, TheAstyxFramesGiveAstyxHiresHandValues) {
   expect_derived_near(values, "field_of_view.azimuth_half_deg", 65.0, 1.0);
   expect_derived_near(values, "field_of_view.max_range_m", 101.0, 5.0);
   expect_derived_near(values, "amplitude.detection_threshold_db", 45.0, 0.5);
-  expect_derived_near(values, "resolution.range_cell_m", 0.075, 0.2 * 0.075);
+  // The range distances of pairs at one radial speed spread evenly from zero (as many within their
+  // 1 % quantile, 0.086 m, as beside it): no gap, so the range cell is the base's, said so (issue
+  // 48; its 1 % quantile read 0.078 "derived" before). The range-rate cell, from pairs within half
+  // the base's, shows its edge.
+  EXPECT_EQ(values.at("resolution.range_cell_m").source, ValueSource::base) << values.at("resolution.range_cell_m").evidence;
+  EXPECT_DOUBLE_EQ(values.at("resolution.range_cell_m").value.get<double>(), 0.075);
+  EXPECT_NE(values.at("resolution.range_cell_m").evidence.find("not shown by the pairs"), std::string::npos);
   expect_derived_near(values, "resolution.range_rate_cell_mps", 0.0812, 0.2 * 0.0812);
   expect_derived_near(values, "measurement_noise.range_rate_sigma_at_threshold_mps", 0.023, 0.3 * 0.023);
-  expect_derived_near(values, "measurement_noise.range_sigma_at_threshold_m", 0.022, 0.3 * 0.022);
+  // Single frames: the range noise would be the cell / sqrt(12), but the cell is the base's: so is the noise.
+  EXPECT_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").source, ValueSource::base);
+  EXPECT_DOUBLE_EQ(values.at("measurement_noise.range_sigma_at_threshold_m").value.get<double>(), 0.022);
   // A range-compensated amplitude cannot show the law: the base's, said so.
   EXPECT_EQ(values.at("amplitude.range_exponent").source, ValueSource::base);
   EXPECT_EQ(values.at("amplitude.unit").value, "relative_db");
