@@ -131,11 +131,14 @@ struct Gap {
   // Pairs just beyond it ([b, 2 b)) and just within it ((0, b), the same value apart): a cell the
   // pairs leave no emptier within than beside is not shown by them (continuous Doppler: the 1 %
   // quantile of a smooth spread).
-  std::ptrdiff_t beside = 0, within = 0;
+  std::ptrdiff_t beside = 0, within = 0, near = 0;
   bool supported() const { return distance > 0.0 && beside >= static_cast<std::ptrdiff_t>(kMinPairs) && beside >= kEdgeContrast * within; }
   // Shown, but barely: no edge, too few pairs beside it to place it, or a wide interval.
-  bool weak() const { return !edge || beside < kWeakBeside || high - low > kWeakSpread * distance; }
-  static constexpr std::ptrdiff_t kWeakBeside = 200;
+  // Few pairs in the first quarter beyond the edge: the density rises beyond it rather than at it
+  // (a sparse scene's pairs), so the cell may lie well below (a sparse road read 1.19 m for 1.0
+  // with 15 of 202 there).
+  bool weak() const { return !edge || beside < kWeakBeside || near < kWeakNear || high - low > kWeakSpread * distance; }
+  static constexpr std::ptrdiff_t kWeakBeside = 200, kWeakNear = 30;
   static constexpr double kWeakSpread = 0.2;
 };
 Gap gap_edge(const Distances& distances) {
@@ -175,7 +178,12 @@ Gap gap_edge(const Distances& distances) {
     gap.distance = above_same(kGapQuantile);
     gap.low = above_same(0.005), gap.high = above_same(0.02);
   }
-  gap.low = std::min(gap.low, gap.distance), gap.high = std::max(gap.high, gap.distance);
+  // Where the pairs beyond the edge are few, the cell may lie below the first of them: with n pairs
+  // in its first quarter beyond ([b, 1.25 b)), an empty stretch of 3 / (their density), 0.75 b / n,
+  // below b is as likely as 5 % (order statistics of a flat density).
+  gap.near = std::lower_bound(sorted.begin(), sorted.end(), 1.25 * gap.distance) - std::lower_bound(sorted.begin(), sorted.end(), gap.distance);
+  if (gap.edge) gap.low = std::min(gap.low, gap.distance * (1.0 - 0.75 / static_cast<double>(std::max<std::ptrdiff_t>(gap.near, 1))));
+  gap.low = std::max(0.0, std::min(gap.low, gap.distance)), gap.high = std::max(gap.high, gap.distance);
   gap.beside = std::lower_bound(sorted.begin(), sorted.end(), 2.0 * gap.distance) - std::lower_bound(sorted.begin(), sorted.end(), gap.distance);
   gap.within = std::lower_bound(first, sorted.end(), gap.distance) - first;
   return gap;
@@ -350,11 +358,13 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, const nlo
     return values;
   }
   const auto described = [](const Distances& gaps, const Gap& gap, const char* unit, const char* pairs) {
-    return fmt::format("{} pairs {}: {} {:.3f} {} (1 % quantile {:.3f}, 5 % {:.3f}); {} pairs beside it (up to twice), {} within it{}",
+    return fmt::format("{} pairs {}: {} {:.3f} {} (1 % quantile {:.3f}, 5 % {:.3f}); {} pairs beside it (up to twice, {} in the first "
+                       "quarter), {} within it{}",
                        gaps.size(), pairs, gap.edge ? "their density rises 4-fold at" : "no edge stands out; their 1 % quantile",
-                       gap.distance, unit, gaps.quantile(kGapQuantile), gaps.quantile(0.05), gap.beside, gap.within,
-                       gap.weak() ? fmt::format("; weak: {}", !gap.edge ? "no edge, a quantile"
+                       gap.distance, unit, gaps.quantile(kGapQuantile), gaps.quantile(0.05), gap.beside, gap.near, gap.within,
+                       gap.weak() ? fmt::format("; weak: {}", !gap.edge                       ? "no edge, a quantile"
                                                               : gap.beside < Gap::kWeakBeside ? "few pairs beside it"
+                                                              : gap.near < Gap::kWeakNear     ? "few pairs at its edge"
                                                                                               : "its edge rises slowly (a wide interval)")
                                   : "");
   };

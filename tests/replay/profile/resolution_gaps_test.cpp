@@ -49,10 +49,11 @@ TEST(ProfileResolutionGaps, ALatticeGivesItsCellsWithThePairsCountedByHand) {
   EXPECT_EQ(values[0].support, 120);
   EXPECT_EQ(values[0].evidence,
             "120 pairs at one radial speed: their density rises 4-fold at 1.500 m (1 % quantile 1.500, 5 % 1.500); 48 pairs beside "
-            "it (up to twice), 0 within it; weak: few pairs beside it");
-  // The edge is sharp (none below it, 48 at it): its interval is the cell itself; but 48 pairs
-  // beside it are few (200 place it firmly): weak.
-  EXPECT_DOUBLE_EQ(values[0].low, 1.5);
+            "it (up to twice, 48 in the first quarter), 0 within it; weak: few pairs beside it");
+  // The edge is sharp (none below it, 48 at it): its interval reaches below it by 0.75 / 48 of it
+  // (where the first of 48 pairs of a flat density could lie); but 48 pairs beside it are few (200
+  // place it firmly): weak.
+  EXPECT_DOUBLE_EQ(values[0].low, 1.5 * (1.0 - 0.75 / 48.0));
   EXPECT_DOUBLE_EQ(values[0].high, 1.5);
   EXPECT_TRUE(values[0].weak);
   EXPECT_EQ(values[1].field, "resolution.range_rate_cell_mps");
