@@ -1,6 +1,7 @@
 #pragma once
 // One value of a derived sensor profile with its evidence (`rcsim profile derive`,
 // docs/profile-derive.md): where it came from, the figure that shows it, how much data it rests on.
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -40,6 +41,11 @@ std::string interval_text(const DerivedValue& value);
 // A value with its interval and mark set.
 inline DerivedValue with_interval(DerivedValue value, double low, double high, bool weak) {
   value.low = low, value.high = high, value.weak = weak;
+  // The interval holds the value as written (rounded to its step).
+  if (value.value.is_number() && std::isfinite(low) && std::isfinite(high)) {
+    const double v = value.value.get<double>();
+    value.low = std::min(value.low, v), value.high = std::max(value.high, v);
+  }
   return value;
 }
 

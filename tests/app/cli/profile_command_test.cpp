@@ -89,13 +89,13 @@ TEST_F(ProfileCli, DeriveGivesEachValueItsIntervalAndMarkInTheTableTheJsonAndThe
     EXPECT_GE(v.at("interval").at(1).get<double>(), v.at("value").get<double>() - 1e-9) << v.dump();
   }
   EXPECT_GE(derived_numbers, 15);
-  EXPECT_GE(base_values, 10);  // occlusion, extended objects, clutter, multibounce, tracking, ...
+  EXPECT_GE(base_values, 10);  // tracking, clutter, multibounce, monopulse, ...
   const std::string html = read_file(page);
   EXPECT_NE(html.find("<th>source</th><th>interval</th>"), std::string::npos);
-  EXPECT_NE(html.find("<tr><td>occlusion.loss_db</td>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>tracking.gate_chi2</td>"), std::string::npos);
   const auto table = run_rcsim(fmt::format("profile derive {} --base srr24 -o {}", rec.string(), profile.string()));
   ASSERT_EQ(table.exit_code, 0) << table.output;
-  EXPECT_NE(table.output.find("occlusion.loss_db"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("monopulse.pointer_noise_sigma"), std::string::npos) << table.output;
   EXPECT_NE(table.output.find("resolution.range_cell_m"), std::string::npos) << table.output;
   const std::string description = load_sensor_config_file(profile.string()).description;
   EXPECT_NE(description.find("taken from the base: "), std::string::npos) << description;
