@@ -71,11 +71,26 @@ class RowWriter {
   long long rows_ = 0;
 };
 
+// What reading the report throws (SQLite's "malformed", a damaged block's message) is bad input,
+// named by the file (exit status 2), as `rcsim report` says it.
+template <class Read>
+auto reading(const std::string& db_path, Read&& read) {
+  try {
+    return read();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw InputError(db_path, "", e.what());
+  }
+}
+
 long long export_rows(replay::ReportDatabase& db, const ExportArgs& args, std::ostream& out) {
   const replay::DecodedTable table = *replay::decoded_table_from_name(args.table);
   RowWriter writer(out, args.format == "csv", replay::decoded_columns(table));
-  replay::for_each_decoded_row(db, table, args.run_id, {}, [&](const auto& row) { writer.write(row); });
-  return writer.rows();
+  return reading(args.db_path, [&] {
+    replay::for_each_decoded_row(db, table, args.run_id, {}, [&](const auto& row) { writer.write(row); });
+    return writer.rows();
+  });
 }
 
 // One run as an MCAP file for Foxglove (schemas/mcap-replay.md), written atomically.
@@ -85,7 +100,7 @@ void export_mcap(const ExportArgs& args) {
   const auto db = replay::open_report_database_for_reading(args.db_path);
   (void)replay::report::select_runs(*db, args.db_path, {args.run_id}, 1);  // an unknown run is refused by name
   AtomicFileWriter file(args.output);
-  const replay::McapReplayCounts counts = replay::write_run_mcap(*db, args.run_id, file.stream());
+  const replay::McapReplayCounts counts = reading(args.db_path, [&] { return replay::write_run_mcap(*db, args.run_id, file.stream()); });
   file.commit();
   std::cerr << fmt::format("rcsim export: run {} as MCAP, {} cycles of {} sensor(s), {} messages, {} bytes written to {}\n",
                            args.run_id, counts.cycles, counts.sensors, counts.messages, counts.bytes, args.output);

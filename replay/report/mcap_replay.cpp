@@ -110,7 +110,13 @@ class McapReplayWriter {
 
   McapReplayCounts write() {
     const int last = last_stored_cycle(db_, run_id_);
-    for (int first = 0; first <= last; first += kBlockCycles) write_block(read_block({first, std::min(last, first + kBlockCycles - 1)}));
+    // Block by block over what is stored (64-bit spans: a damaged report may claim 2^31 - 1 cycles).
+    for (std::int64_t first = next_stored_cycle(db_, run_id_, 0); first >= 0 && first <= last;) {
+      const std::int64_t end = std::min<std::int64_t>(last, first + kBlockCycles - 1);
+      write_block(read_block({static_cast<int>(first), static_cast<int>(end)}));
+      if (end >= last) break;
+      first = next_stored_cycle(db_, run_id_, end + 1);
+    }
     counts_.bytes = writer_.finish();
     counts_.sensors = static_cast<int>(run_.sensors.size());
     return counts_;

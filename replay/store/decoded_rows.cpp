@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include "metrics/target_class.hpp"
@@ -195,6 +196,15 @@ int last_stored_cycle(SQLite::Database& db, std::int64_t run_id) {
   int last = -1;
   for_each_cycle(db, run_id, {}, [&](const StoredCycle& c) { last = std::max(last, c.cycle); });
   return last;
+}
+
+int next_stored_cycle(SQLite::Database& db, std::int64_t run_id, std::int64_t from) {
+  SQLite::Statement q(db, "SELECT MIN(MAX(first_cycle, ?2)) FROM cycle_blocks WHERE run_id = ?1 AND first_cycle + cycles - 1 >= ?2");
+  q.bind(1, static_cast<std::int64_t>(run_id));
+  q.bind(2, static_cast<std::int64_t>(from));
+  if (!q.executeStep() || q.getColumn(0).isNull()) return -1;
+  const long long cycle = q.getColumn(0).getInt64();
+  return cycle >= 0 && cycle <= std::numeric_limits<int>::max() ? static_cast<int>(cycle) : -1;
 }
 
 }  // namespace rcsim::replay

@@ -47,4 +47,9 @@ void for_each_decoded_row(SQLite::Database& db, DecodedTable table, std::int64_t
 // The last cycle index stored for `run_id`, or -1 if it has none; throws for a run not stored.
 int last_stored_cycle(SQLite::Database& db, std::int64_t run_id);
 
+// The first cycle >= `from` that a stored block of `run_id` holds, or -1 if none does: a reader
+// walks the blocks that are there, never every span a damaged report's cycle count claims (a
+// report may say 2^31 - 1 cycles and hold one block).
+int next_stored_cycle(SQLite::Database& db, std::int64_t run_id, std::int64_t from);
+
 }  // namespace rcsim::replay

@@ -195,17 +195,21 @@ std::vector<StoredTargetList> decode_target_block(SQLite::Statement& q, int run_
   for (int c = 0; c < kTargetColumns; ++c) r.push_back(reader_of(column(c), kTargetColumnNames[static_cast<std::size_t>(c)]));
   const bool optional[3] = {!column(kRcs).isNull(), !column(kSnr).isNull(), !column(kElevation).isNull()};
   std::vector<std::pair<std::uint64_t, std::uint64_t>> counts(static_cast<std::size_t>(n));
+  // Every target has its four float32 reals: counts that disagree are damage, not lists to
+  // allocate. Each count is checked against the bytes before it is added (a sum of counts near
+  // 2^64 wraps to a small total).
+  const auto damaged = [&] {
+    return std::runtime_error(fmt::format("report database: the target block of cycle {}, sensor {} is damaged", first_cycle, sensor));
+  };
+  const std::uint64_t targets_in_bytes = static_cast<std::uint64_t>(column(kRange).getBytes()) / 4;
   std::uint64_t total = 0;
   for (auto& [recorded, simulated] : counts) {
     recorded = r[kListRecorded].get_unsigned();
     simulated = r[kListSimulated].get_unsigned();
+    if (recorded > targets_in_bytes - total || simulated > targets_in_bytes - total - recorded) throw damaged();
     total += recorded + simulated;
   }
-  // Every target has its four float32 reals: counts that disagree are damage, not lists to allocate.
-  if (static_cast<std::uint64_t>(column(kRange).getBytes()) != 4 * total) {
-    throw std::runtime_error(fmt::format("report database: the target block of cycle {}, sensor {} is damaged",
-                                         first_cycle, sensor));
-  }
+  if (static_cast<std::uint64_t>(column(kRange).getBytes()) != 4 * total) throw damaged();
   std::vector<StoredTargetList> lists(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
     StoredTargetList& list = lists[static_cast<std::size_t>(k)];

@@ -6,8 +6,10 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <optional>
+#include <random>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -31,7 +33,71 @@ std::optional<mode_t> existing_node(const std::filesystem::path& path) {
                    "through it; give the path it points to");
 }
 
+// An output stream's buffer over a file descriptor (std::ofstream cannot open with O_EXCL and
+// O_NOFOLLOW). A failed write leaves the stream bad; commit() then refuses to rename.
+class DescriptorBuffer : public std::streambuf {
+ public:
+  explicit DescriptorBuffer(int fd) : fd_(fd), buffer_(1 << 16) { setp(buffer_.data(), buffer_.data() + buffer_.size()); }
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(ch, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(ch);
+      pbump(1);
+    }
+    return traits_type::not_eof(ch);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  bool drain() {
+    const char* data = pbase();
+    std::size_t left = static_cast<std::size_t>(pptr() - pbase());
+    while (left > 0) {
+      const ssize_t written = ::write(fd_, data, left);
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) return false;
+      data += written;
+      left -= static_cast<std::size_t>(written);
+    }
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    return true;
+  }
+  int fd_;
+  std::vector<char> buffer_;
+};
+
+// Tries to make something at a fresh random name until one is free (EEXIST: taken, by chance or
+// by design); at most this many names, then the last error.
+constexpr int kTempNameAttempts = 64;
+
 }  // namespace
+
+std::filesystem::path random_temp_path(const std::filesystem::path& target, std::string_view tag) {
+  static thread_local std::random_device device;
+  const std::uint64_t bits = (static_cast<std::uint64_t>(device()) << 32) ^ device();
+  return target.parent_path() / fmt::format(".{}.{}.{:016x}", target.filename().string(), tag, bits);
+}
+
+int create_temp_file(const std::filesystem::path& target, std::filesystem::path& temp_path) {
+  for (int attempt = 0; attempt < kTempNameAttempts; ++attempt) {
+    temp_path = random_temp_path(target, "tmp");
+    const int fd = ::open(temp_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd >= 0) return fd;
+    if (errno != EEXIST) break;
+  }
+  throw InputError(target.string(), "", std::string("cannot create output file: ") + std::strerror(errno));
+}
+
+std::filesystem::path create_temp_directory(const std::filesystem::path& target, std::string_view tag) {
+  for (int attempt = 0; attempt < kTempNameAttempts; ++attempt) {
+    std::filesystem::path path = random_temp_path(target, tag);
+    if (::mkdir(path.c_str(), 0777) == 0) return path;
+    if (errno != EEXIST) break;
+  }
+  throw InputError(target.string(), "", std::string("cannot create a directory beside it: ") + std::strerror(errno));
+}
 
 void check_output_file(const std::filesystem::path& path) {
   const auto mode = existing_node(path);
@@ -59,30 +125,29 @@ void check_output_directory(const std::filesystem::path& path, const std::string
 
 AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
   check_output_file(path_);
-  const auto target = std::filesystem::path(path_);
-  temp_path_ = (target.parent_path() / fmt::format(".{}.tmp.{}", target.filename().string(), ::getpid())).string();
-  out_.open(temp_path_, std::ios::binary | std::ios::trunc);
-  if (!out_) throw InputError(path_, "", std::string("cannot create output file: ") + std::strerror(errno));
+  fd_ = create_temp_file(path_, temp_path_);
+  buffer_ = std::make_unique<DescriptorBuffer>(fd_);
+  out_.rdbuf(buffer_.get());
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
   if (!committed_) {
-    out_.close();
-    std::remove(temp_path_.c_str());
+    if (fd_ >= 0) ::close(fd_);
+    ::unlink(temp_path_.c_str());
   }
 }
 
 void AtomicFileWriter::commit() {
   out_.flush();
-  if (!out_) {
+  if (!out_ || ::fsync(fd_) != 0) {
     // Not bad input: the disk is full, or the file system failed; nothing replaced the target.
     throw std::runtime_error(fmt::format("{}: cannot write the output: {}; the file is left as it was", path_,
                                          std::strerror(errno != 0 ? errno : EIO)));
   }
-  out_.close();
-  if (const int fd = ::open(temp_path_.c_str(), O_RDONLY); fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) {
+    throw std::runtime_error(fmt::format("{}: cannot write the output: {}; the file is left as it was", path_, std::strerror(errno)));
   }
   check_output_file(path_);  // again: a node may have appeared while the output was written
   if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {

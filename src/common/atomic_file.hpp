@@ -4,8 +4,11 @@
 // An output is only ever a regular file or a directory rcsim wrote: a device, pipe, socket or
 // symbolic link at the output path is refused before anything is written (docs/hardening.md).
 #include <filesystem>
-#include <fstream>
+#include <memory>
+#include <ostream>
+#include <streambuf>
 #include <string>
+#include <string_view>
 
 namespace rcsim {
 
@@ -17,6 +20,20 @@ void check_output_file(const std::filesystem::path& path);
 // anything but a directory, and a non-empty directory without `marker_file` in it, so that only
 // what rcsim wrote there before is ever replaced.
 void check_output_directory(const std::filesystem::path& path, const std::string& marker_file);
+
+// A temporary name beside `target` that no one can guess: ".NAME.TAG.RANDOM", 16 hex digits drawn
+// from std::random_device (a PID is no secret: a planted link at the next PIDs' names would be
+// written through).
+std::filesystem::path random_temp_path(const std::filesystem::path& target, std::string_view tag);
+
+// A new regular file beside `target`, opened for writing: O_CREAT | O_EXCL | O_NOFOLLOW (nothing
+// that stands at the name, a symbolic link least of all, is ever opened), mode 0666 less the
+// umask, under a new random name while one is taken. Its descriptor; its path in `temp_path`.
+int create_temp_file(const std::filesystem::path& target, std::filesystem::path& temp_path);
+
+// A new directory beside `target` likewise: mkdir(2) fails on anything standing at the name and
+// never follows a link there. Its path.
+std::filesystem::path create_temp_directory(const std::filesystem::path& target, std::string_view tag);
 
 class AtomicFileWriter {
  public:
@@ -31,8 +48,10 @@ class AtomicFileWriter {
 
  private:
   std::string path_;
-  std::string temp_path_;
-  std::ofstream out_;
+  std::filesystem::path temp_path_;
+  int fd_ = -1;
+  std::unique_ptr<std::streambuf> buffer_;  // writes to fd_
+  std::ostream out_{nullptr};
   bool committed_ = false;
 };
 

@@ -482,9 +482,7 @@ RecordingWriter::RecordingWriter(const fs::path& dir, std::vector<std::string> s
     throw InputError(dir.string(), "", fmt::format("cannot make the parent directory: {}", error ? error.message() : "not a directory"));
   }
   check_output_directory(target_, "recording.json");
-  temp_ = parent_ / fmt::format(".{}.tmp.{}", name_.string(), ::getpid());
-  fs::remove_all(temp_);
-  fs::create_directory(temp_);
+  temp_ = create_temp_directory(parent_ / name_, "tmp");  // a fresh name no one could plant a link at
   files_ = std::make_unique<Files>(temp_, own_clocks);
   files_->ego.text() = "t_s,x_m,y_m,yaw_rad,speed_mps,yaw_rate_radps\n";
   files_->objects.text() = "t_s,object,x_m,y_m,yaw_rad,speed_mps\n";
@@ -545,7 +543,7 @@ void RecordingWriter::finish(const Recording& header, const std::map<std::string
   write_file(temp_ / "recording.json", header_text(header));
   for (const auto& [file, content] : extra_files) write_file(temp_ / fs::path(file).filename(), content);
   // A directory cannot be renamed over a non-empty one: move the old one aside first.
-  const fs::path old = parent_ / fmt::format(".{}.old.{}", name_.string(), ::getpid());
+  const fs::path old = random_temp_path(parent_ / name_, "old");
   const bool replacing = fs::exists(target_);
   if (replacing) fs::rename(target_, old);
   try {

@@ -36,12 +36,16 @@ class AtomicFile : public testing::ScratchDirTest {
 TEST_F(AtomicFile, TheTargetChangesOnlyAtCommitAndNoTemporaryIsLeft) {
   const fs::path target = dir_ / "out.csv";
   std::ofstream(target) << "old\n";
-  // The temporary file sits beside the target: ".<name>.tmp.<pid>".
-  const fs::path temp = dir_ / (".out.csv.tmp." + std::to_string(::getpid()));
+  // The temporary file sits beside the target: ".<name>.tmp.<16 random hex digits>".
+  fs::path temp;
   {
     AtomicFileWriter writer(target.string());
     writer.stream() << "new\n";
-    EXPECT_TRUE(fs::exists(temp));
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      if (entry.path().filename().string().starts_with(".out.csv.tmp.")) temp = entry.path();
+    }
+    ASSERT_FALSE(temp.empty());
+    EXPECT_EQ(temp.filename().string().size(), std::string(".out.csv.tmp.").size() + 16);
     EXPECT_EQ(contents(target), "old\n");  // not yet replaced
     writer.commit();
   }
@@ -54,6 +58,29 @@ TEST_F(AtomicFile, TheTargetChangesOnlyAtCommitAndNoTemporaryIsLeft) {
   }
   EXPECT_EQ(contents(target), "new\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+}
+
+// Issue 51, HIGH 9: links planted at the names a writer would use (the PIDs' names of old, every
+// name now) are never written through, and two names drawn are never the same.
+TEST_F(AtomicFile, PlantedLinksAtTemporaryNamesAreNeverFollowed) {
+  const fs::path victim = dir_ / "victim.txt";
+  std::ofstream(victim) << "root's\n";
+  for (int pid = ::getpid(); pid < ::getpid() + 50; ++pid) {
+    fs::create_symlink(victim, dir_ / (".out.csv.tmp." + std::to_string(pid)));
+    fs::create_symlink(victim, dir_ / (".rec.tmp." + std::to_string(pid)));
+  }
+  {
+    AtomicFileWriter writer((dir_ / "out.csv").string());
+    writer.stream() << "new\n";
+    writer.commit();
+  }
+  EXPECT_EQ(contents(victim), "root's\n");
+  EXPECT_EQ(contents(dir_ / "out.csv"), "new\n");
+  EXPECT_NE(random_temp_path(dir_ / "out.csv", "tmp"), random_temp_path(dir_ / "out.csv", "tmp"));
+  // A directory is made only where nothing stands: a link to one is not taken for it.
+  const fs::path made = create_temp_directory(dir_ / "rec", "tmp");
+  EXPECT_TRUE(fs::is_directory(fs::symlink_status(made)));
+  EXPECT_TRUE(made.filename().string().starts_with(".rec.tmp."));
 }
 
 TEST_F(AtomicFile, LinksAndSpecialFilesAreRefusedAsOutputsAndNothingIsWritten) {

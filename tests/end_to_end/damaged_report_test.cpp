@@ -57,6 +57,41 @@ TEST_F(DamagedReport, ABlockClaimingMoreCyclesThanItsRunIsRefusedBeforeAnythingI
   }
 }
 
+// Issue 51, HIGH 2 and 3: a run that claims 2^31 - 1 cycles with its one block at the end made
+// `export --format mcap` loop for ever (its block counter wrapped); counts whose sum wraps to the
+// bytes behind them made export and report allocate 2^63 targets. Both now end, the counts refused.
+TEST_F(DamagedReport, ClaimedCyclesAndWrappingCountsCostNoTimeAndNoMemory) {
+  const fs::path far = replayed("far.sqlite");
+  {
+    SQLite::Database write(far.string(), SQLite::OPEN_READWRITE);
+    write.exec("UPDATE runs SET cycles = 2147483647");
+    for (const char* table : {"cycle_blocks", "target_blocks", "object_state_blocks"}) {
+      write.exec(std::string("DELETE FROM ") + table + " WHERE first_cycle > 0");
+      write.exec(std::string("UPDATE ") + table + " SET first_cycle = 2147483647 - cycles");
+    }
+  }
+  const fs::path mcap = dir_ / "far.mcap";
+  const auto exported = rcsim::testing::run_shell_command("timeout 120 " + std::string(RCSIM_BINARY) + " export " + far.string() +
+                                                          " --run 1 --format mcap -o " + mcap.string());
+  EXPECT_NE(exported.exit_code, 124) << "export ran for 2 minutes: " << exported.output;
+  EXPECT_EQ(exported.exit_code, 0) << exported.output;
+
+  const fs::path wrapped = replayed("wrapped.sqlite");
+  {
+    SQLite::Database write(wrapped.string(), SQLite::OPEN_READWRITE);
+    // 2^63 + 2^63 recorded targets: a sum of 0 mod 2^64, over an empty range column.
+    ASSERT_GT(write.exec("UPDATE target_blocks SET n_recorded = CAST(X'80808080808080808001' || X'80808080808080808001' || "
+                         "zeroblob(cycles - 2) AS BLOB), n_simulated = zeroblob(cycles), range_m = X'' WHERE first_cycle = 0"),
+              0);
+  }
+  for (const std::string& command : {"export " + wrapped.string() + " --run 1 --table targets",
+                                    "report " + wrapped.string() + " -o " + (dir_ / "wrapped.html").string()}) {
+    const auto r = rcsim::testing::run_rcsim(command);
+    EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.output.substr(0, 2000);
+    EXPECT_NE(r.output.find("is damaged"), std::string::npos) << command << "\n" << r.output.substr(0, 2000);
+  }
+}
+
 TEST_F(DamagedReport, AMergeRefusesAnInputWhosePagesAreDamagedNamingIt) {
   const fs::path good = replayed("good.sqlite"), bad = replayed("bad.sqlite");
   long long root_page = 0, page_size = 0;

@@ -140,19 +140,29 @@ int close_cursor(sqlite3_vtab_cursor* cursor) {
 void load_next_chunk(Cursor& c, DecodedTable table) {
   c.rows.clear();
   c.row = 0;
+  const auto next_run = [&c] {
+    if (++c.run_index < c.runs.size()) {
+      c.last_cycle = replay::last_stored_cycle(*c.db, c.runs[c.run_index]);
+      c.next_first_cycle = std::max(0, c.wanted.first);
+    }
+  };
   while (c.rows.empty() && c.run_index < c.runs.size()) {
     const std::int64_t run = c.runs[c.run_index];
     const int last = std::min(c.last_cycle, c.wanted.last);
-    if (c.next_first_cycle > last) {
-      if (++c.run_index < c.runs.size()) {
-        c.last_cycle = replay::last_stored_cycle(*c.db, c.runs[c.run_index]);
-        c.next_first_cycle = std::max(0, c.wanted.first);
-      }
+    // From the next cycle a stored block holds (the spans between are empty: never walked), in
+    // 64 bits (a damaged report may claim 2^31 - 1 cycles): each call decodes one chunk at most.
+    const int first = c.next_first_cycle > last ? -1 : replay::next_stored_cycle(*c.db, run, c.next_first_cycle);
+    if (first < 0 || first > last) {
+      next_run();
       continue;
     }
-    const replay::CycleSpan chunk{c.next_first_cycle, std::min(last, c.next_first_cycle + kChunkCycles - 1)};
+    const replay::CycleSpan chunk{first, static_cast<int>(std::min<std::int64_t>(last, std::int64_t{first} + kChunkCycles - 1))};
     replay::for_each_decoded_row(*c.db, table, run, chunk, [&](const std::vector<DecodedValue>& row) { c.rows.push_back(row); });
-    c.next_first_cycle = chunk.last + 1;
+    if (chunk.last >= last) {
+      next_run();
+    } else {
+      c.next_first_cycle = chunk.last + 1;
+    }
   }
 }
 

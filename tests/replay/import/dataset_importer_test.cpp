@@ -56,10 +56,11 @@ TEST(DatasetImporter, MalformedFrameListsAreRefusedNamingTheItem) {
 }
 
 TEST(DatasetImporter, ImportersAreFoundByNameAndAnUnknownOneListsTheKnown) {
-  ASSERT_EQ(dataset_importers().size(), 3u);
+  ASSERT_EQ(dataset_importers().size(), 4u);
   EXPECT_EQ(&find_dataset_importer("astyx"), &dataset_importers()[1]);
   EXPECT_EQ(find_dataset_importer("aimotive").name, "aimotive");
   EXPECT_EQ(find_dataset_importer("mcap").name, "mcap");
+  EXPECT_EQ(find_dataset_importer("vod").name, "vod");
   for (const DatasetImporter& importer : dataset_importers()) {
     EXPECT_NE(importer.import, nullptr) << importer.name;
     EXPECT_FALSE(importer.description.empty()) << importer.name;
@@ -69,7 +70,7 @@ TEST(DatasetImporter, ImportersAreFoundByNameAndAnUnknownOneListsTheKnown) {
     ADD_FAILURE() << "an unknown dataset was found";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "--from");
-    EXPECT_STREQ(e.what(), "--from: unknown dataset 'Astyx' (known: aimotive, astyx, mcap)");
+    EXPECT_STREQ(e.what(), "--from: unknown dataset 'Astyx' (known: aimotive, astyx, mcap, vod)");
   }
 }
 

@@ -132,6 +132,27 @@ TEST_F(SqliteExtension, RunAndCycleConstraintsSelectTheirRowsAndASummaryRunHasOn
   EXPECT_NEAR(mean_m, stored_m, 1e-9 * std::max(1.0, stored_m));
 }
 
+// Issue 51, HIGH 1: a run that claims 2^31 - 1 cycles with its one block at the end made a cycle
+// constraint walk every empty span (and wrap past 2^31): sqlite3 hung and could not be stopped.
+// The cursor now walks the stored blocks only.
+TEST_F(SqliteExtension, ARunClaimingTwoBillionCyclesIsReadAtOnce) {
+  {
+    SQLite::Database write(db_, SQLite::OPEN_READWRITE);
+    write.exec("UPDATE runs SET cycles = 2147483647 WHERE run_id = 1");
+    for (const char* table : {"cycle_blocks", "target_blocks", "object_state_blocks"}) {
+      write.exec(std::string("DELETE FROM ") + table + " WHERE run_id = 1 AND first_cycle > 0");
+      write.exec(std::string("UPDATE ") + table + " SET first_cycle = 2147483647 - cycles WHERE run_id = 1");
+    }
+  }
+  SQLite::Database db = connect();
+  const int block_cycles = db.execAndGet("SELECT cycles FROM cycle_blocks WHERE run_id = 1 LIMIT 1").getInt();
+  const int sensors = db.execAndGet("SELECT count(DISTINCT sensor) FROM cycle_blocks WHERE run_id = 1").getInt();
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM cycles WHERE run_id = 1 AND cycle >= 2147483500").getInt(), block_cycles * sensors);
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM cycles WHERE run_id = 1").getInt(), block_cycles * sensors);
+  EXPECT_EQ(db.execAndGet("SELECT max(cycle) FROM cycles WHERE run_id = 1 AND cycle <= 2147483647").getInt(), 2147483646);
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM cycles WHERE run_id = 1 AND cycle < 2147483000").getInt(), 0);
+}
+
 TEST_F(SqliteExtension, Sqlite3AndPythonLoadItAsAUserWould) {
   const std::string ext = extension_path().string();
   if (std::system("command -v sqlite3 > /dev/null 2>&1") != 0) {
