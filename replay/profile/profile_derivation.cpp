@@ -124,6 +124,52 @@ const DerivedValue* find_value(const std::vector<DerivedValue>& values, const st
 // A base value the data contradict is replaced, said so, never kept silently: a Doppler interval
 // the recordings' radial speeds run beyond (an aliasing radar reports within its interval) is
 // dropped, a minimum range beyond the nearest detection is the nearest detection's.
+// A relative scale's levels move with its derived threshold (docs/amplitude.md): the base's radar
+// on this radar's scale. The noise floor (amplitude.noise_floor_db) keeps the base's margin below
+// the threshold, and a law level the data cannot show (a relative scale's, left to calibrate) moves
+// by as much as the threshold did: a radar's RCS with its threshold near -55 dB, on the base's
+// noise at 0 dB and its law's 73 dB, detected every simulated cell, and calibrate's +-24 dB could
+// not reach the scale. A radar reports what passed its threshold, so the detections cannot show
+// the noise itself: the margins are the base's. Nothing changes where the threshold is the base's
+// (an Astyx derivation stays as it was).
+void move_base_levels_to_the_scale(Json& doc, const Json& base, std::vector<DerivedValue>& values) {
+  Json& amplitude = doc["amplitude"];
+  if (amplitude.value("unit", "snr_db") != "relative_db") {
+    amplitude.erase("noise_floor_db");
+    return;
+  }
+  const Json& base_amplitude = base.at("amplitude");
+  const double base_threshold_db = base_amplitude.value("detection_threshold_db", 6.0);
+  const double base_floor_db = base_amplitude.value("noise_floor_db", 0.0);
+  constexpr double kFallbackMargin_db = 10.0;  // a base whose threshold is not above its noise
+  const double margin_db = base_threshold_db > base_floor_db ? base_threshold_db - base_floor_db : kFallbackMargin_db;
+  const double threshold_db = amplitude.at("detection_threshold_db").get<double>();
+  const double shift_db = threshold_db - base_threshold_db;
+  for (const char* level : {"snr_at_1m_for_1m2_db", "reference_level_db"}) {
+    const std::string field = std::string("amplitude.") + level;
+    const auto row = std::find_if(values.begin(), values.end(), [&](const DerivedValue& v) { return v.field == field; });
+    if (shift_db == 0.0 || !amplitude.contains(level) || (row != values.end() && row->source != ValueSource::base)) continue;
+    const double moved_db = round_to(amplitude.at(level).get<double>() + shift_db, 0.1);
+    amplitude[level] = moved_db;
+    const std::string evidence = fmt::format("the base's {:.1f} dB moved by {:+.1f} dB with the threshold onto this radar's scale "
+                                             "(rcsim calibrate --real-drive fits the level)",
+                                             base_amplitude.value(level, 0.0), shift_db);
+    if (row != values.end()) {
+      row->value = moved_db, row->evidence = evidence;
+    } else {
+      values.push_back({field, moved_db, ValueSource::base, evidence, 0});
+    }
+  }
+  const double floor_db = round_to(threshold_db - margin_db, 0.1);
+  if (floor_db == 0.0 && !base_amplitude.contains("noise_floor_db")) return;
+  amplitude["noise_floor_db"] = floor_db;
+  values.push_back({"amplitude.noise_floor_db", floor_db, ValueSource::base,
+                    fmt::format("the base's threshold lies {:.1f} dB above its noise; kept so below the derived threshold "
+                                "{:.1f} dB (the detections show what passed the threshold, not the noise)",
+                                margin_db, threshold_db),
+                    0});
+}
+
 void replace_contradicted_base_values(Json& doc, const DetectionPool& pool, std::vector<DerivedValue>& values) {
   const DataExtent e = data_extent(pool);
   const auto interval_pointer = "/resolution/unambiguous_range_rate_mps"_json_pointer;
@@ -220,6 +266,7 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
   }
   out.values = std::move(kept);
   adopt_radar_equation(doc, out.values);
+  move_base_levels_to_the_scale(doc, base.document, out.values);
   replace_contradicted_base_values(doc, pool, out.values);
   doc.erase("background");
   list_base_leaves(doc, "", out.values);

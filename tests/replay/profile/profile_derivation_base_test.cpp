@@ -10,6 +10,7 @@
 // - every derived number carries an interval, and a value few points show is marked weak (item 4).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -88,6 +89,33 @@ TEST(ProfileDeriveBase, AViewFieldAtNinetyDegreesIsClampedAtTheAntennaModelsLimi
   // What is written is a profile replay reads.
   const SensorConfig config = parse_sensor_config(JsonField(d.profile, "vod_like", ""));
   EXPECT_NEAR(rad_to_deg(config.fov.azimuth_half_rad), 89.5, 1e-9);
+}
+
+// Issue 48, item 3: the same frames with the radar's RCS as the amplitude (-60 to -30 dB): the
+// derived threshold lies far below the base's noise at 0 dB, so the floor moves with it, keeping
+// astyx_hires's 45 dB of threshold above noise, and the profile is written and reads back.
+TEST(ProfileDeriveBase, ARelativeScaleBelowZeroGetsItsNoiseFloorBelowItsThreshold) {
+  Recording frames = point_cloud_frames();
+  for (RecordedTarget& t : frames.targets) t.amplitude_db -= 65.0;
+  const ProfileDerivation d = derive_profile({&frames}, {.base = "astyx_hires", .name = "rcs_radar"});
+  const double threshold_db = d.profile["amplitude"]["detection_threshold_db"].get<double>();
+  EXPECT_LT(threshold_db, -55.0);
+  ASSERT_TRUE(d.profile["amplitude"].contains("noise_floor_db"));
+  EXPECT_NEAR(d.profile["amplitude"]["noise_floor_db"].get<double>(), threshold_db - 45.0, 0.05);
+  const SensorConfig config = parse_sensor_config(JsonField(nlohmann::json::parse(d.profile.dump()), "rcs_radar.json", ""));
+  EXPECT_LT(config.amplitude.noise_floor_db, config.amplitude.detection_threshold_db);
+  const auto row = std::find_if(d.values.begin(), d.values.end(), [](const DerivedValue& v) { return v.field == "amplitude.noise_floor_db"; });
+  ASSERT_NE(row, d.values.end());
+  EXPECT_EQ(row->source, ValueSource::base);
+  EXPECT_NE(row->evidence.find("45.0 dB above its noise"), std::string::npos) << row->evidence;
+  // The law's level, the base's 73 dB on the Mag scale, moved with the threshold (45 -> its value).
+  EXPECT_NEAR(d.profile["amplitude"]["snr_at_1m_for_1m2_db"].get<double>(), 73.0 + (threshold_db - 45.0), 0.05);
+  // On the base's own scale (a threshold of 45, as astyx_hires's) the floor stays at 0: nothing written.
+  Recording on_base_scale = point_cloud_frames();
+  for (RecordedTarget& t : on_base_scale.targets) t.amplitude_db += 40.0;
+  const ProfileDerivation same = derive_profile({&on_base_scale}, {.base = "astyx_hires", .name = "same"});
+  EXPECT_EQ(same.profile["amplitude"]["detection_threshold_db"].get<double>(), 45.0);
+  EXPECT_FALSE(same.profile["amplitude"].contains("noise_floor_db"));
 }
 
 TEST(ProfileDeriveBase, ABaseDopplerIntervalTheSpeedsRunBeyondIsDroppedSaidSo) {
