@@ -100,30 +100,9 @@ std::vector<int> numbers_of(const std::vector<Frame>& frames) {
   return numbers;
 }
 
-// A number of a radar file's row: decimal, whole and finite.
+// A number of a radar file's row: decimal and finite.
 double row_number(std::string_view text, const std::string& file, int line, std::string_view column) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  const auto where = [&] { return fmt::format("line {}, column '{}'", line, column); };
-  if (error != std::errc() || end != text.data() + text.size()) {
-    const bool printable = text.size() <= 40 && !find_control_character(text);
-    throw InputError(file, where(), printable ? fmt::format("'{}' is not a number", text) : std::string("not a number"));
-  }
-  if (!std::isfinite(value)) throw InputError(file, where(), fmt::format("{} is not finite", text));
-  return value;
-}
-
-// The fields of a whitespace-separated line.
-std::vector<std::string_view> fields_of(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    const std::size_t begin = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    if (i > begin) fields.push_back(line.substr(begin, i - begin));
-  }
-  return fields;
+  return finite_number_field(text, file, fmt::format("line {}, column '{}'", line, column));
 }
 
 bool is_blank(std::string_view line) { return line.find_first_not_of(" \t") == std::string_view::npos; }
@@ -402,7 +381,7 @@ std::vector<RadarPoint> read_radar_file(const fs::path& path) {
   bool header = false;
   while (!header && lines.next(line)) {
     if (is_blank(line)) continue;  // the dataset's files open with a blank line
-    const std::vector<std::string_view> names = fields_of(line);
+    const std::vector<std::string_view> names = whitespace_fields(line);
     header = names.size() == kRadarColumns && std::equal(names.begin(), names.end(), std::begin(kRadarHeader));
     if (!header) {
       const bool printable = line.size() <= 80 && !find_control_character(line);
@@ -415,7 +394,7 @@ std::vector<RadarPoint> read_radar_file(const fs::path& path) {
   while (lines.next(line)) {
     if (is_blank(line)) continue;
     const int n = lines.line_number();
-    const std::vector<std::string_view> fields = fields_of(line);
+    const std::vector<std::string_view> fields = whitespace_fields(line);
     if (fields.size() != kRadarColumns) {
       throw InputError(file, fmt::format("line {}", n),
                        fmt::format("{} fields, expected {} (X Y Z V_r Mag): a truncated row?", fields.size(), kRadarColumns));

@@ -42,31 +42,8 @@ constexpr long long kMaxFrameNumber = 99'999'999;
 // Box points: a point belongs to a box within this margin (the labels are drawn on the LiDAR).
 constexpr double kBoxMargin_m = 0.3;
 
-std::string printable_or_not(std::string_view text) {
-  return text.size() <= 40 && !find_control_character(text) ? fmt::format("'{}'", text) : std::string("a value");
-}
-
 double field_number(std::string_view text, const std::string& file, int line, std::string_view name) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  const std::string where = fmt::format("line {}, {}", line, name);
-  if (error != std::errc() || end != text.data() + text.size()) {
-    throw InputError(file, where, fmt::format("{} is not a number", printable_or_not(text)));
-  }
-  if (!std::isfinite(value)) throw InputError(file, where, "not finite");
-  return value;
-}
-
-std::vector<std::string_view> fields_of(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    const std::size_t begin = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    if (i > begin) fields.push_back(line.substr(begin, i - begin));
-  }
-  return fields;
+  return finite_number_field(text, file, fmt::format("line {}, {}", line, name));
 }
 
 float little_endian_float(const unsigned char* bytes) {
@@ -126,7 +103,7 @@ Eigen::Matrix4d read_kitti_extrinsic(const fs::path& path) {
   LineReader lines(path);
   std::string_view line;
   while (lines.next(line)) {
-    const std::vector<std::string_view> fields = fields_of(line);
+    const std::vector<std::string_view> fields = whitespace_fields(line);
     if (fields.empty() || fields[0] != "Tr_velo_to_cam:") continue;
     const int n = lines.line_number();
     if (fields.size() != 13) {
@@ -153,7 +130,7 @@ std::vector<Label> read_labels(const fs::path& path) {
   std::string_view line;
   std::vector<Label> labels;
   while (lines.next(line)) {
-    const std::vector<std::string_view> f = fields_of(line);
+    const std::vector<std::string_view> f = whitespace_fields(line);
     if (f.empty()) continue;
     const int n = lines.line_number();
     if (f.size() != 15 && f.size() != 16) {

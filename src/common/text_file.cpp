@@ -1,11 +1,14 @@
 #include "common/text_file.hpp"
 
+#include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fmt/format.h>
 #include <sstream>
 #include <system_error>
 
 #include "common/input_error.hpp"
+#include "common/safe_text.hpp"
 
 namespace rcsim {
 
@@ -118,6 +121,29 @@ std::uint64_t fnv1a64_file(const fs::path& path, std::uint64_t hash) {
     }
   }
   return hash;
+}
+
+std::vector<std::string_view> whitespace_fields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    const std::size_t begin = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    if (i > begin) fields.push_back(line.substr(begin, i - begin));
+  }
+  return fields;
+}
+
+double finite_number_field(std::string_view text, const std::string& file, const std::string& where) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) {
+    const bool printable = text.size() <= 40 && !find_control_character(text);
+    throw InputError(file, where, printable ? fmt::format("'{}' is not a number", text) : std::string("not a number"));
+  }
+  if (!std::isfinite(value)) throw InputError(file, where, fmt::format("{} is not finite", text));
+  return value;
 }
 
 }  // namespace rcsim

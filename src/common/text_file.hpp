@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rcsim {
 
@@ -42,6 +43,13 @@ class LineReader {
   bool eof_ = false;
   int line_number_ = 0;
 };
+
+// The fields of a line separated by spaces and tabs (a dataset's text rows: Astyx, KITTI).
+std::vector<std::string_view> whitespace_fields(std::string_view line);
+
+// A field that must be a finite decimal number; an InputError naming `file` and `where` (the text
+// quoted where it is short and printable) otherwise.
+double finite_number_field(std::string_view text, const std::string& file, const std::string& where);
 
 // FNV-1a 64 of a file's bytes, chained onto `hash`, read through a fixed buffer.
 std::uint64_t fnv1a64_file(const std::filesystem::path& path, std::uint64_t hash);
