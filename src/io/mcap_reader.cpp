@@ -37,7 +37,7 @@ std::string opcode_name(std::uint8_t op) {
 // (turned into the caller's refusal) where the content ends first.
 class Cursor {
  public:
-  explicit Cursor(const std::string& bytes) : bytes_(bytes) {}
+  explicit Cursor(std::string_view bytes) : bytes_(bytes) {}
   std::uint64_t unsigned_of(int n) {
     need(static_cast<std::size_t>(n));
     std::uint64_t v = 0;
@@ -49,15 +49,18 @@ class Cursor {
   std::uint16_t u16() { return static_cast<std::uint16_t>(unsigned_of(2)); }
   std::uint32_t u32() { return static_cast<std::uint32_t>(unsigned_of(4)); }
   std::uint64_t u64() { return unsigned_of(8); }
-  std::string bytes(std::size_t n) {
+  std::string bytes(std::size_t n) { return std::string(view(n)); }
+  // The next n bytes where they lie: no copy.
+  std::string_view view(std::size_t n) {
     need(n);
-    std::string s = bytes_.substr(at_, n);
+    const std::string_view s = bytes_.substr(at_, n);
     at_ += n;
     return s;
   }
   std::string string() { return bytes(u32()); }
   std::map<std::string, std::string> string_map() {
     const std::size_t length = u32();
+    need(length);
     const std::size_t end = at_ + length;
     std::map<std::string, std::string> m;
     while (at_ < end) {
@@ -68,12 +71,13 @@ class Cursor {
     return m;
   }
   std::string rest() { return bytes(bytes_.size() - at_); }
+  std::size_t at() const { return at_; }
 
  private:
   void need(std::size_t n) const {
     if (n > bytes_.size() - at_) throw std::out_of_range("record");
   }
-  const std::string& bytes_;
+  std::string_view bytes_;
   std::size_t at_ = 0;
 };
 
@@ -132,42 +136,41 @@ void Reader::for_each_message(const Visit& visit) {
   const std::uint64_t data_end = summary_.summary_start != 0 ? summary_.summary_start : size_ - sizeof kMagic - kFooterRecordBytes;
   bool first = true;
   while (offset < data_end) {
-    std::string head(9, '\0');
-    in_.read(head.data(), 9);
+    char head[9];
+    in_.read(head, 9);
     if (!in_) fail("a record", offset, "the file ends inside its opcode and length");
-    Cursor h(head);
+    Cursor h(std::string_view(head, 9));
     const std::uint8_t op = h.u8();
     const std::uint64_t length = h.u64();
     if (length > size_ - offset - 9) fail(opcode_name(op), offset, fmt::format("its length {} runs past the end of the file", length));
     if (op == static_cast<std::uint8_t>(Opcode::chunk) && length > kMaxChunkBytes + 64) {
       fail("Chunk", offset, fmt::format("{} bytes: more than the 1 GiB a chunk may hold here", length));
     }
-    std::string content(length, '\0');
-    in_.read(content.data(), static_cast<std::streamsize>(length));
     if (first && op != static_cast<std::uint8_t>(Opcode::header)) fail(opcode_name(op), offset, "the first record is not the header");
     first = false;
-    const std::string one_record = head + content;
-    read_records(one_record, offset, false, visit);
+    // The record read once into one buffer, its content read where it lies (no copy of it).
+    std::string record(9 + length, '\0');
+    std::memcpy(record.data(), head, 9);
+    in_.read(record.data() + 9, static_cast<std::streamsize>(length));
+    read_records(record, offset, false, visit);
     offset += 9 + length;
     if (op == static_cast<std::uint8_t>(Opcode::data_end) || op == static_cast<std::uint8_t>(Opcode::footer)) break;
   }
 }
 
 // Records in `bytes` (at `base_offset` in the file): the top level, or a chunk's records.
-void Reader::read_records(const std::string& bytes, std::uint64_t base_offset, bool in_chunk, const Visit& visit) {
+void Reader::read_records(std::string_view bytes, std::uint64_t base_offset, bool in_chunk, const Visit& visit) {
   std::size_t at = 0;
   while (at < bytes.size()) {
     const std::uint64_t offset = base_offset + at;
     std::string where = "a record";
     try {
-      const std::string head_bytes = bytes.substr(at, std::min<std::size_t>(9, bytes.size() - at));
-      Cursor head(head_bytes);
+      Cursor head(bytes.substr(at, std::min<std::size_t>(9, bytes.size() - at)));
       const std::uint8_t op = head.u8();
       const std::uint64_t length = head.u64();
       where = (in_chunk ? "in a chunk, " : "") + opcode_name(op);
       if (length > bytes.size() - at - 9) fail(where, offset, fmt::format("its length {} runs past its chunk", length));
-      const std::string content = bytes.substr(at + 9, length);
-      Cursor c(content);
+      Cursor c(bytes.substr(at + 9, length));
       switch (static_cast<Opcode>(op)) {
         case Opcode::header:
           summary_.profile = c.string();
@@ -210,12 +213,17 @@ void Reader::read_records(const std::string& bytes, std::uint64_t base_offset, b
           break;
         }
         case Opcode::chunk: {
+          // The spec's chunks hold schemas, channels and messages only (@mcap/core refuses a chunk
+          // in a chunk): read recursively, each level's copies made memory quadratic in the depth.
+          if (in_chunk) fail(where, offset, "a chunk inside a chunk: a chunk holds schemas, channels and messages only (mcap.dev/spec)");
           c.u64(), c.u64();
           const std::uint64_t uncompressed_size = c.u64();
           const std::uint32_t crc = c.u32();
           const std::string compression = c.string();
-          const std::string stored = c.bytes(c.u64());
-          const std::string records = decompressed(stored, compression, uncompressed_size, where, offset);
+          const std::string_view stored = c.view(c.u64());
+          std::string inflated;
+          if (!compression.empty()) inflated = decompressed(stored, compression, uncompressed_size, where, offset);
+          const std::string_view records = compression.empty() ? stored : std::string_view(inflated);
           if (records.size() != uncompressed_size) {
             fail(where, offset, fmt::format("{} bytes of records where it says {}", records.size(), uncompressed_size));
           }
@@ -234,24 +242,58 @@ void Reader::read_records(const std::string& bytes, std::uint64_t base_offset, b
   }
 }
 
-std::string Reader::decompressed(const std::string& stored, const std::string& compression, std::uint64_t size,
+std::string Reader::decompressed(std::string_view stored, const std::string& compression, std::uint64_t size,
                                  const std::string& where, std::uint64_t offset) const {
-  if (compression.empty()) return stored;
+  if (compression != "zstd" && compression != "lz4") {
+    fail(where, offset, fmt::format("compression '{}' is not read (zstd, lz4 or none)", compression));
+  }
   if (size > kMaxChunkBytes) {
     fail(where, offset, fmt::format("{} bytes uncompressed exceed the limit of {} bytes", size, kMaxChunkBytes));
   }
-  std::string out(size, '\0');
+  // The output grows with what the data really decode to (doubling, up to the size the chunk
+  // claims): a chunk that claims 1 GiB and holds a few bytes costs a few bytes, not 1 GiB zeroed.
+  std::string out;
+  const auto grow = [&](std::size_t written) {
+    if (out.size() - written > 0) return;
+    out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(size, std::max<std::uint64_t>(2 * out.size(), 64 * 1024))));
+  };
   if (compression == "zstd") {
-    const std::size_t n = ZSTD_decompress(out.data(), out.size(), stored.data(), stored.size());
-    if (ZSTD_isError(n) != 0) fail(where, offset, fmt::format("zstd: {}", ZSTD_getErrorName(n)));
-    if (n != size) fail(where, offset, fmt::format("zstd gave {} bytes where it says {}", n, size));
+    // One frame that states its size must state the chunk's: told before anything is decoded.
+    const unsigned long long claimed = ZSTD_getFrameContentSize(stored.data(), stored.size());
+    if (claimed != ZSTD_CONTENTSIZE_UNKNOWN && claimed != ZSTD_CONTENTSIZE_ERROR && claimed != size &&
+        ZSTD_findFrameCompressedSize(stored.data(), stored.size()) == stored.size()) {
+      fail(where, offset, fmt::format("its zstd frame holds {} bytes where the chunk says {}", claimed, size));
+    }
+    ZSTD_DStream* stream = ZSTD_createDStream();
+    if (stream == nullptr) fail(where, offset, "zstd: no context");
+    ZSTD_inBuffer in{stored.data(), stored.size(), 0};
+    std::size_t written = 0, hint = 1;
+    for (;;) {
+      grow(written);
+      const std::size_t read_before = in.pos;
+      ZSTD_outBuffer o{out.data(), out.size(), written};
+      hint = ZSTD_decompressStream(stream, &o, &in);
+      if (ZSTD_isError(hint) != 0) {
+        const std::string error = ZSTD_getErrorName(hint);
+        ZSTD_freeDStream(stream);
+        fail(where, offset, "zstd: " + error);
+      }
+      const bool progress = o.pos != written || in.pos != read_before;
+      written = o.pos;
+      if ((hint == 0 && in.pos == in.size) || !progress) break;  // the last frame ends, or the output is full or the input cut
+    }
+    ZSTD_freeDStream(stream);
+    if (hint != 0) fail(where, offset, fmt::format("zstd: the frame does not decode to the {} bytes it says ({} decoded)", size, written));
+    if (written != size) fail(where, offset, fmt::format("zstd gave {} bytes where it says {}", written, size));
+    out.resize(written);
     return out;
   }
-  if (compression == "lz4") {
+  {
     LZ4F_dctx* context = nullptr;
     if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION)) != 0) fail(where, offset, "lz4: no context");
     std::size_t written = 0, read = 0, hint = 1;
     while (hint != 0 && read < stored.size()) {
+      grow(written);
       std::size_t out_bytes = out.size() - written, in_bytes = stored.size() - read;
       hint = LZ4F_decompress(context, out.data() + written, &out_bytes, stored.data() + read, &in_bytes, nullptr);
       if (LZ4F_isError(hint) != 0) {
@@ -265,9 +307,9 @@ std::string Reader::decompressed(const std::string& stored, const std::string& c
     LZ4F_freeDecompressionContext(context);
     if (hint != 0) fail(where, offset, fmt::format("lz4: the frame does not decode to the {} bytes it says ({} decoded)", size, written));
     if (written != size) fail(where, offset, fmt::format("lz4 gave {} bytes where it says {}", written, size));
+    out.resize(written);
     return out;
   }
-  fail(where, offset, fmt::format("compression '{}' is not read (zstd, lz4 or none)", compression));
 }
 
 }  // namespace rcsim::mcap

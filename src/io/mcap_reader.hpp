@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <string_view>
 
 #include "io/mcap_writer.hpp"
 
@@ -59,11 +60,14 @@ class Reader {
  private:
   [[noreturn]] void fail(const std::string& where, std::uint64_t offset, const std::string& what) const;
   void check_summary_crc();
-  // A chunk's records from its stored bytes: as they are, or zstd / lz4 decompressed to exactly
-  // `size` bytes (at most 1 GiB); anything else is refused naming the chunk.
-  std::string decompressed(const std::string& stored, const std::string& compression, std::uint64_t size,
+  // A chunk's records from its stored bytes, zstd / lz4 decompressed to exactly `size` bytes (at
+  // most 1 GiB), the output growing with what the data decode to; another compression is refused
+  // naming the chunk.
+  std::string decompressed(std::string_view stored, const std::string& compression, std::uint64_t size,
                            const std::string& where, std::uint64_t offset) const;
-  void read_records(const std::string& bytes, std::uint64_t base_offset, bool in_chunk, const Visit& visit);
+  // The records of `bytes`: the file's top level (one record at a time), or a chunk's, which may
+  // hold no chunk.
+  void read_records(std::string_view bytes, std::uint64_t base_offset, bool in_chunk, const Visit& visit);
 
   std::filesystem::path path_;
   std::ifstream in_;

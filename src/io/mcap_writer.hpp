@@ -9,6 +9,7 @@
 #include <map>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -92,6 +93,6 @@ void put_u16(std::string& out, std::uint16_t v);
 void put_u32(std::string& out, std::uint32_t v);
 void put_u64(std::string& out, std::uint64_t v);
 void put_string(std::string& out, const std::string& s);  // uint32 length, bytes
-std::uint32_t crc32_of(const std::string& bytes);
+std::uint32_t crc32_of(std::string_view bytes);
 
 }  // namespace rcsim::mcap

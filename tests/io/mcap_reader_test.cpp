@@ -11,6 +11,7 @@
 #include <zstd.h>
 
 #include "common/input_error.hpp"
+#include "peak_memory.hpp"
 #include "refusal.hpp"
 #include "scratch_dir.hpp"
 
@@ -197,6 +198,104 @@ TEST_F(McapReader, AnUnknownOrDamagedCompressionIsNamed) {
   const auto cut = [](auto compress) { return [compress](const std::string& in) { const std::string c = compress(in); return c.substr(0, c.size() - 6); }; };
   EXPECT_NE(read_back(file_with_chunk("zstd", cut(zstd_of))).find("Chunk at byte 29: zstd"), std::string::npos);
   EXPECT_NE(read_back(file_with_chunk("lz4", cut(lz4_of))).find("Chunk at byte 29: lz4"), std::string::npos);
+}
+
+// A Chunk record's content around `stored` (its records as `compression` stores them), saying
+// `size` bytes uncompressed and (0: none) a CRC-32.
+std::string chunk_content(const std::string& compression, const std::string& stored, std::uint64_t size, std::uint32_t crc) {
+  std::string chunk;
+  mcap::put_u64(chunk, 0);
+  mcap::put_u64(chunk, 1);
+  mcap::put_u64(chunk, size);
+  mcap::put_u32(chunk, crc);
+  mcap::put_string(chunk, compression);
+  mcap::put_u64(chunk, stored.size());
+  return chunk + stored;
+}
+
+std::string record_of(mcap::Opcode op, const std::string& content) {
+  std::string out;
+  mcap::put_u8(out, static_cast<std::uint8_t>(op));
+  mcap::put_u64(out, content.size());
+  return out + content;
+}
+
+// A file of the header, `records`, the data end and a footer without summary.
+std::string file_around(const std::string& records) {
+  std::string bytes(reinterpret_cast<const char*>(mcap::kMagic), 8), header, data_end, footer;
+  mcap::put_string(header, "");
+  mcap::put_string(header, "hand");
+  bytes += record_of(mcap::Opcode::header, header) + records;
+  mcap::put_u32(data_end, 0);
+  bytes += record_of(mcap::Opcode::data_end, data_end);
+  mcap::put_u64(footer, 0);
+  mcap::put_u64(footer, 0);
+  mcap::put_u32(footer, 0);
+  bytes += record_of(mcap::Opcode::footer, footer);
+  return bytes + std::string(reinterpret_cast<const char*>(mcap::kMagic), 8);
+}
+
+// The records of file_with_chunk's chunk: a schema, a channel, two messages.
+std::string chunk_records() {
+  const std::string file = file_with_chunk("", [](const std::string& in) { return in; });
+  const std::size_t chunk_at = 8 + 9 + 4 + 4 + 4;  // after the magic and the header record ("", "hand")
+  const std::size_t records_at = chunk_at + 9 + 8 + 8 + 8 + 4 + 4 + 8;
+  std::uint64_t size = 0;
+  for (int i = 0; i < 8; ++i) size |= std::uint64_t{static_cast<unsigned char>(file[chunk_at + 9 + 16 + static_cast<std::size_t>(i)])} << (8 * i);
+  return file.substr(records_at, size);
+}
+
+// Issue 51, HIGH 7: chunks inside chunks were read recursively, each level copied three times
+// (6 GB from 877 KB). The spec's chunks hold schemas, channels and messages; @mcap/core refuses a
+// chunk in a chunk, and so does rcsim, naming the inner chunk's offset.
+TEST_F(McapReader, AChunkInsideAChunkIsRefusedAtItsOffset) {
+  const std::string records = chunk_records();
+  ASSERT_EQ(read_back(file_around(record_of(mcap::Opcode::chunk, chunk_content("", records, records.size(), mcap::crc32_of(records))))),
+            "read 2");
+  const std::string inner = record_of(mcap::Opcode::chunk, chunk_content("", records, records.size(), 0));
+  const std::string outer = record_of(mcap::Opcode::chunk, chunk_content("", inner, inner.size(), 0));
+  const std::size_t inner_at = 8 + 9 + 4 + 4 + 4 + 9 + 8 + 8 + 8 + 4 + 4 + 8;
+  EXPECT_EQ(read_back(file_around(outer)), "a.mcap: in a chunk, Chunk at byte " + std::to_string(inner_at) +
+                                               ": a chunk inside a chunk: a chunk holds schemas, channels and messages only (mcap.dev/spec)");
+  // Nested 200 deep, compressed at each level: refused at the first inner chunk all the same.
+  std::string nested = inner;
+  for (int depth = 0; depth < 200; ++depth) nested = record_of(mcap::Opcode::chunk, chunk_content("zstd", zstd_of(nested), nested.size(), 0));
+  EXPECT_NE(read_back(file_around(nested)).find(": a chunk inside a chunk"), std::string::npos);
+}
+
+// Issue 51 (MEDIUM): a chunk claiming 1 GiB uncompressed allocated and zero-filled 1 GiB before
+// the data were found to hold a few bytes. A zstd frame that states its size is checked against
+// the chunk's before anything is decoded; otherwise (an lz4 frame, a zstd stream without a size)
+// the output grows with what the data really decode to.
+TEST_F(McapReader, AChunkClaimingAGibibyteCostsWhatItsDataDecodeTo) {
+  const std::string records = chunk_records();
+  constexpr std::uint64_t kGiB = std::uint64_t{1} << 30;
+  const auto lying = [&](const std::string& compression, const std::string& stored) {
+    return file_around(record_of(mcap::Opcode::chunk, chunk_content(compression, stored, kGiB, 0)));
+  };
+  // A zstd frame that does not state its size (as a stream's).
+  const auto zstd_without_size = [](const std::string& in) {
+    ZSTD_CCtx* context = ZSTD_createCCtx();
+    ZSTD_CCtx_setParameter(context, ZSTD_c_contentSizeFlag, 0);
+    std::string out(ZSTD_compressBound(in.size()), '\0');
+    out.resize(ZSTD_compress2(context, out.data(), out.size(), in.data(), in.size()));
+    ZSTD_freeCCtx(context);
+    return out;
+  };
+  ASSERT_EQ(ZSTD_getFrameContentSize(zstd_without_size(records).data(), zstd_without_size(records).size()), ZSTD_CONTENTSIZE_UNKNOWN);
+  const std::string n = std::to_string(records.size());
+  std::string zstd, unsized, lz4;
+  const auto peak_zstd = testing::peak_memory_added_by([&] { zstd = read_back(lying("zstd", zstd_of(records))); });
+  const auto peak_unsized = testing::peak_memory_added_by([&] { unsized = read_back(lying("zstd", zstd_without_size(records))); });
+  const auto peak_lz4 = testing::peak_memory_added_by([&] { lz4 = read_back(lying("lz4", lz4_of(records))); });
+  EXPECT_EQ(zstd, "a.mcap: Chunk at byte 29: its zstd frame holds " + n + " bytes where the chunk says 1073741824");
+  EXPECT_EQ(unsized, "a.mcap: Chunk at byte 29: zstd gave " + n + " bytes where it says 1073741824");
+  EXPECT_EQ(lz4, "a.mcap: Chunk at byte 29: lz4 gave " + n + " bytes where it says 1073741824");
+  for (const auto& peak : {peak_zstd, peak_unsized, peak_lz4}) {
+    if (peak) {
+      EXPECT_LT(*peak, 64 << 20) << "bytes of peak memory added by a chunk of " << n << " bytes claiming 1 GiB";
+    }
+  }
 }
 
 }  // namespace rcsim::mcap_reader_test
