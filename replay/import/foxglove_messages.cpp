@@ -1,6 +1,7 @@
 #include "replay/import/foxglove_messages.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <fmt/format.h>
@@ -97,7 +98,8 @@ void for_each_scene_box(simdjson::ondemand::parser& parser, const std::string& j
   }
 }
 
-PointCloud decode_point_cloud(simdjson::ondemand::parser& parser, const std::string& json, const std::vector<std::string>& fields) {
+PointCloud decode_point_cloud(simdjson::ondemand::parser& parser, const std::string& json, const std::vector<std::string>& fields,
+                              std::uint64_t max_points) {
   const simdjson::padded_string padded(json);
   simdjson::ondemand::document doc = parser.iterate(padded);
   simdjson::ondemand::object cloud = doc.get_object();
@@ -122,8 +124,11 @@ PointCloud decode_point_cloud(simdjson::ondemand::parser& parser, const std::str
     const std::int64_t at = f["offset"].get_int64(), t = f["type"].get_int64();
     for (std::size_t i = 0; i < fields.size(); ++i) {
       if (fields[i] != name) continue;
-      if (at < 0 || at + static_cast<std::int64_t>(type_bytes(t)) > stride) {
-        throw std::invalid_argument(fmt::format("fields[{}]: offset {} and its {} bytes run past the stride {}", name, at, type_bytes(t), stride));
+      if (offset[i] >= 0) throw std::invalid_argument(fmt::format("fields[{}]: named twice", name));
+      // Compared without a sum, which overflows for an offset near 2^63.
+      const auto bytes = static_cast<std::int64_t>(type_bytes(t));
+      if (at < 0 || at > stride || bytes > stride - at) {
+        throw std::invalid_argument(fmt::format("fields[{}]: offset {} and its {} bytes run past the stride {}", name, at, bytes, stride));
       }
       offset[i] = at, type[i] = t;
     }
@@ -131,14 +136,40 @@ PointCloud decode_point_cloud(simdjson::ondemand::parser& parser, const std::str
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (offset[i] < 0) throw std::invalid_argument(fmt::format("fields: no field '{}'", fields[i]));
   }
-  const std::string data = decode_base64(cloud["data"].get_string());
+  // The fields asked for lie side by side: a point costs at least their bytes, so that a stride of
+  // 1 cannot make every byte of the data a point of five values.
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    for (std::size_t j = i + 1; j < fields.size(); ++j) {
+      if (fields[i] == fields[j]) continue;  // asked for twice: one field
+      const std::int64_t end_i = offset[i] + static_cast<std::int64_t>(type_bytes(type[i]));
+      const std::int64_t end_j = offset[j] + static_cast<std::int64_t>(type_bytes(type[j]));
+      if (offset[i] < end_j && offset[j] < end_i) {
+        throw std::invalid_argument(fmt::format("fields[{}] (bytes {} to {}) and fields[{}] (bytes {} to {}) overlap", fields[i], offset[i],
+                                                end_i - 1, fields[j], offset[j], end_j - 1));
+      }
+    }
+  }
+  // The points the data hold, told from the base64 text's length before it is decoded.
+  const std::string_view text = cloud["data"].get_string();
+  std::size_t padding = 0;
+  while (padding < 2 && padding < text.size() && text[text.size() - 1 - padding] == '=') ++padding;
+  const std::uint64_t data_bytes = (text.size() - padding) / 4 * 3 + ((text.size() - padding) % 4 == 0 ? 0 : (text.size() - padding) % 4 - 1);
+  const std::uint64_t points = data_bytes / static_cast<std::uint64_t>(stride);
+  const std::uint64_t max = std::min<std::uint64_t>(max_points, limits::kMaxReturnsPerScan);
+  if (points > limits::kMaxReturnsPerScan) {
+    throw std::invalid_argument(fmt::format("data: {} points in one cloud exceed the limit of {} (schemas/limits.md)", points,
+                                            limits::kMaxReturnsPerScan));
+  }
+  if (points > max) throw std::invalid_argument(fmt::format("data: {} points exceed the {} the log has left", points, max));
+  const std::string data = decode_base64(text);
   if (data.size() % static_cast<std::size_t>(stride) != 0) {
     throw std::invalid_argument(fmt::format("data: {} bytes are no whole number of {}-byte points", data.size(), stride));
   }
-  out.points.reserve(data.size() / static_cast<std::size_t>(stride));
+  out.field_count = fields.size();
+  out.values.resize(data.size() / static_cast<std::size_t>(stride) * fields.size());
+  double* value = out.values.data();
   for (std::size_t at = 0; at < data.size(); at += static_cast<std::size_t>(stride)) {
-    std::vector<double>& point = out.points.emplace_back(fields.size());
-    for (std::size_t i = 0; i < fields.size(); ++i) point[i] = field_value(data.data() + at + static_cast<std::size_t>(offset[i]), type[i]);
+    for (std::size_t i = 0; i < fields.size(); ++i) *value++ = field_value(data.data() + at + static_cast<std::size_t>(offset[i]), type[i]);
   }
   return out;
 }

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <span>
 #include <Eigen/Geometry>
 #include <simdjson.h>
 
@@ -257,16 +258,19 @@ struct LogVisitor {
 
 // A radar's foxglove.PointCloud as a scan: each point (x, y, z in the cloud's frame, moved by its
 // pose into the radar's) a return with the mapped range-rate and amplitude fields.
-ros2::RadarScan scan_of_point_cloud(simdjson::ondemand::parser& parser, const std::string& text, const MappedSensor& sensor) {
+ros2::RadarScan scan_of_point_cloud(simdjson::ondemand::parser& parser, const std::string& text, const MappedSensor& sensor,
+                                    std::uint64_t max_returns) {
   const foxglove::PointCloud cloud =
-      foxglove::decode_point_cloud(parser, text, {"x", "y", "z", sensor.range_rate_field, sensor.amplitude_field});
+      foxglove::decode_point_cloud(parser, text, {"x", "y", "z", sensor.range_rate_field, sensor.amplitude_field}, max_returns);
   ros2::RadarScan scan;
   scan.header.frame_id = cloud.frame_id;
   scan.header.stamp.sec = static_cast<std::int32_t>(cloud.t_ns / 1'000'000'000);
   scan.header.stamp.nanosec = static_cast<std::uint32_t>(cloud.t_ns % 1'000'000'000);
   const Eigen::Quaterniond q(cloud.orientation[3], cloud.orientation[0], cloud.orientation[1], cloud.orientation[2]);
   const Eigen::Vector3d t(cloud.position[0], cloud.position[1], cloud.position[2]);
-  for (const std::vector<double>& p : cloud.points) {
+  scan.returns.reserve(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const std::span<const double> p = cloud.point(i);
     const Eigen::Vector3d p_S = q.normalized() * Eigen::Vector3d(p[0], p[1], p[2]) + t;
     const double ground_m = std::hypot(p_S.x(), p_S.y());
     ros2::RadarReturn r;
@@ -292,6 +296,12 @@ std::set<std::string> read_log(const fs::path& log, const Mapping& mapping, cons
   for (std::size_t s = 0; s < mapping.sensors.size(); ++s) sensor_of_topic[mapping.sensors[s].topic] = static_cast<int>(s);
   const MappedEgo& ego = mapping.ego;
   std::set<std::string> topics_seen;
+  // The returns the log's scans may hold in all (schemas/limits.md): one per byte of the log, at
+  // least one scan's worth. A return is 20 bytes of CDR, which real measurements do not compress
+  // 20:1; scans of zeros in zstd chunks do, 1000:1 and more.
+  const std::uint64_t log_bytes = fs::file_size(log);
+  const std::uint64_t max_log_returns = std::max<std::uint64_t>(log_bytes, limits::kMaxReturnsPerScan);
+  std::uint64_t log_returns = 0;
   reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& channel, const mcap::Schema* schema) {
     const auto sensor = sensor_of_topic.find(channel.topic);
     const bool is_ego = channel.topic == ego.topic, is_objects = channel.topic == mapping.objects_topic;
@@ -312,8 +322,20 @@ std::set<std::string> read_log(const fs::path& log, const Mapping& mapping, cons
         // A RadarScan in CDR, or a foxglove.PointCloud in JSON.
         const bool cloud = schema_name == "foxglove.PointCloud" && channel.message_encoding == "json";
         if (!cloud) expect(ros2::kRadarScanSchema, "cdr", " or foxglove.PointCloud in 'json'");
-        ros2::RadarScan scan = cloud ? scan_of_point_cloud(json_parser, m.data, mapping.sensors[static_cast<std::size_t>(sensor->second)])
-                                     : ros2::decode_radar_scan(m.data);
+        // Each scan's count checked against what the log has left before its returns are allocated.
+        const std::uint64_t left = max_log_returns - log_returns;
+        ros2::RadarScan scan;
+        try {
+          scan = cloud ? scan_of_point_cloud(json_parser, m.data, mapping.sensors[static_cast<std::size_t>(sensor->second)], left)
+                       : ros2::decode_radar_scan(m.data, left);
+        } catch (const std::exception& e) {
+          if (left >= limits::kMaxReturnsPerScan || std::string_view(e.what()).find("the log has left") == std::string_view::npos) throw;
+          throw InputError(log.string(), where,
+                           fmt::format("{}: its scans held {} returns before this one, and a log holds at most {} (one per byte of its {} "
+                                       "bytes, at least {}: schemas/limits.md; a zstd bomb?)",
+                                       e.what(), log_returns, max_log_returns, log_bytes, limits::kMaxReturnsPerScan));
+        }
+        log_returns += scan.returns.size();
         if (visit.scan) visit.scan(sensor->second, scan);
       } else if (is_ego) {
         expect(ros2::kOdometrySchema, "cdr");

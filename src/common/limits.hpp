@@ -3,6 +3,8 @@
 // format error (metres given in millimetres, an angle in degrees, a corrupted file), not a
 // measurement or a configuration, and it is refused naming the file, line or field: a range of
 // 1e308 must never be averaged into GOSPA, nor a track table of INT_MAX entries allocated.
+#include <cstdint>
+
 namespace rcsim::limits {
 
 inline constexpr double kMaxCoordinate_m = 1e7;     // a position in a world frame: 10,000 km
@@ -21,5 +23,8 @@ inline constexpr double kMaxYaw_rad = 6.2832;        // a wrapped heading, ±2π
 inline constexpr double kMaxMountYaw_rad = 3.1416;   // a mounting angle, ±π: beyond, degrees?
 inline constexpr int kMaxCount = 1'000'000;          // a count in a configuration (tracks, hits)
 inline constexpr int kMaxTracks = 100'000;           // a sensor's track table
+// An imported scan's returns (a RadarScan's, a point cloud's points): the densest imaging radars
+// report some 10^4 a scan; 2^18 leave a margin and cost 5 MiB as 20-byte returns.
+inline constexpr std::uint32_t kMaxReturnsPerScan = 262'144;
 
 }  // namespace rcsim::limits

@@ -85,11 +85,15 @@ class CdrReader {
 
 }  // namespace
 
-RadarScan decode_radar_scan(std::string_view cdr) {
+RadarScan decode_radar_scan(std::string_view cdr, std::uint64_t max_returns) {
   CdrReader r(cdr);
   RadarScan scan;
   scan.header = r.header();
   const std::uint32_t n = r.count("returns", 5 * sizeof(float));
+  if (n > limits::kMaxReturnsPerScan) {
+    throw CdrError(fmt::format("returns: {} in one scan exceed the limit of {} (schemas/limits.md)", n, limits::kMaxReturnsPerScan));
+  }
+  if (n > max_returns) throw CdrError(fmt::format("returns: {} exceed the {} the log has left", n, max_returns));
   scan.returns.reserve(n);
   for (std::uint32_t i = 0; i < n; ++i) {
     RadarReturn d;

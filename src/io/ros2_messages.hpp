@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "common/limits.hpp"
+
 namespace rcsim::ros2 {
 
 struct CdrError : std::runtime_error {
@@ -62,7 +64,9 @@ inline constexpr std::string_view kRadarScanSchema = "radar_msgs/msg/RadarScan";
 inline constexpr std::string_view kOdometrySchema = "nav_msgs/msg/Odometry";
 inline constexpr std::string_view kTfMessageSchema = "tf2_msgs/msg/TFMessage";
 
-RadarScan decode_radar_scan(std::string_view cdr);
+// A RadarScan of at most `max_returns` returns (and at most limits::kMaxReturnsPerScan): a count
+// beyond either, or beyond the bytes behind it, is refused (CdrError) before anything is allocated.
+RadarScan decode_radar_scan(std::string_view cdr, std::uint64_t max_returns = limits::kMaxReturnsPerScan);
 Odometry decode_odometry(std::string_view cdr);
 std::vector<TransformStamped> decode_tf_message(std::string_view cdr);
 

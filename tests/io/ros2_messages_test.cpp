@@ -75,6 +75,28 @@ TEST(Ros2Messages, DamagedScansAreRefusedNamingTheField) {
   EXPECT_NE(refusal(late).find("nanosec"), std::string::npos);
 }
 
+// Issue 51, HIGH 4: scans of millions of zero returns, which zstd packs into a few bytes, were
+// imported whole. A scan holds at most limits::kMaxReturnsPerScan returns, and no more than the
+// caller has left (the log's bound): both told from the count, before a return is allocated.
+TEST(Ros2Messages, AScanOfMoreReturnsThanTheLimitIsRefusedAtItsCount) {
+  const auto refusal = [](const std::string& b, std::uint64_t max_returns) {
+    try {
+      decode_radar_scan(b, max_returns);
+    } catch (const CdrError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // kMaxReturnsPerScan + 1 returns of zeros, every byte of them there.
+  std::string zeros = scan_bytes(true).substr(0, 20) + le(std::uint32_t{limits::kMaxReturnsPerScan + 1});
+  zeros.append(std::size_t{20} * (limits::kMaxReturnsPerScan + 1), '\0');
+  EXPECT_EQ(refusal(zeros, limits::kMaxReturnsPerScan), "returns: 262145 in one scan exceed the limit of 262144 (schemas/limits.md)");
+  EXPECT_EQ(refusal(zeros, 10), "returns: 262145 in one scan exceed the limit of 262144 (schemas/limits.md)");
+  // One return where the caller has none left; one where it has one.
+  EXPECT_EQ(refusal(scan_bytes(true), 0), "returns: 1 exceed the 0 the log has left");
+  EXPECT_EQ(refusal(scan_bytes(true), 1), "accepted");
+}
+
 // Odometry: doubles aligned to 8 from after the header; the covariances skipped.
 TEST(Ros2Messages, OdometryByHand) {
   std::string b("\x00\x01\x00\x00", 4);

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -27,9 +28,9 @@ TEST(FoxgloveMessages, Base64ByTheRfcsExamples) {
 
 // Two points of 12 bytes: x, y float32 at 0 and 4, z int16 at 8, range_rate int8 at 10, amplitude
 // uint8 at 11.
-std::string cloud_json(const std::string& fields, const std::string& data_base64) {
+std::string cloud_json(const std::string& fields, const std::string& data_base64, int stride = 12) {
   return R"({"timestamp": {"sec": 3, "nsec": 250}, "frame_id": "front", "pose": {"position": {"x": 1, "y": 2, "z": 0},
-    "orientation": {"x": 0, "y": 0, "z": 0, "w": 1}}, "point_stride": 12, "fields": )" + fields +
+    "orientation": {"x": 0, "y": 0, "z": 0, "w": 1}}, "point_stride": )" + std::to_string(stride) + R"(, "fields": )" + fields +
          R"(, "data": ")" + data_base64 + R"("})";
 }
 
@@ -58,11 +59,12 @@ TEST(FoxgloveMessages, APointCloudsFieldsAtTheirOffsetsAndTypes) {
   EXPECT_EQ(cloud.frame_id, "front");
   EXPECT_EQ(cloud.position[0], 1.0);
   EXPECT_EQ(cloud.position[1], 2.0);
-  ASSERT_EQ(cloud.points.size(), 2u);
-  EXPECT_EQ(cloud.points[0], (std::vector<double>{10.5, -2.0, -3.0, -7.0, 200.0}));
-  EXPECT_EQ(cloud.points[1], (std::vector<double>{0.25, 8.0, 4.0, 5.0, 1.0}));
+  ASSERT_EQ(cloud.size(), 2u);
+  const auto values = [](std::span<const double> p) { return std::vector<double>(p.begin(), p.end()); };
+  EXPECT_EQ(values(cloud.point(0)), (std::vector<double>{10.5, -2.0, -3.0, -7.0, 200.0}));
+  EXPECT_EQ(values(cloud.point(1)), (std::vector<double>{0.25, 8.0, 4.0, 5.0, 1.0}));
   // Asked in another order, fewer fields.
-  EXPECT_EQ(decode_point_cloud(parser, cloud_json(kFields, two_points()), {"amplitude", "x"}).points[1], (std::vector<double>{1.0, 0.25}));
+  EXPECT_EQ(values(decode_point_cloud(parser, cloud_json(kFields, two_points()), {"amplitude", "x"}).point(1)), (std::vector<double>{1.0, 0.25}));
 }
 
 TEST(FoxgloveMessages, WhatAPointCloudLacksIsNamed) {
@@ -81,6 +83,52 @@ TEST(FoxgloveMessages, WhatAPointCloudLacksIsNamed) {
   EXPECT_NE(refusal(cloud_json(kFields, two_points().substr(0, 28)), {"x"}).find("no whole number of 12-byte points"), std::string::npos);
   EXPECT_NE(refusal(cloud_json(R"([{"name": "x", "offset": 0, "type": 9}])", two_points()), {"x"}).find("no numeric type"), std::string::npos);
   EXPECT_NE(refusal(R"({"timestamp": {"sec": 1}})", {"x"}), "accepted");
+}
+
+std::string cloud_refusal(const std::string& json, const std::vector<std::string>& fields, std::uint64_t max_points = limits::kMaxReturnsPerScan) {
+  simdjson::ondemand::parser parser;
+  try {
+    decode_point_cloud(parser, json, fields, max_points);
+  } catch (const std::exception& e) {
+    return std::string(e.what());
+  }
+  return std::string("accepted");
+}
+
+const std::vector<std::string> kFive = {"x", "y", "z", "range_rate", "amplitude"};
+
+// Issue 51, HIGH 5: a stride of 1 with five uint8 fields at offset 0 made every byte of the data a
+// point of five values, each a heap vector (2.4 GB from 97 KB). The fields asked for may not
+// overlap, so a point costs at least their bytes; the points are told from the base64 text's
+// length and bounded by the scan's limit and what the log has left before anything is decoded.
+TEST(FoxgloveMessages, OverlappingFieldsAndMorePointsThanTheLimitAreRefused) {
+  const std::string stride_one = R"([{"name": "x", "offset": 0, "type": 1}, {"name": "y", "offset": 0, "type": 1},
+    {"name": "z", "offset": 0, "type": 1}, {"name": "range_rate", "offset": 0, "type": 1}, {"name": "amplitude", "offset": 0, "type": 1}])";
+  EXPECT_EQ(cloud_refusal(cloud_json(stride_one, two_points(), 1), kFive), "fields[x] (bytes 0 to 0) and fields[y] (bytes 0 to 0) overlap");
+  // Overlapping by a byte: y's float32 from byte 3.
+  const std::string by_a_byte = R"([{"name": "x", "offset": 0, "type": 7}, {"name": "y", "offset": 3, "type": 7},
+    {"name": "z", "offset": 8, "type": 4}, {"name": "range_rate", "offset": 10, "type": 2}, {"name": "amplitude", "offset": 11, "type": 1}])";
+  EXPECT_EQ(cloud_refusal(cloud_json(by_a_byte, two_points()), kFive), "fields[x] (bytes 0 to 3) and fields[y] (bytes 3 to 6) overlap");
+  // A field named twice.
+  const std::string twice = R"([{"name": "x", "offset": 0, "type": 7}, {"name": "x", "offset": 4, "type": 7}])";
+  EXPECT_EQ(cloud_refusal(cloud_json(twice, two_points()), {"x"}), "fields[x]: named twice");
+  // Two points where the log has one left; kMaxReturnsPerScan + 1 points of 12 bytes in one
+  // cloud (4 MiB of base64 'A's), refused from the text's length.
+  EXPECT_EQ(cloud_refusal(cloud_json(kFields, two_points()), kFive, 1), "data: 2 points exceed the 1 the log has left");
+  EXPECT_EQ(cloud_refusal(cloud_json(kFields, two_points()), kFive, 2), "accepted");
+  const std::string many(std::size_t{12} * (limits::kMaxReturnsPerScan + 1) / 3 * 4, 'A');
+  EXPECT_EQ(cloud_refusal(cloud_json(kFields, many), kFive), "data: 262145 points in one cloud exceed the limit of 262144 (schemas/limits.md)");
+}
+
+// Issue 51, HIGH 6: a field at offset 2^63 - 4 overflowed `at + type_bytes(t) > stride` and the
+// read landed outside the data (SIGSEGV). The offset is compared without a sum.
+TEST(FoxgloveMessages, AFieldOffsetNearTwoToTheSixtyThreeIsRefusedWithoutOverflow) {
+  for (const char* offset : {"9223372036854775804", "9223372036854775807", "9223372036854775800", "13"}) {
+    const std::string fields = std::string(R"([{"name": "x", "offset": )") + offset + R"(, "type": 7}])";
+    EXPECT_EQ(cloud_refusal(cloud_json(fields, two_points()), {"x"}),
+              std::string("fields[x]: offset ") + offset + " and its 4 bytes run past the stride 12");
+  }
+  EXPECT_EQ(cloud_refusal(cloud_json(R"([{"name": "x", "offset": 8, "type": 7}])", two_points()), {"x"}), "accepted");
 }
 
 TEST(FoxgloveMessages, ASceneUpdatesBoxesAreEachEntitysFirstCube) {

@@ -17,6 +17,7 @@
 
 #include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
+#include "common/limits.hpp"
 #include "fuzz/mcap_targets.hpp"
 #include "io/mcap_writer.hpp"
 #include "io/recording.hpp"
@@ -363,6 +364,62 @@ TEST(McapImportRules, OneBadMessageIsRefusedByName) {
   EXPECT_NE(nan.find("beyond the limits of schemas/limits.md"), std::string::npos) << nan;
   EXPECT_NE(nan.find("doppler_velocity nan"), std::string::npos) << nan;
   EXPECT_EQ(testing::file_bytes(dir / "out" / "targets.csv"), good) << "the earlier recording stays as it was";
+}
+
+// Issue 51, HIGH 4: 111 KB of zstd chunks holding scans of 6.7 M zero returns wrote a 1.4 GB
+// recording. A scan holds at most limits::kMaxReturnsPerScan returns, and a log's scans at most
+// one return per byte of the log (at least one scan's worth): each scan's count is checked, before
+// its returns are allocated or a row written, naming the file, the topic and the message.
+TEST(McapImportRules, ScansOfZeroReturnsBeyondTheBoundsAreRefusedAtTheirCount) {
+  const fs::path dir = rcsim::fuzz::fresh_dir("mcap_returns_bound");
+  rcsim::fuzz::write_file(dir / "mapping.json", rcsim::fuzz::kMcapMapping);
+  DatasetImportOptions options;
+  options.mapping = dir / "mapping.json";
+  // 10 scans at 20 Hz of `returns(k)` returns of zeros each, the ego and a box at 10 Hz, zstd.
+  const auto log = [&](const std::string& name, const std::function<std::uint32_t(int)>& returns) {
+    std::ostringstream out;
+    mcap::Writer writer(out, "ros2", mcap::Compression::zstd);
+    const auto scan = writer.add_channel("/radar/front/scan", "cdr", writer.add_schema("radar_msgs/msg/RadarScan", "ros2msg", ""));
+    const auto odom = writer.add_channel("/odom", "cdr", writer.add_schema("nav_msgs/msg/Odometry", "ros2msg", ""));
+    const auto scene = writer.add_channel("/annotations", "json", writer.add_schema("foxglove.SceneUpdate", "jsonschema", "{}"));
+    const std::int64_t t0_ns = 1'700'000'000'000'000'000;
+    for (int k = 0; k < 10; ++k) {
+      const std::int64_t t_ns = t0_ns + k * 50'000'000;
+      if (k % 2 == 0) {
+        writer.write_message(odom, static_cast<std::uint64_t>(t_ns), rcsim::fuzz::mcap_seed::odometry(t_ns, 0.05 * k));
+        writer.write_message(scene, static_cast<std::uint64_t>(t_ns), rcsim::fuzz::mcap_seed::scene_update(t_ns));
+      }
+      std::string zeros = rcsim::fuzz::mcap_seed::header(t_ns, "front");
+      rcsim::fuzz::mcap_seed::put(zeros, returns(k));
+      zeros.append(std::size_t{20} * returns(k), '\0');
+      writer.write_message(scan, static_cast<std::uint64_t>(t_ns), zeros);
+    }
+    writer.finish();
+    rcsim::fuzz::write_file(dir / name, out.str());
+    return dir / name;
+  };
+  const auto refusal = [&](const fs::path& path) { return refusal_of([&] { import_mcap_to(path, options, dir / "out"); }); };
+  // One scan of kMaxReturnsPerScan + 1 zeros (5 MiB of CDR, a few kB of zstd).
+  const fs::path one = log("one.mcap", [](int k) { return k == 3 ? limits::kMaxReturnsPerScan + 1 : 1u; });
+  EXPECT_LT(fs::file_size(one), 64u * 1024u);
+  const std::string too_many = refusal(one);
+  EXPECT_NE(too_many.find("one.mcap: topic '/radar/front/scan', message 3 at log time 1700000000150000000 ns: returns: 262145 in one scan "
+                          "exceed the limit of 262144 (schemas/limits.md)"),
+            std::string::npos)
+      << too_many;
+  EXPECT_FALSE(fs::exists(dir / "out")) << "nothing written";
+  // Scans of 100,000 zeros each: the third passes the log's bound (262,144 returns: the log is far
+  // smaller than that many bytes).
+  const fs::path bomb = log("bomb.mcap", [](int) { return 100'000u; });
+  const std::string bombed = refusal(bomb);
+  EXPECT_NE(bombed.find("bomb.mcap: topic '/radar/front/scan', message 2 at log time 1700000000100000000 ns: returns: 100000 exceed the "
+                        "62144 the log has left: its scans held 200000 returns before this one, and a log holds at most 262144 (one per "
+                        "byte of its " + std::to_string(fs::file_size(bomb)) + " bytes"),
+            std::string::npos)
+      << bombed;
+  EXPECT_FALSE(fs::exists(dir / "out")) << "nothing written";
+  // Within both: imported.
+  EXPECT_NO_THROW(import_mcap_to(log("fine.mcap", [](int) { return 20'000u; }), options, dir / "out"));
 }
 
 }  // namespace
