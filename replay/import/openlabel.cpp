@@ -186,6 +186,8 @@ class Reader {
   // Pass 1 reads the metadata and openlabel.objects, pass 2 the frames: a file may hold them in
   // either order.
   Labels read(std::string json) {
+    file_bytes_ = json.size();
+    max_boxes_ = json.size() / kFileBytesPerBox;
     json.reserve(json.size() + simdjson::SIMDJSON_PADDING);
     od::parser parser;
     od::document doc;
@@ -218,6 +220,10 @@ class Reader {
 
  private:
   [[noreturn]] void fail(const std::string& where, const std::string& what) const { throw InputError(file_, where, what); }
+
+  std::size_t file_bytes_ = 0;
+  std::size_t max_boxes_ = 0;  // the boxes the file's bytes allow
+  std::size_t boxes_ = 0;      // the frames' boxes so far
 
   template <typename T>
   T take(simdjson::simdjson_result<T>&& result, const std::string& where) const {
@@ -278,7 +284,7 @@ class Reader {
     });
   }
 
-  void read_frames(od::value value, std::vector<Frame>& frames) const {
+  void read_frames(od::value value, std::vector<Frame>& frames) {
     for_each_field(object(value, "openlabel.frames"), "openlabel.frames", [&](std::string_view key, od::value v) {
       const std::string where = "openlabel.frames." + std::string(key);
       Frame& frame = frames.emplace_back();
@@ -303,7 +309,7 @@ class Reader {
   }
 
   // The boxes of a frame's objects: their own cuboids there, else their static ones.
-  void read_frame_objects(od::value value, const std::string& where, std::vector<LabelledBox>& boxes) const {
+  void read_frame_objects(od::value value, const std::string& where, std::vector<LabelledBox>& boxes) {
     for_each_field(object(value, where), where, [&](std::string_view key, od::value v) {
       const std::string uid(key), at = where + "." + uid;
       const auto found = objects_.find(uid);
@@ -321,6 +327,19 @@ class Reader {
         if (!box.speed_mps) box.speed_mps = info.static_speed_mps;
         boxes.push_back(std::move(box));
       };
+      // The boxes this listing adds, checked before a static cuboid is copied: a few bytes naming
+      // an object copy all its static cuboids into the frame.
+      const std::size_t adding = data.boxes.empty() ? info.static_boxes.size() : data.boxes.size();
+      if (adding > kMaxBoxesPerFrame - boxes.size()) {
+        fail(at, fmt::format("{} boxes in the frame with this object's {}: more than the limit of {} a frame (schemas/limits.md)",
+                             boxes.size() + adding, adding, kMaxBoxesPerFrame));
+      }
+      if (adding > max_boxes_ - boxes_) {
+        fail(at, fmt::format("{} boxes with this object's {}, where the file's {} bytes allow {} (one per {} bytes, schemas/limits.md): "
+                             "static cuboids copied into every frame that lists their object?",
+                             boxes_ + adding, adding, file_bytes_, max_boxes_, kFileBytesPerBox));
+      }
+      boxes_ += adding;
       if (data.boxes.empty()) std::for_each(info.static_boxes.begin(), info.static_boxes.end(), add);
       for (LabelledBox& box : data.boxes) add(std::move(box));
     });

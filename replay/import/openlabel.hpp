@@ -27,6 +27,7 @@
 // Not read: frame_intervals, object_data_pointers, coordinate_systems and transforms (boxes stay
 // in the frame they name), streams and sync, ontologies, actions, events, contexts, relations,
 // and every other object_data type (bbox, poly3d, vec, text, boolean, ...).
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -34,6 +35,13 @@
 #include <vector>
 
 namespace rcsim::replay::openlabel {
+
+// The boxes a file may give (schemas/limits.md): a frame listing an object by its uid alone
+// ("7": {}, 7 bytes) copies the object's static cuboids into it, so boxes are bounded by the bytes
+// behind them, one per kFileBytesPerBox bytes of the file, and at most kMaxBoxesPerFrame a frame
+// (a busy scene labels some hundreds of objects). Checked before a box is copied.
+inline constexpr std::size_t kFileBytesPerBox = 4;
+inline constexpr std::size_t kMaxBoxesPerFrame = 10'000;
 
 // One labelled cuboid of one object in one frame.
 struct LabelledBox {
@@ -57,7 +65,7 @@ struct Labels {
 // "openlabel" in the root object), no schema_version, an object without a type, a frame key that is
 // no number, a cuboid val of other than 9 or 10 numbers, a number that is not finite, a size <= 0, a
 // quaternion of zero norm, a frame object whose uid is not among openlabel.objects, a frame with
-// boxes and without a usable timestamp.
+// boxes and without a usable timestamp, more boxes than the bounds above.
 Labels read_openlabel(const std::filesystem::path& file);
 
 }  // namespace rcsim::replay::openlabel

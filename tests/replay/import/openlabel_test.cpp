@@ -176,6 +176,41 @@ TEST_F(OpenLabel, StaticCuboidsHoldInEachFrameListingTheirObject) {
   EXPECT_EQ(labels.boxes[2].x_m, 10.0);
 }
 
+// Issue 51, HIGH 8: static cuboids were copied into every frame that lists their object, so a
+// few bytes per listing made a box each: 1,000 cuboids x 10,000 frames gave 3.5 GB from 800 KB.
+// The boxes are bounded by the file's bytes (one per kFileBytesPerBox) and per frame, checked
+// before the cuboids are copied, naming the listing that passes the bound.
+TEST_F(OpenLabel, StaticCuboidsCopiedBeyondTheBytesBehindThemAreRefused) {
+  using replay::openlabel::kFileBytesPerBox;
+  using replay::openlabel::kMaxBoxesPerFrame;
+  const auto cuboids = [](std::size_t n) {
+    std::string out;
+    for (std::size_t i = 0; i < n; ++i) out += std::string(i == 0 ? "" : ",") + R"({"val":[0,0,0,0,0,0,1,1,1]})";
+    return "[" + out + "]";
+  };
+  // 100 static cuboids listed by 300 frames: 30,000 boxes from some 20 kB.
+  std::string frames;
+  for (int f = 0; f < 300; ++f) frames += fmt::format(R"({}"{}":{{"frame_properties":{{"timestamp":{}}},"objects":{{"0":{{}}}}}})", f == 0 ? "" : ",", f, f + 1);
+  const std::string bomb = document(R"({"0":{"type":"Car","object_data":{"cuboid":)" + cuboids(100) + "}}}", "{" + frames + "}");
+  const std::size_t max_boxes = bomb.size() / kFileBytesPerBox;
+  ASSERT_LT(max_boxes, 30'000u);
+  const std::string m = refusal(bomb);
+  EXPECT_THAT(m, HasSubstr(fmt::format("openlabel.frames.{}.objects.0: {} boxes with this object's 100, where the file's {} bytes allow {} "
+                                       "(one per 4 bytes, schemas/limits.md)",
+                                       max_boxes / 100, (max_boxes / 100 + 1) * 100, bomb.size(), max_boxes)));
+  // The same listed by as few frames as its bytes allow: read.
+  std::string few;
+  for (int f = 0; f < 3; ++f) few += fmt::format(R"({}"{}":{{"frame_properties":{{"timestamp":{}}},"objects":{{"0":{{}}}}}})", f == 0 ? "" : ",", f, f + 1);
+  EXPECT_EQ(read(document(R"({"0":{"type":"Car","object_data":{"cuboid":)" + cuboids(100) + "}}}", "{" + few + "}")).boxes.size(), 300u);
+  // Two objects of 5,001 static cuboids each in one frame: more than a frame may hold.
+  const std::string crowded = document(R"({"0":{"type":"Car","object_data":{"cuboid":)" + cuboids(5'001) + R"(}},"1":{"type":"Car","object_data":{"cuboid":)" +
+                                           cuboids(5'001) + "}}}",
+                                       R"({"0":{"frame_properties":{"timestamp":1},"objects":{"0":{},"1":{}}}})");
+  EXPECT_THAT(refusal(crowded), HasSubstr(fmt::format("openlabel.frames.0.objects.1: 10002 boxes in the frame with this object's 5001: more than the "
+                                                      "limit of {} a frame (schemas/limits.md)",
+                                                      kMaxBoxesPerFrame)));
+}
+
 TEST_F(OpenLabel, NoFramesNoBoxes) {
   EXPECT_TRUE(read(R"({"openlabel": {"metadata": {"schema_version": "1.0.0"}}})").boxes.empty());
 }
