@@ -5,7 +5,9 @@
 // bad CRC, a record longer than what is left, a truncated chunk, a message on a channel never
 // announced) is refused naming the file, the record and its byte offset. Chunks may be
 // uncompressed or compressed with zstd or lz4 (the LZ4 frame format), decompressed by Debian's
-// libzstd and liblz4; another compression is refused, naming it.
+// libzstd and liblz4; another compression is refused, naming it, and so is a chunk inside a chunk
+// (the spec's chunks hold schemas, channels and messages). A chunk holds at most 1 GiB, and costs
+// the memory its data really decode to, whatever size it claims (schemas/limits.md).
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
