@@ -7,6 +7,7 @@
 #include "cli/commands.hpp"
 #include "cli/replay_options.hpp"
 #include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
 #include "io/recording.hpp"
 #include "replay/import/dataset_importer.hpp"
 #include "replay/import/importer.hpp"
@@ -34,9 +35,13 @@ Recording on_estimated_clocks(const Recording& keyframed, const std::string& raw
 void import_dataset(const std::string& dataset, const std::string& raw_dir, const std::string& output,
                     const replay::DatasetImportOptions& options, const std::string& sensor_clocks) {
   const replay::DatasetImporter& importer = replay::find_dataset_importer(dataset);
+  if (options.skip_edges && importer.import_to == nullptr) {
+    throw InputError(raw_dir, "--skip-edges", fmt::format("--from {} takes no --skip-edges: it is for a robot's log (--from mcap, rosbag2)", dataset));
+  }
   check_output_directory(std::filesystem::absolute(output).lexically_normal(), "recording.json");  // before the work
   if (importer.import_to != nullptr && sensor_clocks != "estimated") {  // streamed to disk
     const replay::ImportSummary s = importer.import_to(raw_dir, options, output);
+    for (const auto& warning : s.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
     std::cout << fmt::format("{}: {} sensor cycles on their own clocks, {} sensor{}, {} objects, {} targets; written to {}\n", s.name,
                              s.cycles, s.sensors, s.sensors == 1 ? "" : "s", s.objects, s.targets, output);
     return;
@@ -88,6 +93,7 @@ void add_import_command(CLI::App& app) {
     std::string frames;
     std::string sensor_clocks = "keyframe";
     std::string mapping;
+    bool skip_edges = false;
     ImportArgs import;
   };
   auto args = std::make_shared<Args>();
@@ -114,6 +120,10 @@ void add_import_command(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->type_name("FILE")
       ->needs(from);
+  cmd->add_flag("--skip-edges", args->skip_edges,
+               "(--from mcap, rosbag2) leave out, and count, a real log's edges: scans beyond the ego log, scans and ego "
+               "poses stamped as the one before (refused otherwise)")
+      ->needs(from);
   cmd->add_option("--sensor-clocks", args->sensor_clocks,
                   "(--from aimotive) keyframe: every radar frame stamped with its keyframe's time, as the dataset gives "
                   "it; estimated: each radar on its own clock, timed by the static world's shift (recording v4)")
@@ -123,7 +133,7 @@ void add_import_command(CLI::App& app) {
   add_import_options(*cmd, args->import);
   cmd->callback([args] {
     if (!args->dataset.empty()) {
-      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log, args->frames, args->mapping},
+      import_dataset(args->dataset, args->input_dir, args->output, {args->ego_log, args->frames, args->mapping, args->skip_edges},
                      args->sensor_clocks);
       return;
     }

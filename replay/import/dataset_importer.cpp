@@ -15,8 +15,10 @@ const std::vector<DatasetImporter>& dataset_importers() {
   static const std::vector<DatasetImporter> importers{
       {"aimotive", "aiMotive Multimodal Dataset sequence (radar detections, 3D boxes, calibration)", import_aimotive, nullptr},
       {"astyx", "Astyx HiRes2019 frames (imaging radar point clouds, 3D boxes; snapshots, --frames)", import_astyx, nullptr},
-      {"mcap", "an MCAP log (ROS 2 bag): radar_msgs/RadarScan, nav_msgs/Odometry or /tf, foxglove.SceneUpdate or OpenLABEL; --mapping",
+      {"mcap", "an MCAP log or a ROS 2 bag directory (sqlite3 or mcap storage, split bags): radar_msgs/RadarScan, "
+               "sensor_msgs/PointCloud2 or foxglove.PointCloud, nav_msgs/Odometry or /tf, foxglove.SceneUpdate or OpenLABEL; --mapping",
        import_mcap, import_mcap_to},
+      {"rosbag2", "a ROS 2 bag directory (metadata.yaml): the same as --from mcap", import_mcap, import_mcap_to},
       {"vod", "View-of-Delft frames (ZF FRGen21 3+1D radar point clouds, KITTI boxes, calibration, poses; snapshots, --frames)",
        import_vod, nullptr},
   };

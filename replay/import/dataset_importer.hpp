@@ -30,6 +30,9 @@ struct DatasetImportOptions {
   // --mapping: which topic of a log is which radar, the ego, the boxes (--from mcap,
   // schemas/mcap-mapping.md); the others refuse it.
   std::filesystem::path mapping = {};
+  // --skip-edges: leave out, and count, scans beyond the ego log and scans or ego poses stamped as
+  // the one before (--from mcap), where a real log's edges would otherwise be refused.
+  bool skip_edges = false;
 };
 
 // One item of a --frames list: a frame number (first == last) or a range first-last.
@@ -47,6 +50,7 @@ std::vector<FrameRange> parse_frame_list(std::string_view list);
 struct ImportSummary {
   std::string name;
   std::size_t cycles = 0, sensors = 0, objects = 0, targets = 0;
+  std::vector<std::string> warnings;  // what a person should know (left out scans, an unfinished log)
 };
 
 struct DatasetImporter {

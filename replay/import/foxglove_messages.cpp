@@ -66,6 +66,7 @@ void for_each_scene_box(simdjson::ondemand::parser& parser, const std::string& j
     box.id = e["id"].get_string();
     const std::string id(box.id);  // the view lives only until the next field is read
     box.t_ns = time_ns(e["timestamp"].get_object());
+    const std::string frame_id(std::string_view(e["frame_id"].get_string()));
     std::string log_class;
     simdjson::ondemand::array metadata;
     if (e["metadata"].get(metadata) == simdjson::SUCCESS) {
@@ -92,6 +93,7 @@ void for_each_scene_box(simdjson::ondemand::parser& parser, const std::string& j
       box.width_m = finite(size["y"].value(), "size.y");
       box.id = id;
       box.log_class = log_class;
+      box.frame_id = frame_id;
       visit(box);
       break;  // the first cube is the box
     }

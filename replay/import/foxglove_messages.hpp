@@ -20,7 +20,7 @@ namespace rcsim::replay::foxglove {
 // One entity's box: its first cube, at the entity's time; `log_class` and `speed_mps` from the
 // entity's metadata keys "class" and "speed_mps" where given.
 struct SceneBox {
-  std::string_view id, log_class;
+  std::string_view id, log_class, frame_id;  // frame_id: the entity's, the frame its cube's pose is in
   std::int64_t t_ns = 0;
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, length_m = 0.0, width_m = 0.0;
   std::optional<double> speed_mps;

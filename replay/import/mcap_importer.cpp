@@ -22,7 +22,7 @@
 #include "common/list_level.hpp"
 #include "common/quantile.hpp"
 #include "common/text_file.hpp"
-#include "io/mcap_reader.hpp"
+#include "io/robot_log.hpp"
 #include "io/recording_writer.hpp"
 #include "io/ros2_messages.hpp"
 #include "model/model_library.hpp"
@@ -44,7 +44,9 @@ struct MappedSensor {
   bool mounting_from_tf = false;
   std::string frame;
   std::optional<double> cycle_time_s;
-  // A foxglove.PointCloud's fields that hold the radial speed and the amplitude.
+  // Each scan at the log's time of its message, not its header.stamp (a driver that stamps 0).
+  bool stamp_from_log = false;
+  // A point cloud's (foxglove.PointCloud, sensor_msgs/msg/PointCloud2) fields that hold the radial speed and the amplitude.
   std::string range_rate_field = "range_rate", amplitude_field = "amplitude";
 };
 
@@ -76,7 +78,7 @@ Mapping read_mapping(const fs::path& path) {
   Mapping m;
   if (root.has("name")) m.name = root.string("name");
   for (const JsonField& s : root.array("sensors")) {
-    s.expect_only({"id", "topic", "type", "x_m", "y_m", "yaw_rad", "frame", "reports", "cycle_time_s", "fields"});
+    s.expect_only({"id", "topic", "type", "x_m", "y_m", "yaw_rad", "frame", "reports", "cycle_time_s", "fields", "stamp"});
     using namespace limits;
     MappedSensor mapped;
     mapped.sensor.id = s.string("id"), mapped.sensor.type = s.string("type"), mapped.topic = s.string("topic");
@@ -105,6 +107,11 @@ Mapping read_mapping(const fs::path& path) {
       mapped.sensor.reports = reports == "tracks" ? ListLevel::tracks : ListLevel::detections;
     } else {
       mapped.sensor.reports = ListLevel::detections;  // a RadarScan holds raw returns
+    }
+    if (s.has("stamp")) {
+      const std::string stamp = s.string("stamp");
+      if (stamp != "header" && stamp != "log") s.fail("stamp", "must be \"header\" (the scans' header.stamp) or \"log\" (the log's time of each), got \"" + stamp + "\"");
+      mapped.stamp_from_log = stamp == "log";
     }
     if (s.has("cycle_time_s")) {
       mapped.cycle_time_s = s.number_within("cycle_time_s", 0.0, kMaxCycleTime_s, "s");
@@ -221,8 +228,8 @@ struct Survey {
   std::map<std::string, std::size_t> object_index;
   Histogram annotation_steps_us;
   std::int64_t last_annotation_ns = std::numeric_limits<std::int64_t>::min();
-  std::set<std::string> topics_seen;
-  std::string profile, library;
+  std::set<std::string> topics_seen;  // the mapped topics with messages
+  robot_log::LogSummary log;          // the log's header, its topics, what a person should know
 
   void stamp(std::int64_t t_ns) { t0_ns = std::min(t0_ns, t_ns); }
   std::size_t object(std::string_view id, std::string_view log_class) {
@@ -256,84 +263,128 @@ struct LogVisitor {
   std::function<void(const foxglove::SceneBox&)> box;
 };
 
+// A cloud's points (x, y, z, the radial speed, the amplitude; moved by X_SC into the radar's
+// frame) as a scan's returns.
+void add_points(ros2::RadarScan& scan, std::size_t count, const std::function<std::span<const double>(std::size_t)>& point,
+                const Eigen::Isometry3d& X_SC) {
+  scan.returns.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::span<const double> p = point(i);
+    const Eigen::Vector3d p_S = X_SC * Eigen::Vector3d(p[0], p[1], p[2]);
+    ros2::RadarReturn r;
+    r.range = static_cast<float>(p_S.norm());
+    r.azimuth = static_cast<float>(std::atan2(p_S.y(), p_S.x()));
+    r.elevation = static_cast<float>(std::atan2(p_S.z(), std::hypot(p_S.x(), p_S.y())));
+    r.doppler_velocity = static_cast<float>(p[3]);
+    r.amplitude = static_cast<float>(p[4]);
+    scan.returns.push_back(r);
+  }
+}
+
+std::vector<std::string> cloud_fields(const MappedSensor& sensor) { return {"x", "y", "z", sensor.range_rate_field, sensor.amplitude_field}; }
+
 // A radar's foxglove.PointCloud as a scan: each point (x, y, z in the cloud's frame, moved by its
 // pose into the radar's) a return with the mapped range-rate and amplitude fields.
 ros2::RadarScan scan_of_point_cloud(simdjson::ondemand::parser& parser, const std::string& text, const MappedSensor& sensor,
                                     std::uint64_t max_returns) {
-  const foxglove::PointCloud cloud =
-      foxglove::decode_point_cloud(parser, text, {"x", "y", "z", sensor.range_rate_field, sensor.amplitude_field}, max_returns);
+  const foxglove::PointCloud cloud = foxglove::decode_point_cloud(parser, text, cloud_fields(sensor), max_returns);
   ros2::RadarScan scan;
   scan.header.frame_id = cloud.frame_id;
   scan.header.stamp.sec = static_cast<std::int32_t>(cloud.t_ns / 1'000'000'000);
   scan.header.stamp.nanosec = static_cast<std::uint32_t>(cloud.t_ns % 1'000'000'000);
   const Eigen::Quaterniond q(cloud.orientation[3], cloud.orientation[0], cloud.orientation[1], cloud.orientation[2]);
-  const Eigen::Vector3d t(cloud.position[0], cloud.position[1], cloud.position[2]);
-  scan.returns.reserve(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const std::span<const double> p = cloud.point(i);
-    const Eigen::Vector3d p_S = q.normalized() * Eigen::Vector3d(p[0], p[1], p[2]) + t;
-    const double ground_m = std::hypot(p_S.x(), p_S.y());
-    ros2::RadarReturn r;
-    r.range = static_cast<float>(p_S.norm());
-    r.azimuth = static_cast<float>(std::atan2(p_S.y(), p_S.x()));
-    r.elevation = static_cast<float>(std::atan2(p_S.z(), ground_m));
-    r.doppler_velocity = static_cast<float>(p[3]);
-    r.amplitude = static_cast<float>(p[4]);
-    scan.returns.push_back(r);
-  }
+  Eigen::Isometry3d X_SC = Eigen::Isometry3d::Identity();
+  X_SC.linear() = q.normalized().toRotationMatrix();
+  X_SC.translation() = Eigen::Vector3d(cloud.position[0], cloud.position[1], cloud.position[2]);
+  add_points(scan, cloud.size(), [&](std::size_t i) { return cloud.point(i); }, X_SC);
   return scan;
 }
 
-// One pass over the log: every message on a mapped topic decoded and handed on; a message of
-// another schema than the mapped one, or one that does not decode, refused naming the topic and
-// the message. Returns the topics seen.
-std::set<std::string> read_log(const fs::path& log, const Mapping& mapping, const LogVisitor& visit, std::string* profile = nullptr,
-                               std::string* library = nullptr) {
-  mcap::Reader reader(log);
-  if (profile != nullptr) *profile = reader.summary().profile, *library = reader.summary().library;
+// A radar driver's sensor_msgs/msg/PointCloud2 as a scan, its points in its header's frame.
+ros2::RadarScan scan_of_point_cloud2(std::string_view cdr, const MappedSensor& sensor, std::uint64_t max_returns, std::size_t& invalid_points) {
+  const ros2::CloudPoints cloud = ros2::decode_point_cloud2(cdr, cloud_fields(sensor), max_returns);
+  ros2::RadarScan scan;
+  scan.header = cloud.header;
+  add_points(scan, cloud.size(), [&](std::size_t i) { return std::span<const double>(cloud.values.data() + i * cloud.field_count, cloud.field_count); },
+             Eigen::Isometry3d::Identity());
+  invalid_points += cloud.invalid_points;
+  return scan;
+}
+
+// What one pass over the log found: the mapped topics with messages, the log's summary, the
+// invalid points of clouds that are not dense.
+struct LogPass {
+  std::set<std::string> topics_seen;
+  robot_log::LogSummary summary;
+  std::size_t invalid_points = 0;
+};
+
+// One pass over the log (an MCAP file or a ROS 2 bag): every message on a mapped topic decoded and
+// handed on; a message of another schema than the mapped one, or one that does not decode,
+// refused naming the topic and the message by its log time.
+LogPass read_log(const fs::path& log, const Mapping& mapping, const LogVisitor& visit) {
+  const robot_log::Log source(log);
   simdjson::ondemand::parser json_parser;
-  std::map<std::string, int> sensor_of_topic;
+  std::map<std::string, int, std::less<>> sensor_of_topic;
   for (std::size_t s = 0; s < mapping.sensors.size(); ++s) sensor_of_topic[mapping.sensors[s].topic] = static_cast<int>(s);
   const MappedEgo& ego = mapping.ego;
-  std::set<std::string> topics_seen;
+  LogPass pass;
   // The returns the log's scans may hold in all (schemas/limits.md): one per byte of the log, at
   // least one scan's worth. A return is 20 bytes of CDR, which real measurements do not compress
   // 20:1; scans of zeros in zstd chunks do, 1000:1 and more.
-  const std::uint64_t log_bytes = fs::file_size(log);
+  const std::uint64_t log_bytes = source.bytes();
   const std::uint64_t max_log_returns = std::max<std::uint64_t>(log_bytes, limits::kMaxReturnsPerScan);
   std::uint64_t log_returns = 0;
-  reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& channel, const mcap::Schema* schema) {
-    const auto sensor = sensor_of_topic.find(channel.topic);
-    const bool is_ego = channel.topic == ego.topic, is_objects = channel.topic == mapping.objects_topic;
-    const bool is_tf = ego.from_tf() && (channel.topic == ego.tf_topic || channel.topic == ego.tf_static_topic);
+  std::string text;  // a JSON message's bytes (simdjson pads its own copy)
+  pass.summary = source.for_each_message([&](const robot_log::LogMessage& m) {
+    const auto sensor = sensor_of_topic.find(m.topic);
+    const bool is_ego = m.topic == ego.topic, is_objects = m.topic == mapping.objects_topic;
+    const bool is_tf = ego.from_tf() && (m.topic == ego.tf_topic || m.topic == ego.tf_static_topic);
     if (sensor == sensor_of_topic.end() && !is_ego && !is_objects && !is_tf) return;
-    topics_seen.insert(channel.topic);
-    const std::string schema_name = schema != nullptr ? schema->name : std::string("(none)");
-    const std::string where = fmt::format("topic '{}', message {} at log time {} ns", channel.topic, m.sequence, m.log_time_ns);
+    pass.topics_seen.emplace(m.topic);
+    const std::string where = fmt::format("topic '{}', the message at log time {} ns", m.topic, m.log_time_ns);
     const auto expect = [&](std::string_view name, std::string_view encoding, std::string_view or_else = "") {
-      if (schema_name != name || channel.message_encoding != encoding) {
+      if (m.schema_name != name || m.encoding != encoding) {
         throw InputError(log.string(), where,
-                         fmt::format("schema '{}' in '{}': the mapping takes {} in '{}'{} on this topic", schema_name,
-                                     channel.message_encoding, name, encoding, or_else));
+                         fmt::format("schema '{}' in '{}': the mapping takes {} in '{}'{} on this topic", m.schema_name, m.encoding, name,
+                                     encoding, or_else));
       }
     };
     try {
       if (sensor != sensor_of_topic.end()) {
-        // A RadarScan in CDR, or a foxglove.PointCloud in JSON.
-        const bool cloud = schema_name == "foxglove.PointCloud" && channel.message_encoding == "json";
-        if (!cloud) expect(ros2::kRadarScanSchema, "cdr", " or foxglove.PointCloud in 'json'");
+        // A RadarScan or a PointCloud2 in CDR, or a foxglove.PointCloud in JSON.
+        const MappedSensor& mapped = mapping.sensors[static_cast<std::size_t>(sensor->second)];
+        const bool cloud = m.schema_name == "foxglove.PointCloud" && m.encoding == "json";
+        const bool cloud2 = m.schema_name == ros2::kPointCloud2Schema && m.encoding == "cdr";
+        if (!cloud && !cloud2) expect(ros2::kRadarScanSchema, "cdr", ", sensor_msgs/msg/PointCloud2 in 'cdr' or foxglove.PointCloud in 'json'");
         // Each scan's count checked against what the log has left before its returns are allocated.
         const std::uint64_t left = max_log_returns - log_returns;
         ros2::RadarScan scan;
         try {
-          scan = cloud ? scan_of_point_cloud(json_parser, m.data, mapping.sensors[static_cast<std::size_t>(sensor->second)], left)
-                       : ros2::decode_radar_scan(m.data, left);
+          if (cloud) text.assign(m.data);
+          scan = cloud    ? scan_of_point_cloud(json_parser, text, mapped, left)
+                 : cloud2 ? scan_of_point_cloud2(m.data, mapped, left, pass.invalid_points)
+                          : ros2::decode_radar_scan(m.data, left);
         } catch (const std::exception& e) {
-          if (left >= limits::kMaxReturnsPerScan || std::string_view(e.what()).find("the log has left") == std::string_view::npos) throw;
+          if (left >= limits::kMaxReturnsPerScan || std::string_view(e.what()).find("the log has left") == std::string_view::npos) {
+            if (cloud2 && std::string_view(e.what()).find("no field") != std::string_view::npos) {
+              throw ros2::CdrError(fmt::format("{}; name the radial speed's and the amplitude's in the mapping's sensors[{}].fields",
+                                               e.what(), sensor->second));
+            }
+            throw;
+          }
           throw InputError(log.string(), where,
                            fmt::format("{}: its scans held {} returns before this one, and a log holds at most {} (one per byte of its {} "
                                        "bytes, at least {}: schemas/limits.md; a zstd bomb?)",
                                        e.what(), log_returns, max_log_returns, log_bytes, limits::kMaxReturnsPerScan));
+        }
+        if (mapped.stamp_from_log) {
+          scan.header.stamp.sec = static_cast<std::int32_t>(m.log_time_ns / 1'000'000'000);
+          scan.header.stamp.nanosec = static_cast<std::uint32_t>(m.log_time_ns % 1'000'000'000);
+        } else if (scan.header.stamp.ns() == 0) {
+          throw InputError(log.string(), where,
+                           fmt::format("header.stamp is 0: the driver does not stamp its scans; map sensors[{}].stamp: \"log\" to take "
+                                       "each scan at the log's time of its message", sensor->second));
         }
         log_returns += scan.returns.size();
         if (visit.scan) visit.scan(sensor->second, scan);
@@ -342,22 +393,23 @@ std::set<std::string> read_log(const fs::path& log, const Mapping& mapping, cons
         if (visit.odometry) visit.odometry(ros2::decode_odometry(m.data));
       } else if (is_tf) {
         expect(ros2::kTfMessageSchema, "cdr");
-        if (visit.transforms) visit.transforms(ros2::decode_tf_message(m.data), channel.topic == ego.tf_static_topic);
+        if (visit.transforms) visit.transforms(ros2::decode_tf_message(m.data), m.topic == ego.tf_static_topic);
       } else {
         expect("foxglove.SceneUpdate", "json");
-        if (visit.box) foxglove::for_each_scene_box(json_parser, m.data, visit.box);
+        text.assign(m.data);
+        if (visit.box) foxglove::for_each_scene_box(json_parser, text, visit.box);
       }
     } catch (const ros2::CdrError& e) {
       throw InputError(log.string(), where, e.what());
     } catch (const TfError& e) {
       throw InputError(log.string(), where, e.what());
     } catch (const simdjson::simdjson_error& e) {
-      throw InputError(log.string(), where, fmt::format("not a {}: {}", schema_name, e.what()));
+      throw InputError(log.string(), where, fmt::format("not a {}: {}", m.schema_name, e.what()));
     } catch (const std::logic_error& e) {  // a field missing or not a number (std::stod too)
-      throw InputError(log.string(), where, fmt::format("not a {}: {}", schema_name, e.what()));
+      throw InputError(log.string(), where, fmt::format("not a {}: {}", m.schema_name, e.what()));
     }
   });
-  return topics_seen;
+  return pass;
 }
 
 float as_float(double v) { return static_cast<float>(v); }
@@ -392,14 +444,16 @@ Survey survey_log(const fs::path& log, const Mapping& mapping) {
   };
   visit.transforms = [&](const std::vector<ros2::TransformStamped>& transforms, bool is_static) { survey.tf.add(transforms, is_static); };
   visit.box = [&](const foxglove::SceneBox& b) { survey.box(survey.object(b.id, b.log_class), logged_box(b)); };
-  survey.topics_seen = read_log(log, mapping, visit, &survey.profile, &survey.library);
+  LogPass pass = read_log(log, mapping, visit);
+  survey.topics_seen = std::move(pass.topics_seen);
+  survey.log = std::move(pass.summary);
+  if (pass.invalid_points > 0) {
+    survey.log.warnings.push_back(fmt::format("{} invalid points (not finite) of clouds that are not dense left out", pass.invalid_points));
+  }
   for (const MappedSensor& s : mapping.sensors) {
     if (!survey.topics_seen.count(s.topic)) {
-      std::vector<std::string> topics;
-      const mcap::Reader reader(log);
-      for (const auto& [id, c] : reader.channels()) topics.push_back(c.topic);
       throw InputError(log.string(), s.topic, fmt::format("no messages on sensor '{}''s topic (the log's topics: {})", s.sensor.id,
-                                                          fmt::join(topics, ", ")));
+                                                          fmt::join(survey.log.topics, ", ")));
     }
   }
   if (!mapping.objects_topic.empty() && !survey.topics_seen.count(mapping.objects_topic)) {
@@ -494,36 +548,45 @@ struct ObjectBox {
   LoggedBox box;
 };
 
-// The boxes of an OpenLABEL file beside the log (read whole), in the ego's world frame and in time
-// order: a cuboid in the world frame (or in none named) as it is; one in another frame of /tf (the
-// vehicle's, a sensor's) through the transforms at its time; with an Odometry ego, one in the
-// odometry's child frame (the vehicle's) through the odometry's pose at its time. Planar: z and
-// the height are dropped.
-std::vector<ObjectBox> openlabel_boxes(Survey& survey, const Mapping& mapping) {
-  const openlabel::Labels labels = openlabel::read_openlabel(mapping.openlabel);
+// A pose given in `frame` at t_ns, moved into the ego's world frame: in the world frame (or in
+// none named) as it is; with a /tf ego, from any frame of the tree through the transforms at its
+// time; with an Odometry ego, from the odometry's child frame (the vehicle's) through the
+// odometry's pose at its time. Anything else throws std::out_of_range naming the frame.
+Pose2 in_world(const Survey& survey, const Mapping& mapping, const std::string& frame, std::int64_t t_ns, const Pose2& X_CO,
+               const std::string& what) {
   const bool tf = mapping.ego.from_tf();
   const std::string& world = tf ? mapping.ego.world_frame : survey.odometry_frame;
   const std::string& vehicle = tf ? mapping.ego.vehicle_frame : survey.odometry_child_frame;
+  if (frame.empty() || frame == world) return X_CO;
+  Pose2 X_WC;
+  if (tf) {
+    if (!survey.tf.has_frame(frame)) {
+      throw std::out_of_range(fmt::format("{} is in frame '{}', which is not in the /tf tree (its frames: {})", what, frame,
+                                          fmt::join(survey.tf.frames(), ", ")));
+    }
+    const Eigen::Isometry3d X = survey.tf.pose(frame, world, t_ns);
+    X_WC = {X.translation().x(), X.translation().y(), std::atan2(X.linear()(1, 0), X.linear()(0, 0))};
+  } else if (frame == vehicle) {
+    X_WC = odometry_pose(survey.ego, t_ns, what);
+  } else {
+    throw std::out_of_range(fmt::format("{} is in frame '{}': neither the odometry's world frame '{}' nor its vehicle frame '{}' "
+                                        "(map the ego as a /tf chain to use other frames)",
+                                        what, frame, world, vehicle));
+  }
+  return compose(X_WC, X_CO);
+}
+
+// The boxes of an OpenLABEL file beside the log (read whole), in the ego's world frame and in time
+// order, each cuboid moved from its coordinate system (in_world). Planar: z and the height are
+// dropped.
+std::vector<ObjectBox> openlabel_boxes(Survey& survey, const Mapping& mapping) {
+  const openlabel::Labels labels = openlabel::read_openlabel(mapping.openlabel);
   std::vector<ObjectBox> boxes;
   for (const openlabel::LabelledBox& b : labels.boxes) {
-    Pose2 X_WO{b.x_m, b.y_m, b.yaw_rad};
-    const std::string& frame = b.coordinate_system;
+    Pose2 X_WO;
     const std::string what = fmt::format("object '{}''s cuboid", b.uid);
     try {
-      if (!frame.empty() && frame != world) {
-        Pose2 X_WC;
-        if (tf) {
-          const Eigen::Isometry3d X = survey.tf.pose(frame, world, b.t_ns);
-          X_WC = {X.translation().x(), X.translation().y(), std::atan2(X.linear()(1, 0), X.linear()(0, 0))};
-        } else if (frame == vehicle) {
-          X_WC = odometry_pose(survey.ego, b.t_ns, what);
-        } else {
-          throw std::out_of_range(fmt::format("{} is in coordinate system '{}': neither the odometry's world frame '{}' nor its "
-                                              "vehicle frame '{}' (map the ego as a /tf chain to use other frames)",
-                                              what, frame, world, vehicle));
-        }
-        X_WO = compose(X_WC, X_WO);
-      }
+      X_WO = in_world(survey, mapping, b.coordinate_system, b.t_ns, Pose2{b.x_m, b.y_m, b.yaw_rad}, what);
     } catch (const std::out_of_range& e) {
       throw InputError(mapping.openlabel.string(), "openlabel.objects." + b.uid, e.what());
     } catch (const TfError& e) {
@@ -537,6 +600,36 @@ std::vector<ObjectBox> openlabel_boxes(Survey& survey, const Mapping& mapping) {
   return boxes;
 }
 
+// A scan whose frame_id is not its radar's: each return moved through /tf into the radar's frame
+// at the scan's time (the radial speed is the radar's measurement and stays).
+void into_radar_frame(ros2::RadarScan& scan, const Survey& survey, const Mapping& mapping, const std::string& radar_frame, const fs::path& log,
+                      const std::string& topic) {
+  const std::string& frame = scan.header.frame_id;
+  if (frame.empty() || frame == radar_frame) return;
+  const std::int64_t t_ns = scan.header.stamp.ns();
+  if (!mapping.ego.from_tf()) {
+    throw InputError(log.string(), topic, fmt::format("a scan at {} ns in frame '{}', not its radar's '{}': map the ego as a /tf chain to "
+                                                      "move it", t_ns, frame, radar_frame));
+  }
+  Eigen::Isometry3d X_SF;
+  try {
+    for (const std::string& f : {frame, radar_frame}) {
+      if (!survey.tf.has_frame(f)) throw TfError(fmt::format("frame '{}' is not in the /tf tree (its frames: {})", f, fmt::join(survey.tf.frames(), ", ")));
+    }
+    X_SF = survey.tf.pose(frame, radar_frame, t_ns);
+  } catch (const TfError& e) {
+    throw InputError(log.string(), topic, fmt::format("a scan at {} ns in frame '{}', moved into its radar's '{}': {}", t_ns, frame, radar_frame, e.what()));
+  }
+  for (ros2::RadarReturn& r : scan.returns) {
+    const double ground_m = r.range * std::cos(static_cast<double>(r.elevation));
+    const Eigen::Vector3d p_S = X_SF * Eigen::Vector3d(ground_m * std::cos(static_cast<double>(r.azimuth)), ground_m * std::sin(static_cast<double>(r.azimuth)),
+                                                       r.range * std::sin(static_cast<double>(r.elevation)));
+    r.range = static_cast<float>(p_S.norm());
+    r.azimuth = static_cast<float>(std::atan2(p_S.y(), p_S.x()));
+    r.elevation = static_cast<float>(std::atan2(p_S.z(), std::hypot(p_S.x(), p_S.y())));
+  }
+}
+
 // Where the import's rows go, in their files' order: a Recording in memory, or a RecordingWriter.
 struct RowSink {
   virtual ~RowSink() = default;
@@ -547,12 +640,21 @@ struct RowSink {
 
 // The ego log's rows: times increasing, no hole beyond kMaxEgoLogStep_s, the yaw unwrapped (so
 // that interpolation never turns the long way; ego.csv allows any yaw).
-void write_ego(std::vector<LoggedEgo>& ego, std::int64_t t0_ns, const fs::path& log, const std::string& topic, RowSink& sink) {
+// With skip_edges, a pose stamped as the one before is left out and counted; else refused.
+std::size_t write_ego(std::vector<LoggedEgo>& ego, std::int64_t t0_ns, const fs::path& log, const std::string& topic, bool skip_edges,
+                      RowSink& sink) {
   std::stable_sort(ego.begin(), ego.end(), [](const LoggedEgo& a, const LoggedEgo& b) { return a.t_ns < b.t_ns; });
   EgoSample previous;
+  std::size_t skipped = 0;
   for (std::size_t i = 0; i < ego.size(); ++i) {
     const LoggedEgo& e = ego[i];
-    if (i > 0 && e.t_ns == ego[i - 1].t_ns) throw InputError(log.string(), topic, fmt::format("two ego poses stamped {} ns", e.t_ns));
+    if (i > 0 && e.t_ns == ego[i - 1].t_ns) {
+      if (skip_edges) {
+        ++skipped;
+        continue;
+      }
+      throw InputError(log.string(), topic, fmt::format("two ego poses stamped {} ns (--skip-edges leaves the second out)", e.t_ns));
+    }
     EgoSample row{seconds_since(e.t_ns, t0_ns), e.x_m, e.y_m, e.yaw_rad, e.speed_mps, e.yaw_rate_radps};
     if (!(std::abs(row.x_m) <= limits::kMaxCoordinate_m && std::abs(row.y_m) <= limits::kMaxCoordinate_m && std::isfinite(row.yaw_rad) &&
           std::abs(row.speed_mps) <= limits::kMaxSpeed_mps && std::abs(row.yaw_rate_radps) <= limits::kMaxYawRate_radps)) {
@@ -570,6 +672,7 @@ void write_ego(std::vector<LoggedEgo>& ego, std::int64_t t0_ns, const fs::path& 
     sink.ego(row);
     previous = row;
   }
+  return skipped;
 }
 
 // How far the stamps of one topic's messages may run out of log order: the second pass puts them
@@ -580,8 +683,9 @@ constexpr std::int64_t kReorderWindow_ns = 2'000'000'000;
 // as cycles, each numbered, checked and its returns made targets.
 class CycleStream {
  public:
-  CycleStream(const fs::path& log, const Mapping& mapping, std::int64_t t0_ns, double first_ego_s, double last_ego_s, RowSink& sink)
-      : log_(log), mapping_(mapping), t0_ns_(t0_ns), first_ego_s_(first_ego_s), last_ego_s_(last_ego_s), sink_(sink),
+  CycleStream(const fs::path& log, const Mapping& mapping, std::int64_t t0_ns, double first_ego_s, double last_ego_s, bool skip_edges,
+              RowSink& sink)
+      : log_(log), mapping_(mapping), t0_ns_(t0_ns), first_ego_s_(first_ego_s), last_ego_s_(last_ego_s), skip_edges_(skip_edges), sink_(sink),
         last_t_s_(mapping.sensors.size(), -std::numeric_limits<double>::infinity()) {}
 
   void add(int sensor, ros2::RadarScan& scan) {
@@ -589,7 +693,12 @@ class CycleStream {
     const std::pair<std::int64_t, int> key{t_ns, sensor};
     const std::string& topic = mapping_.sensors[static_cast<std::size_t>(sensor)].topic;
     if (key == written_ || pending_.count(key)) {
-      throw InputError(log_.string(), topic, fmt::format("two scans stamped {:.9f} s after the log's start", seconds_since(t_ns, t0_ns_)));
+      if (skip_edges_) {
+        ++skipped_duplicates_;
+        return;
+      }
+      throw InputError(log_.string(), topic, fmt::format("two scans stamped {:.9f} s after the log's start (--skip-edges leaves the "
+                                                         "second out)", seconds_since(t_ns, t0_ns_)));
     }
     if (key < written_) {
       throw InputError(log_.string(), topic,
@@ -605,6 +714,8 @@ class CycleStream {
     while (!pending_.empty()) write_first();
   }
   std::size_t targets() const { return targets_; }
+  std::size_t skipped_outside() const { return skipped_outside_; }
+  std::size_t skipped_duplicates() const { return skipped_duplicates_; }
 
  private:
   void write_first() {
@@ -616,9 +727,13 @@ class CycleStream {
     const double t_s = seconds_since(key.first, t0_ns_);
     if (t_s <= last_t_s_[s]) throw InputError(log_.string(), topic, fmt::format("two scans stamped {:.9f} s after the log's start", t_s));
     if (t_s < first_ego_s_ - kEgoExtrapolationMargin_s || t_s > last_ego_s_ + kEgoExtrapolationMargin_s) {
+      if (skip_edges_) {
+        ++skipped_outside_;
+        return;
+      }
       throw InputError(log_.string(), topic,
-                       fmt::format("a scan at {:.6f} s lies beyond the ego log's {:.6f} to {:.6f} s by more than {} s", t_s,
-                                   first_ego_s_, last_ego_s_, kEgoExtrapolationMargin_s));
+                       fmt::format("a scan at {:.6f} s lies beyond the ego log's {:.6f} to {:.6f} s by more than {} s (--skip-edges "
+                                   "leaves such scans out)", t_s, first_ego_s_, last_ego_s_, kEgoExtrapolationMargin_s));
     }
     last_t_s_[s] = t_s;
     targets_buffer_.clear();
@@ -649,6 +764,8 @@ class CycleStream {
   const Mapping& mapping_;
   std::int64_t t0_ns_;
   double first_ego_s_, last_ego_s_;
+  bool skip_edges_;
+  std::size_t skipped_outside_ = 0, skipped_duplicates_ = 0;
   RowSink& sink_;
   std::map<std::pair<std::int64_t, int>, std::vector<ros2::RadarReturn>> pending_;
   std::pair<std::int64_t, int> written_{std::numeric_limits<std::int64_t>::min(), 0};
@@ -737,7 +854,13 @@ class BoxStream {
 
 // The whole import: the survey, the header, then the rows streamed into `sink`. Returns the
 // recording's header (no rows) and how many targets were written.
-std::pair<Recording, std::size_t> import_log(const fs::path& log, const DatasetImportOptions& options, const std::function<RowSink&(const Recording&)>& open_sink) {
+struct ImportedLog {
+  Recording header;  // no rows
+  std::size_t targets = 0;
+  std::vector<std::string> warnings;
+};
+
+ImportedLog import_log(const fs::path& log, const DatasetImportOptions& options, const std::function<RowSink&(const Recording&)>& open_sink) {
   if (options.mapping.empty()) {
     throw InputError(log.string(), "--mapping", "an MCAP log needs a mapping file: which topic is which radar, the ego, the boxes "
                                                 "(schemas/mcap-mapping.md)");
@@ -754,7 +877,7 @@ std::pair<Recording, std::size_t> import_log(const fs::path& log, const DatasetI
   const std::int64_t t0_ns = survey.t0_ns;
 
   Recording rec;
-  rec.name = mapping.name.empty() ? log.stem().string() : mapping.name;
+  rec.name = mapping.name.empty() ? robot_log::Log(log).name() : mapping.name;  // a file's stem, a bag's directory name
   rec.clock = Clock::per_sensor;
   for (const MappedSensor& s : mapping.sensors) rec.sensors.push_back(s.sensor);
   mount_from_tf(survey, log, mapping, rec);
@@ -765,7 +888,8 @@ std::pair<Recording, std::size_t> import_log(const fs::path& log, const DatasetI
       throw InputError(log.string(), mapped.topic, fmt::format("sensor '{}' has one scan: no step shows its cycle time (give the mapping's "
                                                                "sensors[{}].cycle_time_s)", mapped.sensor.id, s));
     }
-    rec.sensors[s].cycle_time_s = mapped.cycle_time_s.value_or(steps.median() / 1e6);
+    // Not value_or: the median of no steps must not be evaluated.
+    rec.sensors[s].cycle_time_s = mapped.cycle_time_s ? *mapped.cycle_time_s : steps.median() / 1e6;
     if (!(rec.sensors[s].cycle_time_s > 0.0 && rec.sensors[s].cycle_time_s <= limits::kMaxCycleTime_s)) {
       throw InputError(log.string(), mapped.topic, fmt::format("the scans' median step {} s is no cycle time", rec.sensors[s].cycle_time_s));
     }
@@ -783,27 +907,54 @@ std::pair<Recording, std::size_t> import_log(const fs::path& log, const DatasetI
   }
   rec.cycle_time_s = mapping.annotation_step_s.value_or(survey.annotation_steps_us.empty() ? rec.sensors.front().cycle_time_s
                                                                                           : survey.annotation_steps_us.median() / 1e6);
-  rec.description = fmt::format("MCAP log {}: {} radar{} on their own clocks, {} annotated objects", log.filename().string(),
+  const robot_log::Log source(log);
+  rec.description = fmt::format("{} {}: {} radar{} on their own clocks, {} annotated objects", source.kind(), source.name(),
                                 rec.sensors.size(), rec.sensors.size() == 1 ? "" : "s", rec.objects.size());
   rec.source = {{"importer", "rcsim import --from mcap"},
-                {"log", log.filename().string()},
+                {"log", fs::path(log).lexically_normal().filename().string().empty() ? source.name() : log.filename().string()},
                 {"mapping", options.mapping.filename().string()},
                 {"boxes", mapping.openlabel.empty() ? "topic " + mapping.objects_topic : "OpenLABEL " + mapping.openlabel.filename().string()},
                 {"first_timestamp_ns", t0_ns},
-                {"profile", survey.profile},
-                {"library", survey.library}};
+                {"profile", survey.log.profile},
+                {"library", survey.log.library}};
 
   RowSink& sink = open_sink(rec);
-  write_ego(survey.ego, t0_ns, log, mapping.ego.from_tf() ? mapping.ego.tf_topic : mapping.ego.topic, sink);
-  CycleStream cycles(log, mapping, t0_ns, seconds_since(survey.ego.front().t_ns, t0_ns), seconds_since(survey.ego.back().t_ns, t0_ns), sink);
+  const std::size_t ego_duplicates =
+      write_ego(survey.ego, t0_ns, log, mapping.ego.from_tf() ? mapping.ego.tf_topic : mapping.ego.topic, options.skip_edges, sink);
+  CycleStream cycles(log, mapping, t0_ns, seconds_since(survey.ego.front().t_ns, t0_ns), seconds_since(survey.ego.back().t_ns, t0_ns),
+                     options.skip_edges, sink);
   BoxStream boxes(log, mapping, survey, t0_ns, sink);
   for (const ObjectBox& b : labelled) boxes.add(b.object, b.box);
+  std::vector<std::string> radar_frames;
+  for (std::size_t s = 0; s < mapping.sensors.size(); ++s) radar_frames.push_back(mapping.sensors[s].frame.empty() ? survey.scan_frames[s] : mapping.sensors[s].frame);
   LogVisitor visit;
-  visit.scan = [&](int sensor, ros2::RadarScan& scan) { cycles.add(sensor, scan); };
-  visit.box = [&](const foxglove::SceneBox& b) { boxes.add(survey.object_index.at(std::string(b.id)), logged_box(b)); };
+  visit.scan = [&](int sensor, ros2::RadarScan& scan) {
+    const auto s = static_cast<std::size_t>(sensor);
+    into_radar_frame(scan, survey, mapping, radar_frames[s], log, mapping.sensors[s].topic);
+    cycles.add(sensor, scan);
+  };
+  // Each entity's box moved from its frame_id into the world.
+  visit.box = [&](const foxglove::SceneBox& b) {
+    LoggedBox box = logged_box(b);
+    const std::string what = fmt::format("entity '{}' at {} ns", b.id, b.t_ns);
+    try {
+      const Pose2 X_WO = in_world(survey, mapping, std::string(b.frame_id), b.t_ns, Pose2{b.x_m, b.y_m, b.yaw_rad}, what);
+      box.x_m = X_WO.x_m, box.y_m = X_WO.y_m, box.yaw_rad = as_float(X_WO.yaw_rad);
+    } catch (const std::out_of_range& e) {
+      throw InputError(log.string(), mapping.objects_topic, e.what());
+    } catch (const TfError& e) {
+      throw InputError(log.string(), mapping.objects_topic, what + ": " + e.what());
+    }
+    boxes.add(survey.object_index.at(std::string(b.id)), box);
+  };
   read_log(log, mapping, visit);
   cycles.finish(), boxes.finish();
-  return {std::move(rec), cycles.targets()};
+  ImportedLog imported{std::move(rec), cycles.targets(), survey.log.warnings};
+  if (options.skip_edges) {
+    imported.warnings.push_back(fmt::format("--skip-edges left out {} scan(s) beyond the ego log, {} scan(s) and {} ego pose(s) stamped "
+                                            "as the one before", cycles.skipped_outside(), cycles.skipped_duplicates(), ego_duplicates));
+  }
+  return imported;
 }
 
 // Rows into a Recording.
@@ -842,11 +993,11 @@ struct WrittenRows : RowSink {
 DatasetRecording import_mcap(const fs::path& log, const DatasetImportOptions& options) {
   DatasetRecording out;
   std::unique_ptr<RecordingRows> rows;
-  auto [header, targets] = import_log(log, options, [&](const Recording& h) -> RowSink& {
-    out.recording = h;
-    rows = std::make_unique<RecordingRows>(out.recording);
-    return *rows;
-  });
+  out.warnings = import_log(log, options, [&](const Recording& h) -> RowSink& {
+                   out.recording = h;
+                   rows = std::make_unique<RecordingRows>(out.recording);
+                   return *rows;
+                 }).warnings;
   return out;
 }
 
@@ -860,13 +1011,14 @@ ImportSummary import_mcap_to(const fs::path& log, const DatasetImportOptions& op
     void box(std::size_t object, const AnnotatedBox& b) override { inner->box(object, b); }
     void cycle(const SensorCycle& c, const std::vector<RecordedTarget>& targets) override { inner->cycle(c, targets), ++*cycles; }
   } counting;
-  auto [header, targets] = import_log(log, options, [&](const Recording& h) -> RowSink& {
+  const ImportedLog imported = import_log(log, options, [&](const Recording& h) -> RowSink& {
     rows = std::make_unique<WrittenRows>(dir, h);
     counting.inner = rows.get(), counting.cycles = &cycles;
     return counting;
   });
-  rows->writer.finish(header);
-  return {header.name, cycles, header.sensors.size(), header.objects.size(), targets};
+  rows->writer.finish(imported.header);
+  const Recording& header = imported.header;
+  return {header.name, cycles, header.sensors.size(), header.objects.size(), imported.targets, imported.warnings};
 }
 
 }  // namespace rcsim::replay

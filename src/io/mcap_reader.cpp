@@ -98,11 +98,11 @@ Reader::Reader(const std::filesystem::path& path) : path_(path), in_(path, std::
     return bytes;
   };
   const std::string magic(reinterpret_cast<const char*>(kMagic), sizeof kMagic);
-  if (size_ < 2 * sizeof kMagic + kFooterRecordBytes || read_at(0, sizeof kMagic) != magic) {
-    fail("the start", 0, "not an MCAP file (no magic 0x89 MCAP0)");
-  }
-  if (read_at(size_ - sizeof kMagic, sizeof kMagic) != magic) {
-    fail("the end", size_ - sizeof kMagic, "no closing magic: the file is truncated or still being written");
+  if (size_ < sizeof kMagic || read_at(0, sizeof kMagic) != magic) fail("the start", 0, "not an MCAP file (no magic 0x89 MCAP0)");
+  if (size_ < 2 * sizeof kMagic + kFooterRecordBytes || read_at(size_ - sizeof kMagic, sizeof kMagic) != magic) {
+    // A recorder that stopped before writing its footer: read up to the last whole record.
+    unfinished_ = true;
+    return;
   }
   const std::uint64_t footer_at = size_ - sizeof kMagic - kFooterRecordBytes;
   const std::string footer = read_at(footer_at, kFooterRecordBytes);
@@ -133,29 +133,73 @@ void Reader::for_each_message(const Visit& visit) {
   in_.clear();
   in_.seekg(static_cast<std::streamoff>(sizeof kMagic));
   std::uint64_t offset = sizeof kMagic;
-  const std::uint64_t data_end = summary_.summary_start != 0 ? summary_.summary_start : size_ - sizeof kMagic - kFooterRecordBytes;
+  const std::uint64_t data_end = unfinished_ ? size_ : summary_.summary_start != 0 ? summary_.summary_start : size_ - sizeof kMagic - kFooterRecordBytes;
   bool first = true;
+  // An unfinished log ends where its last whole record does; what follows is left out, said once.
+  const auto stop_unfinished = [&](std::uint64_t at) {
+    unfinished_warning_ = fmt::format("{}: no footer (the recorder stopped before closing the log): read up to its last whole record, "
+                                      "{} of its {} bytes; the {} bytes after byte {} are left out",
+                                      path_.string(), at, size_, size_ - at, at);
+  };
   while (offset < data_end) {
     char head[9];
     in_.read(head, 9);
-    if (!in_) fail("a record", offset, "the file ends inside its opcode and length");
+    if (!in_) {
+      if (unfinished_) return stop_unfinished(offset);
+      fail("a record", offset, "the file ends inside its opcode and length");
+    }
     Cursor h(std::string_view(head, 9));
     const std::uint8_t op = h.u8();
     const std::uint64_t length = h.u64();
-    if (length > size_ - offset - 9) fail(opcode_name(op), offset, fmt::format("its length {} runs past the end of the file", length));
+    if (length > size_ - offset - 9) {
+      if (unfinished_ && !first) return stop_unfinished(offset);
+      fail(opcode_name(op), offset, fmt::format("its length {} runs past the end of the file", length));
+    }
     if (op == static_cast<std::uint8_t>(Opcode::chunk) && length > kMaxChunkBytes + 64) {
       fail("Chunk", offset, fmt::format("{} bytes: more than the 1 GiB a chunk may hold here", length));
     }
     if (first && op != static_cast<std::uint8_t>(Opcode::header)) fail(opcode_name(op), offset, "the first record is not the header");
     first = false;
+    // Attachments, metadata, indexes and statistics are not needed to read the messages: skipped
+    // unread (an attachment may be any size).
+    const bool needed = op == static_cast<std::uint8_t>(Opcode::header) || op == static_cast<std::uint8_t>(Opcode::schema) ||
+                        op == static_cast<std::uint8_t>(Opcode::channel) || op == static_cast<std::uint8_t>(Opcode::message) ||
+                        op == static_cast<std::uint8_t>(Opcode::chunk);
+    if (!needed) {
+      offset += 9 + length;
+      if (op == static_cast<std::uint8_t>(Opcode::data_end) || op == static_cast<std::uint8_t>(Opcode::footer)) break;
+      in_.seekg(static_cast<std::streamoff>(offset));
+      continue;
+    }
     // The record read once into one buffer, its content read where it lies (no copy of it).
     std::string record(9 + length, '\0');
     std::memcpy(record.data(), head, 9);
     in_.read(record.data() + 9, static_cast<std::streamsize>(length));
-    read_records(record, offset, false, visit);
+    if (!in_) {
+      if (unfinished_) return stop_unfinished(offset);
+      fail(opcode_name(op), offset, "the file ends inside it");
+    }
+    if (unfinished_) {
+      // A chunk the recorder was still writing may be damaged: the log ends before it (a refusal
+      // of a message by the visitor still stops the read).
+      bool visiting = false;
+      const Visit guarded = [&](const Message& m, const Channel& c, const Schema* schema) {
+        visiting = true;
+        visit(m, c, schema);
+        visiting = false;
+      };
+      try {
+        read_records(record, offset, false, guarded);
+      } catch (const InputError&) {
+        if (visiting || op != static_cast<std::uint8_t>(Opcode::chunk)) throw;
+        return stop_unfinished(offset);
+      }
+    } else {
+      read_records(record, offset, false, visit);
+    }
     offset += 9 + length;
-    if (op == static_cast<std::uint8_t>(Opcode::data_end) || op == static_cast<std::uint8_t>(Opcode::footer)) break;
   }
+  if (unfinished_) stop_unfinished(offset);
 }
 
 // Records in `bytes` (at `base_offset` in the file): the top level, or a chunk's records.

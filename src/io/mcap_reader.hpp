@@ -3,7 +3,9 @@
 // the summary's CRC-32 where the file gives one, and each chunk's; then visits the messages in
 // file order, each with its channel and schema, one chunk in memory at a time. A damaged file (a
 // bad CRC, a record longer than what is left, a truncated chunk, a message on a channel never
-// announced) is refused naming the file, the record and its byte offset. Chunks may be
+// announced) is refused naming the file, the record and its byte offset. A log without its footer
+// (a recorder that stopped before closing it) is read up to its last whole record, and warning()
+// says so. Attachments, metadata, indexes and statistics are skipped unread. Chunks may be
 // uncompressed or compressed with zstd or lz4 (the LZ4 frame format), decompressed by Debian's
 // libzstd and liblz4; another compression is refused, naming it, and so is a chunk inside a chunk
 // (the spec's chunks hold schemas, channels and messages). A chunk holds at most 1 GiB, and costs
@@ -56,6 +58,9 @@ class Reader {
   void for_each_message(const Visit& visit);
 
   const FileSummary& summary() const { return summary_; }
+  // After for_each_message: what a person should know of the read ("" when nothing), e.g. that an
+  // unfinished log was read up to its last whole record.
+  const std::string& warning() const { return unfinished_warning_; }
   const std::map<std::uint16_t, Channel>& channels() const { return channels_; }
   const std::map<std::uint16_t, Schema>& schemas() const { return schemas_; }
 
@@ -77,6 +82,8 @@ class Reader {
   FileSummary summary_;
   std::map<std::uint16_t, Channel> channels_;
   std::map<std::uint16_t, Schema> schemas_;
+  bool unfinished_ = false;  // no closing magic and footer
+  std::string unfinished_warning_;
 };
 
 }  // namespace rcsim::mcap

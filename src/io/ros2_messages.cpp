@@ -1,5 +1,6 @@
 #include "io/ros2_messages.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -60,6 +61,13 @@ class CdrReader {
     if (h.stamp.nanosec >= 1'000'000'000u) throw CdrError(fmt::format("header.stamp.nanosec: {} is not below 10^9", h.stamp.nanosec));
     h.frame_id = string("header.frame_id");
     return h;
+  }
+  // A uint8[] sequence's bytes where they lie (no copy).
+  std::string_view byte_sequence(const char* field) {
+    const std::uint32_t n = count(field, 1);
+    const std::string_view bytes = bytes_.substr(at_, n);
+    at_ += n;
+    return bytes;
   }
   void skip_doubles(std::size_t n, const char* field) {
     for (std::size_t i = 0; i < n; ++i) read<double>(field);
@@ -147,6 +155,123 @@ std::vector<TransformStamped> decode_tf_message(std::string_view cdr) {
     t.qw = r.read<double>("transforms[].transform.rotation.w");
   }
   return transforms;
+}
+
+namespace {
+
+// sensor_msgs/msg/PointField's datatype numbers (not foxglove.NumericType's) and their bytes.
+std::uint32_t point_field_bytes(std::uint8_t datatype) {
+  switch (datatype) {
+    case 1: case 2: return 1;  // INT8, UINT8
+    case 3: case 4: return 2;  // INT16, UINT16
+    case 5: case 6: case 7: return 4;  // INT32, UINT32, FLOAT32
+    case 8: return 8;  // FLOAT64
+    default: return 0;
+  }
+}
+
+template <typename T>
+double value_of(const unsigned char* at, bool swap) {
+  unsigned char raw[sizeof(T)];
+  std::memcpy(raw, at, sizeof(T));
+  if (swap) std::reverse(raw, raw + sizeof(T));
+  T value;
+  std::memcpy(&value, raw, sizeof(T));
+  return static_cast<double>(value);
+}
+
+double point_field_value(const unsigned char* at, std::uint8_t datatype, bool swap) {
+  switch (datatype) {
+    case 1: return value_of<std::int8_t>(at, swap);
+    case 2: return value_of<std::uint8_t>(at, swap);
+    case 3: return value_of<std::int16_t>(at, swap);
+    case 4: return value_of<std::uint16_t>(at, swap);
+    case 5: return value_of<std::int32_t>(at, swap);
+    case 6: return value_of<std::uint32_t>(at, swap);
+    case 7: return value_of<float>(at, swap);
+    default: return value_of<double>(at, swap);
+  }
+}
+
+}  // namespace
+
+CloudPoints decode_point_cloud2(std::string_view cdr, const std::vector<std::string>& wanted, std::uint64_t max_points) {
+  CdrReader r(cdr);
+  CloudPoints cloud;
+  cloud.header = r.header();
+  const auto height = r.read<std::uint32_t>("height");
+  const auto width = r.read<std::uint32_t>("width");
+  // A PointField is at least a name's count (4), an offset (4), a datatype (1, padded to 4) and a count (4).
+  const std::uint32_t n_fields = r.count("fields", 16);
+  std::vector<PointField> fields(n_fields);
+  for (PointField& f : fields) {
+    f.name = r.string("fields[].name");
+    f.offset = r.read<std::uint32_t>("fields[].offset");
+    f.datatype = r.read<std::uint8_t>("fields[].datatype");
+    f.count = r.read<std::uint32_t>("fields[].count");
+  }
+  const bool big_endian = r.read<std::uint8_t>("is_bigendian") != 0;
+  const auto point_step = r.read<std::uint32_t>("point_step");
+  const auto row_step = r.read<std::uint32_t>("row_step");
+  const std::string_view data = r.byte_sequence("data");
+  cloud.is_dense = r.read<std::uint8_t>("is_dense") != 0;
+  for (const PointField& f : fields) cloud.field_names.push_back(f.name);
+
+  // The fields asked for: present, of a known type, within the point, not overlapping.
+  const auto listed = [&] {
+    std::string names;
+    for (const PointField& f : fields) names += (names.empty() ? "" : ", ") + f.name;
+    return names.empty() ? std::string("none") : names;
+  };
+  std::vector<const PointField*> used;
+  for (const std::string& name : wanted) {
+    const auto f = std::find_if(fields.begin(), fields.end(), [&](const PointField& p) { return p.name == name; });
+    if (f == fields.end()) throw CdrError(fmt::format("fields: no field '{}' (the cloud's fields: {})", name, listed()));
+    const std::uint32_t bytes = point_field_bytes(f->datatype);
+    if (bytes == 0) throw CdrError(fmt::format("fields['{}'].datatype: {} is no PointField datatype (1 to 8)", name, f->datatype));
+    if (f->offset > point_step || bytes > point_step - f->offset) {
+      throw CdrError(fmt::format("fields['{}']: offset {} and {} byte(s) run past point_step {}", name, f->offset, bytes, point_step));
+    }
+    for (const PointField* other : used) {
+      const std::uint32_t other_bytes = point_field_bytes(other->datatype);
+      if (other != &*f && f->offset < other->offset + other_bytes && other->offset < f->offset + bytes) {
+        throw CdrError(fmt::format("fields['{}'] and fields['{}'] overlap", name, other->name));
+      }
+    }
+    used.push_back(&*f);
+  }
+  // The points: height rows of width points, each row row_step bytes apart; the count checked
+  // against the bytes behind it before anything is allocated.
+  const std::uint64_t points = std::uint64_t{height} * width;
+  if (points > 0 && (point_step == 0 || std::uint64_t{width} * point_step > row_step || std::uint64_t{height} * row_step > data.size())) {
+    throw CdrError(fmt::format("data: {} x {} points of {} bytes in rows of {} bytes need more than its {} bytes", height, width,
+                               point_step, row_step, data.size()));
+  }
+  if (points > limits::kMaxReturnsPerScan) {
+    throw CdrError(fmt::format("{} points in one cloud exceed the limit of {} (schemas/limits.md)", points, limits::kMaxReturnsPerScan));
+  }
+  if (points > max_points) throw CdrError(fmt::format("{} points exceed the {} the log has left", points, max_points));
+  const bool swap = big_endian != (std::endian::native == std::endian::big);
+  cloud.field_count = wanted.size();
+  cloud.values.reserve(static_cast<std::size_t>(points) * wanted.size());
+  std::vector<double> point(wanted.size());
+  for (std::uint32_t row = 0; row < height; ++row) {
+    for (std::uint32_t col = 0; col < width; ++col) {
+      const auto* at = reinterpret_cast<const unsigned char*>(data.data()) + std::uint64_t{row} * row_step + std::uint64_t{col} * point_step;
+      bool finite = true;
+      for (std::size_t k = 0; k < used.size(); ++k) {
+        point[k] = point_field_value(at + used[k]->offset, used[k]->datatype, swap);
+        finite = finite && std::isfinite(point[k]);
+      }
+      // A cloud that is not dense may hold invalid points (NaN): left out and counted.
+      if (!finite && !cloud.is_dense) {
+        ++cloud.invalid_points;
+        continue;
+      }
+      cloud.values.insert(cloud.values.end(), point.begin(), point.end());
+    }
+  }
+  return cloud;
 }
 
 double yaw_of_quaternion(double qx, double qy, double qz, double qw) {

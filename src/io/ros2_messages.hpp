@@ -1,7 +1,8 @@
 #pragma once
 // ROS 2 messages as MCAP logs carry them (message encoding "cdr": OMG CDR, the XCDR1 rules ROS 2's
 // middlewares use), read for `rcsim import --from mcap`: radar_msgs/msg/RadarScan (a radar's
-// detections of one cycle) and nav_msgs/msg/Odometry (the ego). Little- and big-endian
+// detections of one cycle), sensor_msgs/msg/PointCloud2 (a radar driver's detections as points),
+// nav_msgs/msg/Odometry (the ego) and tf2_msgs/msg/TFMessage. Little- and big-endian
 // encapsulations both read; a message that ends before its fields do, or holds a count beyond
 // what is left, is refused (CdrError naming the field).
 #include <cstdint>
@@ -60,14 +61,45 @@ struct TransformStamped {
   double qx = 0.0, qy = 0.0, qz = 0.0, qw = 1.0;
 };
 
+// sensor_msgs/msg/PointField: a named value of each point, at `offset` bytes into it, of a
+// `datatype` (INT8 1, UINT8 2, INT16 3, UINT16 4, INT32 5, UINT32 6, FLOAT32 7, FLOAT64 8: not
+// foxglove.NumericType's numbers), `count` of them (the first is read).
+struct PointField {
+  std::string name;
+  std::uint32_t offset = 0;
+  std::uint8_t datatype = 0;
+  std::uint32_t count = 1;
+};
+
+// A sensor_msgs/msg/PointCloud2 read for the fields asked for: per point their values in the order
+// asked (any datatype, either endianness, rows row_step apart, points point_step apart), held in
+// one array. Where the cloud is not dense, points with a value that is not finite are left out and
+// counted.
+struct CloudPoints {
+  Header header;
+  std::vector<std::string> field_names;  // every field the cloud has, in its order
+  bool is_dense = true;
+  std::size_t field_count = 0;
+  std::vector<double> values;  // point i's field k at values[i * field_count + k]
+  std::size_t invalid_points = 0;
+  std::size_t size() const { return field_count == 0 ? 0 : values.size() / field_count; }
+};
+
 inline constexpr std::string_view kRadarScanSchema = "radar_msgs/msg/RadarScan";
 inline constexpr std::string_view kOdometrySchema = "nav_msgs/msg/Odometry";
 inline constexpr std::string_view kTfMessageSchema = "tf2_msgs/msg/TFMessage";
+inline constexpr std::string_view kPointCloud2Schema = "sensor_msgs/msg/PointCloud2";
 
 // A RadarScan of at most `max_returns` returns (and at most limits::kMaxReturnsPerScan): a count
 // beyond either, or beyond the bytes behind it, is refused (CdrError) before anything is allocated.
 RadarScan decode_radar_scan(std::string_view cdr, std::uint64_t max_returns = limits::kMaxReturnsPerScan);
 Odometry decode_odometry(std::string_view cdr);
+// A PointCloud2's fields `wanted`; refused (CdrError): a field asked for that the cloud lacks
+// (listing the fields it has), of no known datatype, running past point_step, or overlapping
+// another asked for; points that need more bytes than the data holds; more than `max_points` (and
+// limits::kMaxReturnsPerScan) points, checked before anything is allocated.
+CloudPoints decode_point_cloud2(std::string_view cdr, const std::vector<std::string>& wanted,
+                                std::uint64_t max_points = limits::kMaxReturnsPerScan);
 std::vector<TransformStamped> decode_tf_message(std::string_view cdr);
 
 // The yaw of a quaternion (rotation about z, ZYX convention), rad in (-pi, pi].

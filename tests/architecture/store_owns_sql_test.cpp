@@ -1,6 +1,7 @@
 // One owner of the report database (docs/architecture.md): outside replay/store/ no source of the
 // product or its bench tools names SQLite or writes SQL; they hold a ReportDatabase and ask the
-// store (replay/store/report_database.hpp).
+// store (replay/store/report_database.hpp). The one other database read is a robot's: a ROS 2 bag's
+// SQLite storage files, read by src/io/rosbag2_reader.cpp, which never opens a report.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -22,7 +23,7 @@ TEST(StoreOwnsSql, NoSourceOutsideTheStoreNamesSqliteOrWritesSql) {
       const auto ext = entry.path().extension();
       if (ext != ".cpp" && ext != ".hpp") continue;
       const std::string rel = fs::relative(entry.path(), root).string();
-      if (rel.rfind("replay/store/", 0) == 0) continue;
+      if (rel.rfind("replay/store/", 0) == 0 || rel == "src/io/rosbag2_reader.cpp") continue;
       ++files;
       std::ifstream in(entry.path());
       std::string line;

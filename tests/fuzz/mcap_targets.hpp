@@ -114,18 +114,45 @@ inline std::string point_cloud(std::int64_t t_ns, double ego_x_m) {
          R"("point_stride": 20, "fields": [)" + fields + R"(], "data": ")" + base64 + R"("})";
 }
 
+// The same three points as a sensor_msgs/msg/PointCloud2 (float32 x, y, z, range_rate, amplitude,
+// little-endian, one row).
+inline std::string point_cloud2(std::int64_t t_ns, double ego_x_m) {
+  std::string b = header(t_ns, "front");
+  put(b, std::uint32_t{1});  // height
+  put(b, std::uint32_t{3});  // width
+  put(b, std::uint32_t{5});  // fields
+  for (int j = 0; j < 5; ++j) {
+    static const char* kNames[] = {"x", "y", "z", "range_rate", "amplitude"};
+    put(b, static_cast<std::uint32_t>(std::strlen(kNames[j]) + 1));
+    b += std::string(kNames[j]) + '\0';
+    put(b, static_cast<std::uint32_t>(4 * j));
+    put(b, std::uint8_t{7});  // FLOAT32
+    put(b, std::uint32_t{1});
+  }
+  put(b, std::uint8_t{0});     // is_bigendian
+  put(b, std::uint32_t{20});   // point_step
+  put(b, std::uint32_t{60});   // row_step
+  put(b, std::uint32_t{60});   // data
+  for (int i = 0; i < 3; ++i) {
+    for (const float v : {static_cast<float>(20.0 - ego_x_m - 3.7), static_cast<float>(-0.6 + 0.6 * i), 0.2f, -1.0f, 30.0f}) put(b, v);
+  }
+  put(b, std::uint8_t{1});  // is_dense
+  return b;
+}
+
 }  // namespace mcap_seed
 
 // Logs of 10 radar cycles at 20 Hz, odometry at 10 Hz and boxes at 10 Hz: the radar's as
-// RadarScan, as foxglove.PointCloud, and under another schema.
+// RadarScan, as foxglove.PointCloud, as sensor_msgs/msg/PointCloud2, and under another schema.
 inline std::vector<std::pair<std::string, std::vector<std::uint8_t>>> mcap_seeds() {
   std::vector<std::pair<std::string, std::vector<std::uint8_t>>> seeds;
-  for (const int kind : {0, 1, 2}) {  // RadarScan, another schema, PointCloud
-    const bool wrong_schema = kind == 1, cloud = kind == 2;
+  for (const int kind : {0, 1, 2, 3}) {  // RadarScan, another schema, PointCloud, PointCloud2
+    const bool wrong_schema = kind == 1, cloud = kind == 2, cloud2 = kind == 3;
     std::ostringstream out;
     mcap::Writer writer(out, "ros2");
-    const auto scan = cloud ? writer.add_schema("foxglove.PointCloud", "jsonschema", "{}")
-                            : writer.add_schema(wrong_schema ? "sensor_msgs/msg/PointCloud2" : "radar_msgs/msg/RadarScan", "ros2msg", "");
+    const auto scan = cloud    ? writer.add_schema("foxglove.PointCloud", "jsonschema", "{}")
+                      : cloud2 ? writer.add_schema("sensor_msgs/msg/PointCloud2", "ros2msg", "")
+                               : writer.add_schema(wrong_schema ? "sensor_msgs/msg/Imu" : "radar_msgs/msg/RadarScan", "ros2msg", "");
     const auto odom = writer.add_schema("nav_msgs/msg/Odometry", "ros2msg", "");
     const auto scene = writer.add_schema("foxglove.SceneUpdate", "jsonschema", "{}");
     const auto scan_channel = writer.add_channel("/radar/front/scan", cloud ? "json" : "cdr", scan);
@@ -139,11 +166,13 @@ inline std::vector<std::pair<std::string, std::vector<std::uint8_t>>> mcap_seeds
         writer.write_message(scene_channel, static_cast<std::uint64_t>(t_ns), mcap_seed::scene_update(t_ns));
       }
       writer.write_message(scan_channel, static_cast<std::uint64_t>(t_ns),
-                           cloud ? mcap_seed::point_cloud(t_ns, 0.05 * k) : mcap_seed::radar_scan(t_ns, 0.05 * k));
+                           cloud    ? mcap_seed::point_cloud(t_ns, 0.05 * k)
+                           : cloud2 ? mcap_seed::point_cloud2(t_ns, 0.05 * k)
+                                    : mcap_seed::radar_scan(t_ns, 0.05 * k));
     }
     writer.finish();
     const std::string bytes = out.str();
-    seeds.emplace_back(cloud ? "point_cloud.mcap" : wrong_schema ? "wrong_schema.mcap" : "drive.mcap",
+    seeds.emplace_back(cloud ? "point_cloud.mcap" : cloud2 ? "point_cloud2.mcap" : wrong_schema ? "wrong_schema.mcap" : "drive.mcap",
                        std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
   }
   return seeds;

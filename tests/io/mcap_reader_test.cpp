@@ -47,12 +47,20 @@ class McapReader : public rcsim::testing::ScratchDirTest {
 
 TEST_F(McapReader, AnIntactFileReadsWhole) { EXPECT_EQ(read_back(small_file()), "read 3"); }
 
-TEST_F(McapReader, NoMcapOrATruncatedFileIsRefusedAtItsEnds) {
+// No MCAP at all is refused; a file cut short (a recorder that crashed, issue 50) is read up to its
+// last whole record, and the reader's warning says what was left out.
+TEST_F(McapReader, NoMcapIsRefusedAndATruncatedFileReadsUpToItsLastWholeRecord) {
   EXPECT_EQ(read_back(std::string(64, 'x')), "a.mcap: the start at byte 0: not an MCAP file (no magic 0x89 MCAP0)");
   const std::string whole = small_file();
   const std::string cut = whole.substr(0, whole.size() - 20);
-  EXPECT_EQ(read_back(cut), "a.mcap: the end at byte " + std::to_string(cut.size() - 8) +
-                                ": no closing magic: the file is truncated or still being written");
+  EXPECT_EQ(read_back(cut), "read 3");
+  mcap::Reader reader(write_file("cut.mcap", cut));
+  reader.for_each_message([](const mcap::Message&, const mcap::Channel&, const mcap::Schema*) {});
+  EXPECT_NE(reader.warning().find("no footer (the recorder stopped before closing the log): read up to its last whole record"),
+            std::string::npos) << reader.warning();
+  // Cut inside the first message: nothing of it read, the rest left out.
+  const std::size_t message = whole.find('\x05', 8);
+  EXPECT_EQ(read_back(whole.substr(0, message + 12)), "read 0");
 }
 
 TEST_F(McapReader, AByteChangedInTheSummaryOrAChunkIsFoundByItsCrc) {
