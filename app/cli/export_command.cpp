@@ -29,6 +29,7 @@ struct ExportArgs {
   std::string table;
   std::string format = "csv";
   std::string output;  // empty: stdout
+  std::string clock = "run";  // --format mcap: run | log
 };
 
 // A CSV field: numbers as the shortest text that reads back to the same double, texts quoted
@@ -100,7 +101,13 @@ void export_mcap(const ExportArgs& args) {
   const auto db = replay::open_report_database_for_reading(args.db_path);
   (void)replay::report::select_runs(*db, args.db_path, {args.run_id}, 1);  // an unknown run is refused by name
   AtomicFileWriter file(args.output);
-  const replay::McapReplayCounts counts = reading(args.db_path, [&] { return replay::write_run_mcap(*db, args.run_id, file.stream()); });
+  const replay::McapClock clock = args.clock == "log" ? replay::McapClock::log : replay::McapClock::run;
+  replay::McapReplayCounts counts;
+  try {
+    counts = reading(args.db_path, [&] { return replay::write_run_mcap(*db, args.run_id, file.stream(), clock); });
+  } catch (const std::invalid_argument& e) {
+    throw InputError(args.db_path, fmt::format("run {}", args.run_id), e.what());
+  }
   file.commit();
   std::cerr << fmt::format("rcsim export: run {} as MCAP, {} cycles of {} sensor(s), {} messages, {} bytes written to {}\n",
                            args.run_id, counts.cycles, counts.sensors, counts.messages, counts.bytes, args.output);
@@ -148,7 +155,15 @@ void add_export_command(CLI::App& app) {
       ->check(CLI::IsMember({"csv", "jsonl", "mcap"}))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "file to write (atomically); default: standard output");
-  cmd->callback([args] { run_export(*args); });
+  cmd->add_option("--clock", args->clock,
+                  "(--format mcap) run: times from the recording's start; log: the log's own clock (the recording's "
+                  "source.first_timestamp_ns added), so the export overlays the original log in Foxglove")
+      ->check(CLI::IsMember({"run", "log"}))
+      ->capture_default_str();
+  cmd->callback([args] {
+    if (args->clock != "run" && args->format != "mcap") throw CLI::ValidationError("--clock", "is for --format mcap");
+    run_export(*args);
+  });
 }
 
 }  // namespace rcsim::cli

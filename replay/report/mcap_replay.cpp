@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <variant>
 #include <vector>
 
@@ -34,7 +35,8 @@ const std::map<std::string, std::string> kFormat = {{"format", "rcsim-mcap-repla
 std::string cycle_figures_schema() {
   Json properties = Json::object();
   for (const DecodedColumn& c : decoded_columns(DecodedTable::cycles)) {
-    properties[c.name] = {{"type", c.sql_type == "TEXT" ? "string" : (c.sql_type == "INTEGER" ? "integer" : "number")}};
+    // A figure a run did not compute is null (a --store summary run's, a cycle without pairs).
+    properties[c.name] = {{"type", Json::array({c.sql_type == "TEXT" ? "string" : (c.sql_type == "INTEGER" ? "integer" : "number"), "null"})}};
   }
   return Json{{"title", "rcsim.CycleFigures"}, {"type", "object"}, {"properties", properties}}.dump();
 }
@@ -85,8 +87,9 @@ struct CycleBlock {
 
 class McapReplayWriter {
  public:
-  McapReplayWriter(ReportDatabase& db, std::int64_t run_id, std::ostream& out)
+  McapReplayWriter(ReportDatabase& db, std::int64_t run_id, std::ostream& out, McapClock clock)
       : db_(db), run_id_(run_id), run_(report::load_run(db, run_id)), writer_(out, "", mcap::Compression::zstd) {
+    if (clock == McapClock::log) offset_ns_ = first_timestamp_ns(run_.info.recording_source);
     scene_ = writer_.add_schema("foxglove.SceneUpdate", "jsonschema", foxglove::scene_update_schema());
     transform_ = writer_.add_schema("foxglove.FrameTransform", "jsonschema", foxglove::frame_transform_schema());
     figures_ = writer_.add_schema("rcsim.CycleFigures", "jsonschema", cycle_figures_schema());
@@ -103,6 +106,8 @@ class McapReplayWriter {
       sensor_channels_.push_back(c);
     }
     lifetime_ns_ = time_ns(run_.info.cycle_time_s);
+    // On own clocks a sensor's targets stay until its next cycle replaces them (lifetime 0).
+    target_lifetime_ns_ = run_.on_own_clocks() ? 0 : lifetime_ns_;
     for (const DecodedColumn& c : decoded_columns(DecodedTable::cycles)) figure_keys_.push_back(foxglove::text::quoted(c.name) + ":");
     for (std::size_t o = 0; o < run_.objects.size(); ++o) object_labels_.push_back(foxglove::text::quoted(run_.object_label(static_cast<int>(o))));
     for (SensorChannels& c : sensor_channels_) c.frame_json = foxglove::text::quoted(c.frame);
@@ -157,15 +162,33 @@ class McapReplayWriter {
     }
   }
 
+  // A run time on the export's clock.
+  std::uint64_t ns_of(double t_s) const { return time_ns(t_s) + offset_ns_; }
+
+  static std::uint64_t first_timestamp_ns(const std::string& source) {
+    const Json json = Json::parse(source, nullptr, false);
+    if (json.is_object() && json.contains("first_timestamp_ns") && json["first_timestamp_ns"].is_number_unsigned()) {
+      return json["first_timestamp_ns"].get<std::uint64_t>();
+    }
+    throw std::invalid_argument("--clock log: the run's recording names no source.first_timestamp_ns (it was not imported from a log); "
+                                "export it on the run's clock");
+  }
+
   void write_block(const CycleBlock& b) {
     for (const auto& [cycle, sensors] : b.cycles) {
-      const std::uint64_t ns = time_ns(sensors.front().t_s);
+      const std::uint64_t ns = ns_of(sensors.front().t_s);
       if (!static_written_) write_static(ns), static_written_ = true;
       write_ego(ns, sensors);
       write_boxes(ns, b.boxes.count(cycle) ? b.boxes.at(cycle) : std::vector<StoredObjectState>{});
       const auto targets = b.targets.find(cycle);
-      for (std::size_t i = 0; i < run_.sensors.size(); ++i) {
-        write_targets(ns, static_cast<int>(i), targets == b.targets.end() ? nullptr : &targets->second);
+      const std::vector<StoredTarget>* cycle_targets = targets == b.targets.end() ? nullptr : &targets->second;
+      if (run_.on_own_clocks()) {
+        // Only the sensors of this cycle: another's entities would blank its targets until its next.
+        for (const StoredCycle& c : sensors) {
+          if (c.sensor >= 0 && static_cast<std::size_t>(c.sensor) < run_.sensors.size()) write_targets(ns_of(c.t_s), c.sensor, cycle_targets);
+        }
+      } else {
+        for (std::size_t i = 0; i < run_.sensors.size(); ++i) write_targets(ns, static_cast<int>(i), cycle_targets);
       }
       for (const auto& row : b.figures.at(cycle)) {
         const auto sensor = static_cast<std::size_t>(std::get<std::int64_t>(row[2]));
@@ -203,7 +226,8 @@ class McapReplayWriter {
   void write_targets(std::uint64_t ns, int sensor, const std::vector<StoredTarget>* targets) {
     static const std::string recorded_id = foxglove::text::quoted("recorded"), simulated_id = foxglove::text::quoted("simulated");
     const SensorChannels& channels = sensor_channels_[static_cast<std::size_t>(sensor)];
-    foxglove::text::Entity recorded(ns, channels.frame_json, recorded_id, lifetime_ns_), simulated(ns, channels.frame_json, simulated_id, lifetime_ns_);
+    foxglove::text::Entity recorded(ns, channels.frame_json, recorded_id, target_lifetime_ns_),
+        simulated(ns, channels.frame_json, simulated_id, target_lifetime_ns_);
     if (targets != nullptr) {
       for (const StoredTarget& t : *targets) {
         if (t.sensor != sensor) continue;
@@ -229,7 +253,7 @@ class McapReplayWriter {
   std::vector<SensorChannels> sensor_channels_;
   std::vector<std::string> frames_;
   std::vector<std::string> figure_keys_, object_labels_;  // quoted, once
-  std::uint64_t lifetime_ns_ = 0;
+  std::uint64_t lifetime_ns_ = 0, target_lifetime_ns_ = 0, offset_ns_ = 0;
   bool static_written_ = false, ego_at_origin_ = false;
   McapReplayCounts counts_;
 };
@@ -240,8 +264,8 @@ std::string mcap_replay_topic(const std::string& sensor_id, const std::string& w
   return sensor_id.empty() ? "/rcsim/" + what : "/rcsim/" + sensor_id + "/" + what;
 }
 
-McapReplayCounts write_run_mcap(ReportDatabase& db, std::int64_t run_id, std::ostream& out) {
-  return mcap_replay_internal::McapReplayWriter(db, run_id, out).write();
+McapReplayCounts write_run_mcap(ReportDatabase& db, std::int64_t run_id, std::ostream& out, McapClock clock) {
+  return mcap_replay_internal::McapReplayWriter(db, run_id, out, clock).write();
 }
 
 }  // namespace rcsim::replay

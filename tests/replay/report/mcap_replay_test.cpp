@@ -13,10 +13,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 
 #include "app/cli/run_rcsim.hpp"
 #include "io/mcap_reader.hpp"
+#include "io/recording.hpp"
+#include "replay/replay_fixtures.hpp"
 #include "replay/store/report_store.hpp"
 #include "scratch_dir.hpp"
 
@@ -117,6 +120,48 @@ TEST_F(McapReplay, ASummaryRunHasItsFiguresAndViewFieldsButNoTargets) {
   EXPECT_EQ(figures, 51 * 2);
 }
 
+// Issue 50, item 5: on sensors' own clocks each sensor's targets are written at its own cycles
+// only, at their times, kept until its next (lifetime 0): visible all of its cycle time, never
+// blanked by another sensor's cycle. --clock log puts the times on the log's clock.
+TEST_F(McapReplay, OnOwnClocksEachSensorsTargetsAreWrittenAtItsOwnCyclesOnly) {
+  Recording own = testing::on_own_clocks(read_recording(fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / "two_in_one_cell"), {1, 2},
+                                         {0, 1}, 1);
+  const std::uint64_t first_ns = 1'700'000'000'000'000'000;
+  own.source["first_timestamp_ns"] = first_ns;
+  write_recording(dir_ / "own", own);
+  const std::string db_path = (dir_ / "own.sqlite").string();
+  const auto r = rcsim::testing::run_rcsim("replay " + (dir_ / "own").string() + " --db " + db_path);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto db = replay::open_report_database_for_reading(db_path);
+  const fs::path path = dir_ / "own.mcap";
+  {
+    std::ofstream out(path, std::ios::binary);
+    replay::write_run_mcap(*db, 1, out, replay::McapClock::log);
+  }
+  std::map<std::string, std::vector<std::uint64_t>> times;  // per sensor: its recorded entities' times
+  mcap::Reader reader(path);
+  reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& c, const mcap::Schema*) {
+    if (!c.topic.ends_with("/recorded")) return;
+    const Json entity = Json::parse(m.data)["entities"][0];
+    EXPECT_EQ(entity["lifetime"], Json({{"sec", 0}, {"nsec", 0}})) << c.topic;
+    times[c.topic].push_back(m.log_time_ns);
+  });
+  for (int s = 0; s < 2; ++s) {
+    std::vector<std::uint64_t> cycles;
+    for (int k = 0; k < own.cycle_count(); ++k) {
+      if (own.cycle_sensor(k) == s) cycles.push_back(first_ns + static_cast<std::uint64_t>(std::llround(own.cycle_t_s(k) * 1e9)));
+    }
+    const std::string topic = replay::mcap_replay_topic(own.sensors[static_cast<std::size_t>(s)].id, "recorded");
+    ASSERT_EQ(times[topic].size(), cycles.size()) << topic;
+    for (std::size_t k = 0; k < cycles.size(); ++k) EXPECT_NEAR(static_cast<double>(times[topic][k]), static_cast<double>(cycles[k]), 1e3) << k;
+  }
+  // A run whose recording came from no log has no log clock.
+  replay_and_write("standstill_1m", 1);
+  const auto synthetic = replay::open_report_database_for_reading((dir_ / "r.sqlite").string());
+  std::ostringstream sink;
+  EXPECT_THROW(replay::write_run_mcap(*synthetic, 1, sink, replay::McapClock::log), std::invalid_argument);
+}
+
 TEST_F(McapReplay, TheFormatsOwnReaderAndFoxglovesSchemasAcceptTheFile) {
   const fs::path tool = fs::path(RCSIM_SOURCE_DIR) / "tests" / "tools" / "mcap";
   if (std::system("command -v node > /dev/null 2>&1") != 0 || !fs::exists(tool / "node_modules" / "@mcap" / "core")) {
@@ -130,6 +175,12 @@ TEST_F(McapReplay, TheFormatsOwnReaderAndFoxglovesSchemasAcceptTheFile) {
   EXPECT_EQ(report["streamed"], counts.messages);
   EXPECT_EQ(report["counts"]["/rcsim/front_left/recorded"], 126);
   EXPECT_EQ(report["schemas"], Json({"foxglove.SceneUpdate:jsonschema", "foxglove.FrameTransform:jsonschema", "rcsim.CycleFigures:jsonschema"}));
+  // Issue 50, item 8: a summary run's figures (nulls where it computed none) meet the file's own
+  // rcsim.CycleFigures schema.
+  const fs::path summary = replay_and_write("two_in_one_cell", 2, "summary");
+  const auto checked_summary = rcsim::testing::run_shell_command("node " + (tool / "check_mcap.js").string() + " " + summary.string());
+  ASSERT_EQ(checked_summary.exit_code, 0) << checked_summary.output;
+  EXPECT_EQ(Json::parse(checked_summary.output)["problems"].size(), 0u) << checked_summary.output;
 }
 
 }  // namespace rcsim::mcap_replay_test

@@ -1,7 +1,7 @@
 // node check_mcap.js FILE.mcap: reads FILE with @mcap/core's indexed reader (footer, summary and
 // its CRC, chunk and message indexes) and its stream reader (every record, CRCs checked), parses
 // every JSON message and checks those under a foxglove.* schema name against Foxglove's published
-// JSON schema of that name. Prints one JSON line: chunks, schemas, messages per topic, the first
+// JSON schema of that name, and the others against the JSON Schema the file itself gives them. Prints one JSON line: chunks, schemas, messages per topic, the first
 // problems; exits 1 if there is any.
 "use strict";
 const fs = require("fs");
@@ -41,7 +41,14 @@ async function main() {
       problems.push(`${channel.topic}: not JSON: ${e.message}`);
       continue;
     }
-    if (!schema.name.startsWith("foxglove.")) continue;
+    // A schema of the file's own (rcsim.*): its JSON Schema as written in the file.
+    if (!schema.name.startsWith("foxglove.")) {
+      if (schema.encoding !== "jsonschema") continue;
+      if (!validators.has(schema.name)) validators.set(schema.name, ajv.compile(JSON.parse(decoder.decode(schema.data))));
+      const own = validators.get(schema.name);
+      if (!own(body) && problems.length < 10) problems.push(`${channel.topic}: ${ajv.errorsText(own.errors)}`);
+      continue;
+    }
     const name = schema.name.slice("foxglove.".length);
     if (!validators.has(name)) {
       if (!foxglove[name]) {
