@@ -3,7 +3,8 @@
 # of 1 h (and more), written as a ROS 2 log by the tests' tool (tests/tools/mcap/write_ros2_log.js:
 # RadarScan in CDR or foxglove.PointCloud, Odometry, SceneUpdate boxes; zstd chunks), and
 # `rcsim export --format mcap` of its replay. Times both with /usr/bin/time (wall time and peak
-# resident memory). Needs Node.js and the tool (scripts/test-tools.sh).
+# resident memory); the same drive with a 300 MiB attachment and as ROS 2 bags (sqlite3 and mcap
+# storage, split in two). Needs Node.js and the tool (scripts/test-tools.sh).
 # Usage: scripts/bench-mcap.sh [DURATIONS_S="600 3600"] [WORK_DIR=/tmp/rcsim-bench-mcap]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,6 +35,20 @@ for duration_s in $durations; do
       --detections "$detections" --mapping "$log.mapping.json" >/dev/null
     rm -rf "$work/imported"
     timed "import ($detections)" "$duration_s" "$log" build/bin/rcsim import --from mcap "$log" --mapping "$log.mapping.json" -o "$work/imported"
+  done
+  # A log with a 300 MiB attachment (skipped unread), and the drive as ROS 2 bags split in two,
+  # in either storage (issue 50).
+  log="$work/drive_${duration_s}s_attached.mcap"
+  [ -f "$log" ] || node --max-old-space-size=8000 tests/tools/mcap/write_ros2_log.js "$rec" "$log" --compression zstd \
+    --attachment-mib 300 --mapping "$log.mapping.json" >/dev/null
+  rm -rf "$work/imported"
+  timed "import (300 MiB attached)" "$duration_s" "$log" build/bin/rcsim import --from mcap "$log" --mapping "$log.mapping.json" -o "$work/imported"
+  for storage in sqlite3 mcap; do
+    bag="$work/bag_${duration_s}s_${storage}"
+    [ -f "$bag/metadata.yaml" ] || node --max-old-space-size=8000 tests/tools/mcap/write_ros2_log.js "$rec" "$bag" --compression zstd \
+      --storage "$storage" --split 2 --boxes openlabel --mapping "$bag.mapping.json" >/dev/null
+    rm -rf "$work/imported"
+    timed "import (bag, $storage)" "$duration_s" "$bag" build/bin/rcsim import --from rosbag2 "$bag" --mapping "$bag.mapping.json" -o "$work/imported"
   done
   db="$work/report_${duration_s}.sqlite"
   rm -f "$db"*
