@@ -199,11 +199,23 @@ int last_stored_cycle(SQLite::Database& db, std::int64_t run_id) {
 }
 
 int next_stored_cycle(SQLite::Database& db, std::int64_t run_id, std::int64_t from) {
-  SQLite::Statement q(db, "SELECT MIN(MAX(first_cycle, ?2)) FROM cycle_blocks WHERE run_id = ?1 AND first_cycle + cycles - 1 >= ?2");
-  q.bind(1, static_cast<std::int64_t>(run_id));
-  q.bind(2, static_cast<std::int64_t>(from));
-  if (!q.executeStep() || q.getColumn(0).isNull()) return -1;
-  const long long cycle = q.getColumn(0).getInt64();
+  // Two lookups on the primary key (run_id, first_cycle, sensor), never a scan of the run's blocks
+  // (an own-clocks run stores a block per cycle: a scan per call made an export quadratic): the
+  // blocks that start at or before `from` and reach it (a short scan back: blocks of one cycle
+  // range, one per sensor), else the first block after it.
+  SQLite::Statement covering(db, "SELECT MAX(first_cycle + cycles - 1) FROM cycle_blocks WHERE run_id = ?1 AND first_cycle <= ?2 AND "
+                                 "first_cycle > ?2 - ?3");
+  covering.bind(1, static_cast<std::int64_t>(run_id));
+  covering.bind(2, static_cast<std::int64_t>(from));
+  covering.bind(3, static_cast<std::int64_t>(kBlockCycles));
+  if (covering.executeStep() && !covering.getColumn(0).isNull() && covering.getColumn(0).getInt64() >= from) {
+    return from >= 0 && from <= std::numeric_limits<int>::max() ? static_cast<int>(from) : -1;
+  }
+  SQLite::Statement after(db, "SELECT MIN(first_cycle) FROM cycle_blocks WHERE run_id = ?1 AND first_cycle > ?2");
+  after.bind(1, static_cast<std::int64_t>(run_id));
+  after.bind(2, static_cast<std::int64_t>(from));
+  if (!after.executeStep() || after.getColumn(0).isNull()) return -1;
+  const long long cycle = after.getColumn(0).getInt64();
   return cycle >= 0 && cycle <= std::numeric_limits<int>::max() ? static_cast<int>(cycle) : -1;
 }
 

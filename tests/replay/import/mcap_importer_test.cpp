@@ -485,6 +485,22 @@ TEST(McapImportRules, OneBadMessageIsRefusedByName) {
   EXPECT_NE(nan.find("beyond the limits of schemas/limits.md"), std::string::npos) << nan;
   EXPECT_NE(nan.find("doppler_velocity nan"), std::string::npos) << nan;
   EXPECT_EQ(testing::file_bytes(dir / "out" / "targets.csv"), good) << "the earlier recording stays as it was";
+  // Issue 50, item 9: a real log's edges, a radar that starts 1 s before the odometry and a scan
+  // stamped twice: refused, saying --skip-edges; with it, left out and counted.
+  const fs::path edges = log("edges.mcap", [](int k, std::string b) {
+    const std::int64_t t0 = 1'700'000'000'000'000'000;
+    if (k == 0) return rcsim::fuzz::mcap_seed::radar_scan(t0 - 1'000'000'000, 0.0);
+    if (k == 4) return rcsim::fuzz::mcap_seed::radar_scan(t0 + 3 * 50'000'000, 0.0);
+    return b;
+  });
+  const std::string edge = refusal(edges);
+  EXPECT_NE(edge.find("two scans stamped 1.150000000 s after the log's start (--skip-edges leaves the second out)"), std::string::npos) << edge;
+  DatasetImportOptions skipping = options;
+  skipping.skip_edges = true;
+  const DatasetRecording trimmed = import_mcap(edges, skipping);
+  EXPECT_EQ(trimmed.recording.cycles.size(), 8u);
+  ASSERT_EQ(trimmed.warnings.size(), 1u);
+  EXPECT_EQ(trimmed.warnings[0], "--skip-edges left out 1 scan(s) beyond the ego log, 1 scan(s) and 0 ego pose(s) stamped as the one before");
   // Issue 50, item 3: scans that a driver leaves at stamp 0 are refused, saying how to take the
   // log's times; so taken, they import at the log's times.
   const auto unstamped = [](int k, std::string b) { return k >= 0 ? rcsim::fuzz::mcap_seed::radar_scan(0, 0.05 * k) : b; };
