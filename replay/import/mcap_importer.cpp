@@ -12,6 +12,7 @@
 #include <optional>
 #include <set>
 #include <span>
+#include <stdexcept>
 #include <Eigen/Geometry>
 #include <simdjson.h>
 
@@ -21,6 +22,7 @@
 #include "common/limits.hpp"
 #include "common/list_level.hpp"
 #include "common/quantile.hpp"
+#include "common/safe_text.hpp"
 #include "common/text_file.hpp"
 #include "io/robot_log.hpp"
 #include "io/recording_writer.hpp"
@@ -118,6 +120,7 @@ Mapping read_mapping(const fs::path& path) {
       require_positive(s, "cycle_time_s", *mapped.cycle_time_s);
     }
     if (mapped.sensor.id.empty()) s.fail("id", "must not be empty");
+    if (const auto bad = find_control_character(mapped.sensor.id)) s.fail("id", "holds " + *bad + ": ids are one line");
     for (const MappedSensor& other : m.sensors) {
       if (other.sensor.id == mapped.sensor.id) s.fail("id", fmt::format("sensor '{}' is listed twice", mapped.sensor.id));
       if (other.topic == mapped.topic) s.fail("topic", fmt::format("topic '{}' is mapped twice", mapped.topic));
@@ -231,7 +234,8 @@ struct Survey {
   std::set<std::string> topics_seen;  // the mapped topics with messages
   robot_log::LogSummary log;          // the log's header, its topics, what a person should know
 
-  void stamp(std::int64_t t_ns) { t0_ns = std::min(t0_ns, t_ns); }
+  std::int64_t last_ns = std::numeric_limits<std::int64_t>::min();
+  void stamp(std::int64_t t_ns) { t0_ns = std::min(t0_ns, t_ns), last_ns = std::max(last_ns, t_ns); }
   std::size_t object(std::string_view id, std::string_view log_class) {
     auto [it, added] = object_index.try_emplace(std::string(id), objects.size());
     if (added) objects.push_back({std::string(id), std::string(log_class), {}, {}, false});
@@ -293,6 +297,7 @@ ros2::RadarScan scan_of_point_cloud(simdjson::ondemand::parser& parser, const st
   scan.header.stamp.sec = static_cast<std::int32_t>(cloud.t_ns / 1'000'000'000);
   scan.header.stamp.nanosec = static_cast<std::uint32_t>(cloud.t_ns % 1'000'000'000);
   const Eigen::Quaterniond q(cloud.orientation[3], cloud.orientation[0], cloud.orientation[1], cloud.orientation[2]);
+  if (q.norm() == 0.0) throw std::invalid_argument("pose.orientation: a zero quaternion is no rotation");
   Eigen::Isometry3d X_SC = Eigen::Isometry3d::Identity();
   X_SC.linear() = q.normalized().toRotationMatrix();
   X_SC.translation() = Eigen::Vector3d(cloud.position[0], cloud.position[1], cloud.position[2]);
@@ -875,6 +880,13 @@ ImportedLog import_log(const fs::path& log, const DatasetImportOptions& options,
   // The recording's clock: seconds since the earliest stamp of the mapped topics.
   for (const LoggedEgo& e : survey.ego) survey.stamp(e.t_ns);
   const std::int64_t t0_ns = survey.t0_ns;
+  // A recording's times are seconds since its start, at most limits::kMaxTime_s: a stamp near 1970
+  // or 2038 among the others is refused here, not by replay.
+  if (seconds_since(survey.last_ns, t0_ns) > limits::kMaxTime_s) {
+    throw InputError(log.string(), "", fmt::format("its stamps run from {} ns to {} ns, {:.0f} s: more than the {:.0f} s a recording's times "
+                                                   "hold (schemas/limits.md; a stamp near 1970 or 2038?)",
+                                                   t0_ns, survey.last_ns, seconds_since(survey.last_ns, t0_ns), limits::kMaxTime_s));
+  }
 
   Recording rec;
   rec.name = mapping.name.empty() ? robot_log::Log(log).name() : mapping.name;  // a file's stem, a bag's directory name
@@ -896,6 +908,10 @@ ImportedLog import_log(const fs::path& log, const DatasetImportOptions& options,
   }
   const ModelLibrary& library = ModelLibrary::builtin();
   for (const SurveyedObject& o : survey.objects) {
+    // Ids are one line of a CSV file: a control character is refused here, described, not echoed.
+    if (const auto bad = find_control_character(o.id)) {
+      throw InputError(log.string(), mapping.objects_source(), fmt::format("an entity's id holds {}: ids are one line", *bad));
+    }
     const auto mapped = mapping.classes.find(o.log_class);
     const std::string model = mapped != mapping.classes.end() ? mapped->second : o.log_class;
     if (!library.contains(model)) {

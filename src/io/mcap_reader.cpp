@@ -166,8 +166,17 @@ void Reader::for_each_message(const Visit& visit) {
                         op == static_cast<std::uint8_t>(Opcode::channel) || op == static_cast<std::uint8_t>(Opcode::message) ||
                         op == static_cast<std::uint8_t>(Opcode::chunk);
     if (!needed) {
+      const std::uint64_t at = offset;
       offset += 9 + length;
-      if (op == static_cast<std::uint8_t>(Opcode::data_end) || op == static_cast<std::uint8_t>(Opcode::footer)) break;
+      if (op == static_cast<std::uint8_t>(Opcode::data_end) || op == static_cast<std::uint8_t>(Opcode::footer)) {
+        // The data section ends here only where the summary or the footer follows: a Data End or a
+        // footer midway would leave the rest of the log out silently.
+        if (op == static_cast<std::uint8_t>(Opcode::footer) || (offset != data_end && !unfinished_)) {
+          fail(opcode_name(op), at, fmt::format("{} bytes before the data section's end at byte {}: the records after it would be left out",
+                                                data_end - at, data_end));
+        }
+        break;
+      }
       in_.seekg(static_cast<std::streamoff>(offset));
       continue;
     }

@@ -127,6 +127,7 @@ Odometry decode_odometry(std::string_view cdr) {
   o.qy = r.read<double>("pose.pose.orientation.y");
   o.qz = r.read<double>("pose.pose.orientation.z");
   o.qw = r.read<double>("pose.pose.orientation.w");
+  if (o.qx == 0.0 && o.qy == 0.0 && o.qz == 0.0 && o.qw == 0.0) throw CdrError("pose.pose.orientation: a zero quaternion is no rotation");
   r.skip_doubles(36, "pose.covariance");
   o.vx_mps = r.read<double>("twist.twist.linear.x");
   o.vy_mps = r.read<double>("twist.twist.linear.y");

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <fstream>
 #include <lz4frame.h>
 #include <sstream>
@@ -61,6 +63,29 @@ TEST_F(McapReader, NoMcapIsRefusedAndATruncatedFileReadsUpToItsLastWholeRecord) 
   // Cut inside the first message: nothing of it read, the rest left out.
   const std::size_t message = whole.find('\x05', 8);
   EXPECT_EQ(read_back(whole.substr(0, message + 12)), "read 0");
+}
+
+// Issue 51 (MEDIUM): a Data End record midway silently ended the read with half the log. Now only
+// one where the summary or the footer follows ends it; another is refused at its offset.
+TEST_F(McapReader, ADataEndMidwayIsRefusedNotAHalfLog) {
+  const std::string whole = small_file();
+  const auto u64_at = [&](const std::string& b, std::size_t at) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, b.data() + at, 8);
+    return v;
+  };
+  const std::size_t after_header = 8 + 9 + u64_at(whole, 8 + 1);
+  const std::string data_end("\x0f\x04\0\0\0\0\0\0\0\0\0\0\0", 13);
+  std::string midway = whole.substr(0, after_header) + data_end + whole.substr(after_header);
+  // The footer's summary offsets moved with the records, its CRC left out.
+  const std::size_t footer = midway.size() - 8 - 29;
+  const std::uint64_t summary = u64_at(midway, footer + 9) + 13, offsets = u64_at(midway, footer + 17) + 13;
+  std::memcpy(midway.data() + footer + 9, &summary, 8);
+  std::memcpy(midway.data() + footer + 17, &offsets, 8);
+  std::memset(midway.data() + footer + 25, 0, 4);
+  EXPECT_EQ(read_back(midway), "a.mcap: Data End at byte " + std::to_string(after_header) + ": " + std::to_string(summary - after_header) +
+                                   " bytes before the data section's end at byte " + std::to_string(summary) +
+                                   ": the records after it would be left out");
 }
 
 TEST_F(McapReader, AByteChangedInTheSummaryOrAChunkIsFoundByItsCrc) {

@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <algorithm>
 #include <string>
+#include <vector>
 
 namespace rcsim::ros2::ros2_messages_test {
 namespace {
@@ -124,6 +126,77 @@ TEST(Ros2Messages, OdometryByHand) {
   EXPECT_EQ(o.vx_mps, 29.5);
   EXPECT_EQ(o.wz_radps, 0.02);
   EXPECT_THROW(decode_odometry(b.substr(0, b.size() - 8)), CdrError);
+  // A zero quaternion is no rotation: refused as /tf refuses it (issue 51, LOW).
+  std::string zero = b;
+  std::memset(zero.data() + 44 + 5 * 8, 0, 16);
+  try {
+    decode_odometry(zero);
+    ADD_FAILURE() << "a zero quaternion was read";
+  } catch (const CdrError& e) {
+    EXPECT_STREQ(e.what(), "pose.pose.orientation: a zero quaternion is no rotation");
+  }
+}
+
+// A PointCloud2 laid out by hand, big-endian: 2 rows of 2 points, 12-byte points (x INT16 at 0, a
+// UINT8 "flags" at 2, speed FLOAT32 at 4, power UINT16 at 8, 2 bytes of padding), rows 28 bytes
+// apart (4 of padding); read for x, speed and power in that order (issue 50).
+std::string cloud_bytes(std::uint32_t data_bytes, std::uint8_t x_type = 3) {
+  std::string b("\x00\x00\x00\x00", 4);  // big-endian CDR
+  b += be(std::int32_t{7}) + be(std::uint32_t{0});
+  b += be(std::uint32_t{2}) + std::string("r\0", 2) + std::string(2, '\0');  // frame "r", to byte 20
+  b += be(std::uint32_t{2}) + be(std::uint32_t{2});                            // height, width
+  b += be(std::uint32_t{4});                                                   // 4 fields
+  const auto field = [&](const std::string& name, std::uint32_t offset, std::uint8_t type) {
+    b += be(static_cast<std::uint32_t>(name.size() + 1)) + name + '\0';
+    while ((b.size() - 4) % 4 != 0) b += '\0';
+    b += be(offset) + std::string(1, static_cast<char>(type)) + std::string(3, '\0') + be(std::uint32_t{1});
+  };
+  field("x", 0, x_type), field("flags", 2, 2), field("speed", 4, 7), field("power", 8, 4);
+  b += std::string(1, '\1');  // is_bigendian
+  b += std::string(3, '\0') + be(std::uint32_t{12}) + be(std::uint32_t{28});  // point_step, row_step
+  b += be(data_bytes);
+  std::string data;
+  for (int row = 0; row < 2; ++row) {
+    for (int col = 0; col < 2; ++col) {
+      const int k = 2 * row + col;
+      data += be(static_cast<std::int16_t>(-100 * (k + 1))) + std::string(1, '\x55') + std::string(1, '\0');
+      data += be(0.5f * static_cast<float>(k)) + be(static_cast<std::uint16_t>(60000 + k)) + std::string(2, '\0');
+    }
+    data += std::string(4, '\0');  // the row's padding
+  }
+  b += data.substr(0, std::min<std::size_t>(data.size(), data_bytes));
+  b += std::string(1, '\1');  // is_dense
+  return b;
+}
+
+TEST(Ros2Messages, PointCloud2ByHandBigEndianPaddedRows) {
+  CloudPoints c;
+  try {
+    c = decode_point_cloud2(cloud_bytes(56), {"x", "speed", "power"});
+  } catch (const CdrError& e) {
+    FAIL() << e.what();
+  }
+  EXPECT_EQ(c.header.frame_id, "r");
+  EXPECT_EQ(c.field_names, (std::vector<std::string>{"x", "flags", "speed", "power"}));
+  ASSERT_EQ(c.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(c.values[3 * k], -100.0 * static_cast<double>(k + 1)) << k;
+    EXPECT_EQ(c.values[3 * k + 1], 0.5 * static_cast<double>(k)) << k;
+    EXPECT_EQ(c.values[3 * k + 2], 60000.0 + static_cast<double>(k)) << k;
+  }
+  const auto refusal = [](const std::string& bytes, const std::vector<std::string>& fields) {
+    try {
+      decode_point_cloud2(bytes, fields);
+    } catch (const CdrError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal(cloud_bytes(56), {"x", "velocity"}), "fields: no field 'velocity' (the cloud's fields: x, flags, speed, power)");
+  EXPECT_EQ(refusal(cloud_bytes(55), {"x"}), "data: 2 x 2 points of 12 bytes in rows of 28 bytes need more than its 55 bytes");
+  // x as FLOAT64 (8 bytes at 0) runs over flags and speed: an overlap with speed, asked for.
+  EXPECT_EQ(refusal(cloud_bytes(56, 8), {"x", "speed"}), "fields['speed'] and fields['x'] overlap");
+  EXPECT_EQ(refusal(cloud_bytes(56, 9), {"x"}), "fields['x'].datatype: 9 is no PointField datatype (1 to 8)");
 }
 
 // A TFMessage of two transforms: each one's doubles aligned to 8 from after the header, the

@@ -501,6 +501,21 @@ TEST(McapImportRules, OneBadMessageIsRefusedByName) {
   EXPECT_EQ(trimmed.recording.cycles.size(), 8u);
   ASSERT_EQ(trimmed.warnings.size(), 1u);
   EXPECT_EQ(trimmed.warnings[0], "--skip-edges left out 1 scan(s) beyond the ego log, 1 scan(s) and 0 ego pose(s) stamped as the one before");
+  // Issue 51 (MEDIUM, LOW): a scan stamped near 1970 among 2023's, an odometry with a zero
+  // quaternion, a sensor id with DEL: each refused at import, exit 2, not later by replay or the
+  // writer.
+  const std::string epoch = refusal(log("epoch.mcap", [](int k, std::string b) {
+    return k == 5 ? rcsim::fuzz::mcap_seed::radar_scan(1'000'000'000, 0.0) : b;
+  }));
+  EXPECT_NE(epoch.find("s a recording's times hold (schemas/limits.md; a stamp near 1970 or 2038?)"), std::string::npos) << epoch;
+  std::string del_mapping = rcsim::fuzz::kMcapMapping;
+  del_mapping.replace(del_mapping.find("\"id\": \"front\""), 13, "\"id\": \"fr\u007fnt\"");
+  rcsim::fuzz::write_file(dir / "del.json", del_mapping);
+  DatasetImportOptions del;
+  del.mapping = dir / "del.json";
+  const std::string del_refusal = refusal_of([&] { import_mcap(dir / "good.mcap", del); });
+  EXPECT_NE(del_refusal.find("sensors[0].id: holds"), std::string::npos) << del_refusal;
+  EXPECT_EQ(del_refusal.find('\x7f'), std::string::npos) << "not echoed";
   // Issue 50, item 3: scans that a driver leaves at stamp 0 are refused, saying how to take the
   // log's times; so taken, they import at the log's times.
   const auto unstamped = [](int k, std::string b) { return k >= 0 ? rcsim::fuzz::mcap_seed::radar_scan(0, 0.05 * k) : b; };
