@@ -7,10 +7,10 @@
 //   d = ( min_γ Σ_{(i,j)∈γ} d(x_i, y_j)^p + c^p/2 (|X| + |Y| − 2|γ|) )^(1/p),
 // over partial assignments γ of pairs closer than c. Solved as a linear assignment on
 // min(d, c)^p (a pair at or beyond c costs the same as leaving both unassigned).
-// Decomposed exactly: the pairs closer than c (found on a grid of cells of size c) make a
-// bipartite graph whose connected components are independent assignment problems; each is
-// solved alone, a target with no partner closer than c is unassigned without one
-// (docs/metrics.md, "GOSPA by components").
+// Solved exactly on the pairs closer than c alone (found on a grid of cells of size c): each
+// target paired at d^p or left unassigned at c^p/2, by the sparse shortest augmenting path
+// method of metrics/sparse_assignment.hpp (Jonker & Volgenant 1987; docs/metrics.md, "GOSPA on
+// the pairs closer than c").
 // OSPA: D. Schuhmacher, B.-T. Vo, B.-N. Vo, "A consistent metric for performance evaluation of
 // multi-object filters", IEEE Trans. Signal Processing 56(8), 2008, eq. (3).
 #include <vector>
@@ -41,6 +41,11 @@ GospaResult gospa(const std::vector<Vec2>& recorded_S, const std::vector<Vec2>& 
                   const GospaParameters& parameters);
 
 namespace detail {
+// The same figures by the dense assignment (metrics/assignment.hpp) on each connected component
+// of the pairs closer than c, O(n^2 m) per component: the way before issue 52, the reference of
+// the tests and the benchmark.
+GospaResult gospa_dense_components(const std::vector<Vec2>& recorded_S, const std::vector<Vec2>& simulated_S,
+                                   const GospaParameters& parameters);
 // The same figures by one assignment over all |X| x |Y| pairs, O(n^3): the reference of the
 // tests and the benchmark, and the way taken when a coordinate is not finite.
 GospaResult gospa_full_assignment(const std::vector<Vec2>& recorded_S, const std::vector<Vec2>& simulated_S,
