@@ -156,7 +156,8 @@ class BenchToolsCli : public rcsim::testing::ScratchDirTest {
   bool dir_is_empty() const { return fs::is_empty(dir_); }
 };
 
-const std::vector<std::string> kArgumentTools = {"rcsim_make_long_recording", "rcsim_make_campaign_db", "rcsim_bench_campaign"};
+const std::vector<std::string> kArgumentTools = {"rcsim_make_long_recording", "rcsim_make_campaign_db", "rcsim_bench_campaign",
+                                                  "rcsim_bench_pointcloud"};
 const std::vector<std::string> kGoogleBenchmarks = {"rcsim_bench_sensor_cycle", "rcsim_bench_synth", "rcsim_bench_traffic",
                                                     "rcsim_bench_gospa"};
 
