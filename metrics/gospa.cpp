@@ -33,6 +33,8 @@ constexpr std::size_t kGospaAllPairsUpTo = 400;
 // after the rounding of the cell index, for up to kGospaMaxCells cells per axis.
 constexpr double kGospaCellMargin = 1e-6;
 constexpr double kGospaMaxCells = 1 << 30;
+// Up to this many grid cells per target (both sides) the cells are one array, beyond sorted keys.
+constexpr double kGospaDenseCellsPerTarget = 8.0;
 // Up to this many targets (both sides) the union-find works in a buffer on the stack.
 constexpr int kGospaStackTargets = 64;
 
@@ -87,10 +89,32 @@ void for_each_pair_within_cutoff(const std::vector<Vec2>& x, const std::vector<V
   const auto stride = static_cast<std::int64_t>(columns) + 2;
   const auto column_of = [&](const Vec2& v) { return static_cast<std::int64_t>(std::floor((v.x() - lo.x()) / cell_m)); };
   const auto row_of = [&](const Vec2& v) { return static_cast<std::int64_t>(std::floor((v.y() - lo.y()) / cell_m)); };
-  std::vector<std::pair<std::int64_t, int>> cells(y.size());
-  for (std::size_t j = 0; j < y.size(); ++j) cells[j] = {row_of(y[j]) * stride + column_of(y[j]) + 1, static_cast<int>(j)};
-  std::sort(cells.begin(), cells.end());
   const auto last_row = static_cast<std::int64_t>(rows) - 1;
+  const auto key_of = [&](const Vec2& v) { return row_of(v) * stride + column_of(v) + 1; };
+  if (rows * static_cast<double>(stride) <= kGospaDenseCellsPerTarget * static_cast<double>(x.size() + y.size())) {
+    // Few cells: the simulated targets bucketed by a counting sort (in ascending order within a
+    // cell, as the sort below leaves them), each cell's first place in cell_start.
+    const auto keys = static_cast<std::size_t>(rows * static_cast<double>(stride));
+    std::vector<int> cell_start(keys + 2, 0), by_cell(y.size());
+    for (const Vec2& v : y) ++cell_start[static_cast<std::size_t>(key_of(v)) + 1];
+    for (std::size_t k = 0; k + 1 < cell_start.size(); ++k) cell_start[k + 1] += cell_start[k];
+    std::vector<int> cursor(cell_start.begin(), cell_start.end() - 1);
+    for (std::size_t j = 0; j < y.size(); ++j) by_cell[static_cast<std::size_t>(cursor[static_cast<std::size_t>(key_of(y[j]))]++)] = static_cast<int>(j);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const std::int64_t column = column_of(x[i]), row = row_of(x[i]);
+      for (std::int64_t r = std::max<std::int64_t>(row - 1, 0); r <= std::min(row + 1, last_row); ++r) {
+        const auto first_key = static_cast<std::size_t>(r * stride + column);  // column − 1, shifted by one
+        for (int t = cell_start[first_key]; t < cell_start[first_key + 3]; ++t) {
+          const int j = by_cell[static_cast<std::size_t>(t)];
+          if (within(x[i], y[static_cast<std::size_t>(j)])) close_pair(static_cast<int>(i), j);
+        }
+      }
+    }
+    return;
+  }
+  std::vector<std::pair<std::int64_t, int>> cells(y.size());
+  for (std::size_t j = 0; j < y.size(); ++j) cells[j] = {key_of(y[j]), static_cast<int>(j)};
+  std::sort(cells.begin(), cells.end());
   for (std::size_t i = 0; i < x.size(); ++i) {
     const std::int64_t column = column_of(x[i]), row = row_of(x[i]);
     for (std::int64_t r = std::max<std::int64_t>(row - 1, 0); r <= std::min(row + 1, last_row); ++r) {
