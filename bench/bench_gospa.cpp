@@ -1,6 +1,8 @@
-// GOSPA per call (c = 2 m, p = 2) between a recorded and a simulated cloud of N targets each:
-// by connected components of the pairs closer than c (metrics::gospa) against one assignment
-// over all pairs (metrics::detail::gospa_full_assignment, the former way). Clouds:
+// GOSPA per call (c = 2 m, p = 2) between a recorded and a simulated cloud of N targets each: by
+// the sparse exact assignment on the pairs closer than c (metrics::gospa, since issue 52), by the
+// dense assignment on each connected component of those pairs (detail::gospa_dense_components,
+// the way before) and by one assignment over all pairs (detail::gospa_full_assignment, the way
+// before that). Clouds:
 //   uniform  - N points per side, each side uniform over 100 m x 100 m, independently;
 //   cars     - cars of 100 points (N < 100: one car of N) spread over 100 m x 100 m, each side's
 //              points drawn independently over each car's 4.5 m x 1.8 m;
@@ -83,7 +85,9 @@ std::pair<int, int> bench_components(const CloudPair& clouds, double c) {
   return {largest, with_pair};
 }
 
-template <bool kFull>
+enum class Way { sparse, dense_components, full };
+
+template <Way kWay>
 void BM_Gospa(benchmark::State& state) {
   const auto kind = static_cast<Cloud>(state.range(0));
   const auto n = static_cast<int>(state.range(1));
@@ -91,8 +95,10 @@ void BM_Gospa(benchmark::State& state) {
   const rcsim::metrics::GospaParameters parameters{kBenchCutoffM, 2.0};
   double gospa_m = 0.0;
   for (auto _ : state) {
-    const auto r = kFull ? rcsim::metrics::detail::gospa_full_assignment(clouds.recorded, clouds.simulated, parameters)
-                         : rcsim::metrics::gospa(clouds.recorded, clouds.simulated, parameters);
+    const auto r = kWay == Way::full ? rcsim::metrics::detail::gospa_full_assignment(clouds.recorded, clouds.simulated, parameters)
+                   : kWay == Way::dense_components
+                       ? rcsim::metrics::detail::gospa_dense_components(clouds.recorded, clouds.simulated, parameters)
+                       : rcsim::metrics::gospa(clouds.recorded, clouds.simulated, parameters);
     gospa_m = r.gospa_m;
     // Not DoNotOptimize(gospa_m): Google Benchmark 1.7's "+m,r" on a double breaks it under GCC.
     benchmark::DoNotOptimize(r.simulated_of_recorded.data());
@@ -111,8 +117,9 @@ void gospa_cases(benchmark::internal::Benchmark* b) {
   }
 }
 
-BENCHMARK(BM_Gospa<false>)->Name("BM_GospaByComponents")->Apply(gospa_cases)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Gospa<true>)->Name("BM_GospaFullAssignment")->Apply(gospa_cases)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Gospa<Way::sparse>)->Name("BM_GospaSparse")->Apply(gospa_cases)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Gospa<Way::dense_components>)->Name("BM_GospaByComponents")->Apply(gospa_cases)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Gospa<Way::full>)->Name("BM_GospaFullAssignment")->Apply(gospa_cases)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
@@ -120,6 +127,6 @@ int main(int argc, char** argv) {
   return rcsim::bench_tools::run_benchmark_main(
       argc, argv, "rcsim_bench_gospa",
       "GOSPA per call (c = 2 m, p = 2) between two clouds of N targets each (arguments: cloud, N; cloud 0 uniform "
-      "over 100 m x 100 m, 1 cars of 100 points, 2 a 100-m wall 1 m wide), by connected components "
-      "(BM_GospaByComponents) against one assignment over all pairs (BM_GospaFullAssignment).");
+      "over 100 m x 100 m, 1 cars of 100 points, 2 a 100-m wall 1 m wide): the sparse exact assignment (BM_GospaSparse), "
+      "the dense one per connected component (BM_GospaByComponents) and one over all pairs (BM_GospaFullAssignment).");
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# GOSPA per call, by connected components (metrics::gospa) against one assignment over all pairs
-# (the former way), at 5, 20, 200 and 2,000 targets per side on uniform clouds, cars of 100
+# GOSPA per call: the sparse exact assignment (metrics::gospa), the dense one per connected
+# component and one assignment over all pairs
+# (the ways before), at 5, 20, 200 and 2,000 targets per side on uniform clouds, cars of 100
 # points and a 1-m wall (bench/bench_gospa.cpp; docs/performance.md, "GOSPA per cycle").
 # Usage: scripts/bench-gospa.sh [BENCH=build/bin/rcsim_bench_gospa] [Google Benchmark flags...]
 # Builds the tool first when BENCH is the default and it is missing (the full assignment at

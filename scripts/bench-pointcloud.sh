@@ -35,12 +35,17 @@ awk -v f="$frames" -v w="$wall_s" -v p="$peak_kib" 'BEGIN { printf "replay of As
 
 build/bin/rcsim_bench_pointcloud "$rec" "$work/frames.txt" | tee "$work/assignment.txt"
 
-if ! python3 -c "import scipy" 2>/dev/null; then
+# Debian's python3-scipy lives beside /usr/bin/python3 (a python3 earlier on PATH may lack it).
+python=""
+for candidate in python3 /usr/bin/python3; do
+  if "$candidate" -c "import scipy" 2>/dev/null; then python=$candidate; break; fi
+done
+if [ -z "$python" ]; then
   echo "scipy: python3-scipy not installed, its linear_sum_assignment not timed"
   exit 0
 fi
 sparse_ms=$(awk '$1 == "all" && $2 == "targets" { print $4 }' "$work/assignment.txt")
-python3 - "$work/frames.txt" "$sparse_ms" <<'EOF'
+"$python" - "$work/frames.txt" "$sparse_ms" <<'EOF'
 # scipy.optimize.linear_sum_assignment on the same frames, GOSPA's costs min(d, c)^2, c = 2 m.
 import sys, time
 import numpy as np
