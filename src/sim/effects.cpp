@@ -2,15 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "common/decibel.hpp"
 
 namespace rcsim {
 
-bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, double length_m, double width_m) {
-  // Slab test in the box frame.
-  const Vec2 a = inverse_transform_point(X_WB, a_W);
-  const Vec2 d = inverse_transform_point(X_WB, b_W) - a;
+namespace {
+
+// Slab test in the box frame: the segment a + t d, t in [0, 1], against the box of length_m by
+// width_m centred on the origin.
+bool segment_hits_box_in_box_frame(const Vec2& a, const Vec2& d, double length_m, double width_m) {
   const double half[2] = {0.5 * length_m, 0.5 * width_m};
   double t_enter = 0.0, t_exit = 1.0;
   for (int axis = 0; axis < 2; ++axis) {
@@ -30,17 +32,53 @@ bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, doubl
   return true;
 }
 
+// What apply_occlusion needs of a candidate occluder, the same for every target of the cycle:
+// its reach beyond a target's range, its squared distance from the sensor, its rotation into the
+// box frame (the cosine and sine inverse_transform_point takes) and the sensor in the box frame.
+struct Occluder {
+  std::size_t index;
+  double half_diagonal_m, squared_distance_m2, cos_yaw, sin_yaw;
+  Vec2 p_BS_B;
+  // inverse_transform_point(X_WB, p_W), its rotation taken once.
+  Vec2 in_box_frame(const Vec2& p_W, const Vec2& p_WB_W) const {
+    const Vec2 v = p_W - p_WB_W;
+    return {cos_yaw * v.x() - sin_yaw * v.y(), sin_yaw * v.x() + cos_yaw * v.y()};
+  }
+};
+
+}  // namespace
+
+bool segment_hits_box(const Vec2& a_W, const Vec2& b_W, const Pose2& X_WB, double length_m, double width_m) {
+  const Vec2 a = inverse_transform_point(X_WB, a_W);
+  const Vec2 d = inverse_transform_point(X_WB, b_W) - a;
+  return segment_hits_box_in_box_frame(a, d, length_m, width_m);
+}
+
 void apply_occlusion(const OcclusionConfig& occlusion, const SensorKinematics& sensor, std::span<const SceneObject> objects,
                      std::span<const BodyState> object_states, std::span<const unsigned char> candidates,
                      IdealTargets& ideal) {
   const Vec2 p_WS_W = sensor.X_WS.translation();
+  // Each candidate's per-cycle figures once, not once per target (the same values, the same
+  // arithmetic as segment_hits_box: the outputs do not change).
+  std::vector<Occluder> occluders;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (!candidates[i]) continue;
+    const auto& model = objects[i].model;
+    const Pose2& X_WB = object_states[i].X_WB;
+    Occluder o{i, 0.5 * std::hypot(model.length_m, model.width_m), (X_WB.translation() - p_WS_W).squaredNorm(),
+               std::cos(-X_WB.yaw_rad), std::sin(-X_WB.yaw_rad), Vec2::Zero()};
+    o.p_BS_B = o.in_box_frame(p_WS_W, X_WB.translation());
+    occluders.push_back(o);
+  }
   const auto occluded = [&](const IdealTarget& t) {
-    for (std::size_t i = 0; i < objects.size(); ++i) {
-      if (static_cast<int>(i) == t.object_index || !candidates[i]) continue;
-      const auto& model = objects[i].model;
-      const double reach_m = t.range_m + 0.5 * std::hypot(model.length_m, model.width_m);
-      if ((object_states[i].X_WB.translation() - p_WS_W).squaredNorm() > reach_m * reach_m) continue;
-      if (segment_hits_box(p_WS_W, t.p_WT_W, object_states[i].X_WB, model.length_m, model.width_m)) return true;
+    for (const Occluder& o : occluders) {
+      if (static_cast<int>(o.index) == t.object_index) continue;
+      const double reach_m = t.range_m + o.half_diagonal_m;
+      if (o.squared_distance_m2 > reach_m * reach_m) continue;
+      const Pose2& X_WB = object_states[o.index].X_WB;
+      const auto& model = objects[o.index].model;
+      const Vec2 d = o.in_box_frame(t.p_WT_W, X_WB.translation()) - o.p_BS_B;
+      if (segment_hits_box_in_box_frame(o.p_BS_B, d, model.length_m, model.width_m)) return true;
     }
     return false;
   };
