@@ -49,7 +49,13 @@ int nearest_box(const std::vector<BoxInSensor>& boxes, const Vec2& p_ST_S, doubl
   int best = -1;
   double best_m = gate_m;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const double d = distance_to_box_m(boxes[i], p_ST_S);
+    // A bound first, without the rotation into the box frame: the box lies within
+    // half_length + half_width of its centre, so a point farther than best_m + that (and a margin
+    // far above rounding) from the centre lies farther than best_m from the box, and cannot win.
+    const BoxInSensor& box = boxes[i];
+    const double reach_m = best_m + box.half_length_m + box.half_width_m + 1e-6 * (1.0 + best_m);
+    if ((p_ST_S - box.X_SO.translation()).squaredNorm() > reach_m * reach_m) continue;
+    const double d = distance_to_box_m(box, p_ST_S);
     if (d <= best_m) {
       best_m = d;
       best = static_cast<int>(i);
