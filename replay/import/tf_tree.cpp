@@ -83,6 +83,9 @@ std::vector<std::string> TfTree::ancestors(const std::string& frame) const {
     if (std::find(up.begin(), up.end(), it->second.parent) != up.end()) {
       throw TfError(fmt::format("the frames form a loop: {} -> {}", fmt::join(up, " -> "), it->second.parent));
     }
+    if (up.size() > kMaxChainDepth) {
+      throw TfError(fmt::format("the chain from '{}' up to its root holds more than {} transforms (schemas/limits.md)", frame, kMaxChainDepth));
+    }
     up.push_back(it->second.parent);
   }
   return up;

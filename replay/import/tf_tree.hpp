@@ -25,6 +25,9 @@ class TfTree {
  public:
   // How far beyond a moving transform's first or last stamp its end value is held (s).
   static constexpr double kHoldMargin_s = 0.1;
+  // The most transforms a chain from a frame up to its tree's root may hold: a robot's tree is a
+  // few frames deep; a log of 10^4 chained frames made each lookup walk them all (quadratic).
+  static constexpr std::size_t kMaxChainDepth = 64;
 
   // Adds one message's transforms; a transform repeated at a stamp already held is ignored, as
   // tf2 does.
