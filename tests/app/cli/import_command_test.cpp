@@ -44,7 +44,7 @@ TEST_F(ImportCli, AMistypedDatasetDirectoryIsNamed) {
             std::string::npos)
       << r.output;
   const auto unknown = refused("--from astyks " + dir_.string());
-  EXPECT_NE(unknown.output.find("unknown dataset 'astyks' (known: aimotive, astyx, mcap, vod)"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("unknown dataset 'astyks' (known: aimotive, astyx, mcap, rosbag2, vod)"), std::string::npos) << unknown.output;
   const auto empty = refused("--from astyx " + dir_.string());
   EXPECT_NE(empty.output.find("no Astyx dataset here"), std::string::npos) << empty.output;
 }

@@ -56,11 +56,12 @@ TEST(DatasetImporter, MalformedFrameListsAreRefusedNamingTheItem) {
 }
 
 TEST(DatasetImporter, ImportersAreFoundByNameAndAnUnknownOneListsTheKnown) {
-  ASSERT_EQ(dataset_importers().size(), 4u);
+  ASSERT_EQ(dataset_importers().size(), 5u);
   EXPECT_EQ(&find_dataset_importer("astyx"), &dataset_importers()[1]);
   EXPECT_EQ(find_dataset_importer("aimotive").name, "aimotive");
   EXPECT_EQ(find_dataset_importer("mcap").name, "mcap");
   EXPECT_EQ(find_dataset_importer("vod").name, "vod");
+  EXPECT_EQ(find_dataset_importer("rosbag2").import_to, find_dataset_importer("mcap").import_to);  // one importer, two names
   for (const DatasetImporter& importer : dataset_importers()) {
     EXPECT_NE(importer.import, nullptr) << importer.name;
     EXPECT_FALSE(importer.description.empty()) << importer.name;
@@ -70,7 +71,7 @@ TEST(DatasetImporter, ImportersAreFoundByNameAndAnUnknownOneListsTheKnown) {
     ADD_FAILURE() << "an unknown dataset was found";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "--from");
-    EXPECT_STREQ(e.what(), "--from: unknown dataset 'Astyx' (known: aimotive, astyx, mcap, vod)");
+    EXPECT_STREQ(e.what(), "--from: unknown dataset 'Astyx' (known: aimotive, astyx, mcap, rosbag2, vod)");
   }
 }
 
