@@ -201,6 +201,7 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
 }
 
 void run_calibrate(const CalibrateArgs& args) {
+  replay::check_calibration_output(args.output_dir);  // before the first evaluation, not after the last
   if (args.real_drive) return run_real_drive_calibration(args);
   if (args.hold_out) throw InputError("--hold-out", "", "goes with --real-drive");
   if (!args.sensor.empty()) throw InputError("--sensor", args.sensor, "goes with --real-drive");

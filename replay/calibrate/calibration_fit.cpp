@@ -577,6 +577,11 @@ Json fits_json(const std::vector<RecordingFit>& fits) {
 
 }  // namespace
 
+void check_calibration_output(const std::string& dir) {
+  check_output_folder_writable(dir);
+  check_output_file(std::filesystem::path(dir) / kCalibrationIndexFile);
+}
+
 void write_calibration(const std::string& dir, const CalibrationResult& result, const CalibrationOptions& options,
                        const std::vector<Recording>& recordings, const std::vector<RecordingFit>* held_out) {
   std::filesystem::create_directories(dir);

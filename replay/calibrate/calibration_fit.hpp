@@ -109,6 +109,11 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
 std::vector<RecordingFit> cross_validate(const std::vector<Recording>& recordings, const CalibrationOptions& options,
                                          const std::function<void(const RecordingFit&)>& done = {});
 
+// Refuses (InputError naming it) an output directory a calibration cannot be written into (not a
+// directory, read-only, no permission; its index a link or a device): called before the first
+// evaluation, so that an hour's fit never ends unable to write.
+void check_calibration_output(const std::string& dir);
+
 // Writes the fitted documents (DIR/<name>.json) and the index DIR/calibration.json
 // (rcsim-calibration v1) that rcsim replay or rcsim bench --calibration DIR read; each file atomically,
 // the index last.

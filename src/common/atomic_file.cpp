@@ -123,6 +123,26 @@ void check_output_directory(const std::filesystem::path& path, const std::string
                                marker_file));
 }
 
+void check_output_folder_writable(const std::filesystem::path& path) {
+  const std::filesystem::path folder = std::filesystem::absolute(path).lexically_normal();
+  std::filesystem::path existing = folder;
+  while (!existing_node(existing) && existing.has_relative_path()) existing = existing.parent_path();
+  const std::string name = existing == folder ? path.string() : existing.string();
+  const std::string role = existing == folder ? "" : fmt::format(" (the folder {} would be made in)", path.string());
+  struct stat st {};
+  if (::stat(existing.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    throw InputError(name, "", fmt::format("is not a directory{}: the output cannot be written there", role));
+  }
+  const std::filesystem::path probe = random_temp_path(existing / "probe", "tmp");
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    const int error = errno;
+    throw InputError(name, "", fmt::format("cannot be written{}: {}; nothing was done", role, std::strerror(error)));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
   check_output_file(path_);
   fd_ = create_temp_file(path_, temp_path_);

@@ -21,6 +21,13 @@ void check_output_file(const std::filesystem::path& path);
 // what rcsim wrote there before is ever replaced.
 void check_output_directory(const std::filesystem::path& path, const std::string& marker_file);
 
+// Refuses, naming it (InputError), an output folder that files cannot be written into, before a
+// long computation whose result it is to hold (rcsim calibrate): the folder, or where it does not
+// exist yet the nearest folder above it that does, must be a directory that takes a new file
+// (tried: a temporary file made and removed, so a read-only file system or a missing permission
+// is found whoever runs it). Nothing is left behind.
+void check_output_folder_writable(const std::filesystem::path& path);
+
 // A temporary name beside `target` that no one can guess: ".NAME.TAG.RANDOM", 16 hex digits drawn
 // from std::random_device (a PID is no secret: a planted link at the next PIDs' names would be
 // written through).

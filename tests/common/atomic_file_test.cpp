@@ -83,6 +83,25 @@ TEST_F(AtomicFile, PlantedLinksAtTemporaryNamesAreNeverFollowed) {
   EXPECT_TRUE(made.filename().string().starts_with(".rec.tmp."));
 }
 
+// An output folder is tried before the work whose result it holds: a folder that exists, or one
+// to be made under a writable one, passes and is left as it was; a file where a folder should be is
+// refused naming it.
+TEST_F(AtomicFile, AnOutputFolderIsTriedBeforeTheWork) {
+  EXPECT_NO_THROW(check_output_folder_writable(dir_));
+  EXPECT_NO_THROW(check_output_folder_writable(dir_ / "new" / "deeper"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "new"));
+  EXPECT_TRUE(std::filesystem::is_empty(dir_)) << "the probe was left behind";
+  std::ofstream(dir_ / "file") << "x";
+  try {
+    check_output_folder_writable(dir_ / "file");
+    FAIL() << "a file taken as a folder";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), (dir_ / "file").string());
+    EXPECT_NE(std::string(e.what()).find("is not a directory"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(check_output_folder_writable(dir_ / "file" / "fit"), InputError);
+}
+
 TEST_F(AtomicFile, LinksAndSpecialFilesAreRefusedAsOutputsAndNothingIsWritten) {
   std::ofstream(dir_ / "real.csv") << "kept\n";
   fs::create_symlink(dir_ / "real.csv", dir_ / "link.csv");

@@ -252,6 +252,35 @@ TEST_F(CalibrateCli, ASensorOptionThatCannotBeUsedIsNamed) {
   EXPECT_FALSE(fs::exists(dir_ / "b"));
 }
 
+// Issue 53, trap 2: an output that cannot be written is refused before the first evaluation (it
+// was found after the whole fit). A regular file where the folder would be, anywhere; a read-only
+// file system where a private mount can be made (unshare -rm, as the full-disk test does).
+TEST_F(CalibrateCli, AnUnwritableOutputIsRefusedBeforeTheFirstEvaluation) {
+  const fs::path file = dir_ / "a_file";
+  std::ofstream(file) << "not a folder\n";
+  for (const fs::path& out : {file, file / "fit"}) {
+    for (const char* mode : {"", " --real-drive"}) {
+      const auto r = run_rcsim("calibrate " + recording("front_approach") + mode + " -o " + out.string());
+      EXPECT_EQ(r.exit_code, 2) << out << mode << "\n" << r.output;
+      EXPECT_NE(r.output.find(file.string()), std::string::npos) << r.output;
+      EXPECT_EQ(r.output.find("step "), std::string::npos) << "a fit ran: " << r.output;
+      EXPECT_EQ(r.output.find("rcsim calibrate"), std::string::npos) << "a fit started: " << r.output;
+    }
+  }
+  if (std::system("unshare -rm true >/dev/null 2>&1") != 0) GTEST_SKIP() << "unshare -rm unavailable: no read-only mount to try";
+  const fs::path ro = dir_ / "read_only";
+  fs::create_directories(ro);
+  const auto r = testing::run_shell_command("unshare -rm sh -c 'mount -t tmpfs -o ro tmpfs " + ro.string() + " && " + RCSIM_BINARY +
+                                            " calibrate " + recording("front_approach") + " -o " + (ro / "fit").string() +
+                                            "; echo \"rc $?\"'");
+  EXPECT_NE(r.output.find(ro.string() + ": cannot be written (the folder " + (ro / "fit").string() +
+                          " would be made in): Read-only file system; nothing was done"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("rc 2\n"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("step "), std::string::npos) << "a fit ran: " << r.output;
+}
+
 }  // namespace
 }  // namespace rcsim
 
