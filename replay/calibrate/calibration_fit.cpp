@@ -388,7 +388,11 @@ class Fitter {
 Json sensor_document(const std::string& type, const std::string& base_dir) {
   if (is_builtin_sensor_config(type)) return builtin_document(embedded_sensor_configs(), type);
   const std::string path = resolve_relative(base_dir, type);
-  return parse_document(read_text_file(path), path);
+  Json doc = parse_document(read_text_file(path), path);
+  // Read as a profile first (InputError naming the file and field), before any of its fields is
+  // taken as it stands: a "name" that is a number was a json type_error and exit status 1.
+  parse_sensor_config(JsonField(nlohmann::json::parse(doc.dump()), path, ""));
+  return doc;
 }
 
 std::optional<ParameterGroup> parse_parameter_group(std::string_view name) {

@@ -245,8 +245,9 @@ std::string shared_sensor_type(const std::vector<const Recording*>& recordings) 
   for (const Recording* r : recordings) {
     for (const RecordingSensor& s : r->sensors) {
       if (!type.empty() && s.type != type) {
-        throw std::invalid_argument(fmt::format("{}: sensor {} is a {}, not a {}: a real-drive fit takes recordings of one sensor type",
-                                                r->dir.string(), s.id, s.type, type));
+        throw InputError(r->dir.string(), "recording.json",
+                         fmt::format("sensor {} is a {}, not a {}: a real-drive fit takes recordings of one sensor type", s.id,
+                                     s.type, type));
       }
       type = s.type;
     }
@@ -363,10 +364,11 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   doc.erase("background");
   SensorConfig config = parse_sensor_config(JsonField(doc, type, ""));
   if (config.amplitude.kind != AmplitudeLawKind::radar_equation) {
-    throw std::invalid_argument(fmt::format("{}: a real-drive fit needs a sensor with the radar equation (amplitude.law); derive one from the recordings "
-                    "(rcsim profile derive) or start from a built-in one (rcsim models --sensors --export aimotive_lrr -o "
-                    "radar.json) and name the file as the sensors' type",
-        type));
+    throw InputError(first.dir.string(), "sensor " + type,
+                     "amplitude.law: a real-drive fit (--real-drive) needs a sensor with the radar equation; a recording "
+                     "with a profile of eq. (1) (a simulated or synthetic one) is fitted without --real-drive; for a real "
+                     "drive derive a profile from the recordings (rcsim profile derive) or start from a built-in one "
+                     "(rcsim models --sensors --export aimotive_lrr -o radar.json) and name the file as the sensors' type");
   }
   // The background first: the profile's values are then fitted with it in place.
   config.background = fit_stationary_background(recordings, options, config);

@@ -235,6 +235,37 @@ TEST_F(CalibrateCli, ARadarEquationProfileWithoutRealDriveSaysWhatToDo) {
   EXPECT_TRUE(fs::exists(dir_ / "ercs" / "calibration.json"));
 }
 
+// Issue 53, trap 1, the rest of it: no json type_error escapes as status 1 on a user's files. A
+// recording's own sensor file with a "name" that is a number (was "[json.exception.type_error.302]
+// type must be string", status 1) is refused naming the file and field; --real-drive on a
+// recording of an eq. (1) profile (was std::invalid_argument, status 1) names the recording and
+// amplitude.law and says to fit it without --real-drive.
+TEST_F(CalibrateCli, ASensorFileOrAProfileThatCannotBeFittedIsNamedWithStatus2) {
+  const fs::path rec = dir_ / "own_sensor";
+  fs::copy(recording("front_approach"), rec);
+  ASSERT_EQ(run_rcsim("models --sensors --export srr24 -o " + (rec / "bad_sensor.json").string()).exit_code, 0);
+  nlohmann::json sensor = nlohmann::json::parse(testing::read_file(rec / "bad_sensor.json"));
+  sensor["name"] = 5;
+  std::ofstream(rec / "bad_sensor.json", std::ios::trunc) << sensor.dump(2);
+  nlohmann::json header = nlohmann::json::parse(testing::read_file(rec / "recording.json"));
+  for (auto& s : header.at("sensors")) s["type"] = "bad_sensor.json";
+  std::ofstream(rec / "recording.json", std::ios::trunc) << header.dump(2);
+  const auto r = run_rcsim("calibrate " + rec.string() + " -o " + (dir_ / "fit").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(r.output.find("json.exception"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("bad_sensor.json: name: must be a string, got number"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "fit"));
+
+  const auto real = run_rcsim("calibrate " + recording("front_approach") + " --real-drive -o " + (dir_ / "fit").string());
+  EXPECT_EQ(real.exit_code, 2) << real.output;
+  EXPECT_NE(real.output.find(recording("front_approach") + ": sensor srr24: amplitude.law: a real-drive fit (--real-drive) "
+                                                            "needs a sensor with the radar equation"),
+            std::string::npos)
+      << real.output;
+  EXPECT_NE(real.output.find("is fitted without --real-drive"), std::string::npos) << real.output;
+  EXPECT_FALSE(fs::exists(dir_ / "fit"));
+}
+
 // --sensor names the option when its file is missing, and is refused where it does nothing
 // (the GOSPA fit takes the recordings' own sensors).
 TEST_F(CalibrateCli, ASensorOptionThatCannotBeUsedIsNamed) {
