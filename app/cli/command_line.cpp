@@ -46,7 +46,13 @@ int run_command_line(int argc, char** argv) {
       std::cerr << *unknown << '\n';
       return 2;
     }
-    // CLI11's own message ("--seed: 1 required UINT missing", "A subcommand is required"), in
+    // No command at all (a bare `rcsim`): the commands, then what is missing (issue 53: it said
+    // only "A subcommand is required").
+    if (app.get_subcommands().empty()) {
+      std::cerr << app.help() << "\nrcsim: a command is required: rcsim COMMAND --help lists its options\n";
+      return 2;
+    }
+    // CLI11's own message ("--seed: 1 required UINT missing"), in
     // rcsim's form: the program first, the way to the options after.
     std::cerr << "rcsim: " << e.what() << " (--help lists the options)\n";
     return 2;

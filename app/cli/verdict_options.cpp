@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "common/atomic_file.hpp"
+#include "common/closest_name.hpp"
 #include "replay/verdict/default_criteria.hpp"
 #include "replay/verdict/junit.hpp"
 #include "replay/store/campaign_store.hpp"
@@ -47,7 +48,14 @@ void add_verdict_options(CLI::App& cmd, VerdictArgs& args) {
                  "campaign, or 'defaults' for the default tolerances; exit status 3 if a criterion fails")
       ->check(CLI::Validator(
           [](const std::string& value) {
-            return value == kDefaultCriteriaArg ? std::string() : CLI::ExistingFile(value);
+            if (value == kDefaultCriteriaArg || CLI::ExistingFile(value).empty()) return std::string();
+            // Neither a file nor a name it knows (issue 53: "--criteria default" said only "File
+            // does not exist"): the names it takes, the nearest first.
+            const std::vector<std::string> names{std::string(kDefaultCriteriaArg)};
+            const auto meant = closest_name(value, names);
+            return fmt::format("'{}' is neither a file nor a criteria name{}; it takes a criteria file (rcsim-criteria or "
+                               "rcsim-campaign) or a name: {} (the default tolerances)",
+                               value, meant ? fmt::format(" (did you mean '{}'?)", *meant) : "", join_names(names));
           },
           "FILE|defaults"));
   cmd.add_option("--junit", args.junit_path, "write the verdicts as JUnit XML to this file");

@@ -149,6 +149,14 @@ int series_stride(const RunData& run, int max_points) {
   return std::max(1, (cycles + max_points - 1) / std::max(1, max_points));
 }
 
+std::string every_nth_cycle(int stride) {
+  if (stride == 1) return "every cycle";
+  // 11th, 12th, 13th (and 111th ...) take "th" whatever their last digit.
+  const int last = stride % 10, last_two = stride % 100;
+  const char* suffix = (last_two >= 11 && last_two <= 13) ? "th" : last == 1 ? "st" : last == 2 ? "nd" : last == 3 ? "rd" : "th";
+  return fmt::format("every {}{} cycle", stride, suffix);
+}
+
 std::vector<svg::PlotSpec> time_series(const RunData& run, int stride, const std::vector<NearestTargetRow>& nearest,
                                        const std::vector<CycleBucketRow>& buckets) {
   struct PerSensor {
@@ -174,7 +182,7 @@ std::vector<svg::PlotSpec> time_series(const RunData& run, int stride, const std
     p.gospa_max.points.emplace_back(row.t_s, row.gospa_max_m);
   }
 
-  const std::string dots_note = stride > 1 ? fmt::format("every {}th cycle shown", stride) : "";
+  const std::string dots_note = stride > 1 ? every_nth_cycle(stride) + " shown" : "";
   const std::string mean_note = stride > 1 ? fmt::format("mean over {} cycles per point", stride) : "";
   std::vector<svg::PlotSpec> plots;
   for (auto& [sensor, p] : series) {

@@ -29,6 +29,10 @@ svg::BirdsEyeSpec birdseye_of_cycle(const RunData& run, const ChosenCycle& chose
 // Every how many cycles the time series take a point, for at most `max_points` points.
 int series_stride(const RunData& run, int max_points);
 
+// "every 2nd cycle", "every 11th cycle", "every 23rd cycle": the English ordinal of `stride`
+// ("every cycle" for 1), for the note under thinned series (was "every 2th cycle").
+std::string every_nth_cycle(int stride);
+
 // Per sensor: nearest object target's range and lateral position (recorded and simulated, like paper
 // Fig. 5), targets per cycle, and GOSPA over time.
 std::vector<svg::PlotSpec> time_series(const RunData& run, int stride, const std::vector<NearestTargetRow>& nearest,

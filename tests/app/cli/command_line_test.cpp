@@ -1,6 +1,7 @@
 // The rcsim command line as a user meets it: every usage error is exit status 2 with a short
 // message, a mistyped option or command is named with the nearest one, one seed option, readable choices.
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -49,9 +50,16 @@ TEST_F(Cli, EveryCommandLineErrorIsExitStatusTwoWithAShortMessage) {
     EXPECT_LT(r.output.size(), 400u) << args << ": " << r.output;
   }
   // CLI11's messages in rcsim's form: the program first, then where the options are.
+  // A bare `rcsim` (issue 53: said only "A subcommand is required"): the commands, each with what
+  // it does, and how to go on.
   const auto bare = run("");
   EXPECT_EQ(bare.exit_code, 2);
-  EXPECT_EQ(bare.output, "rcsim: A subcommand is required (--help lists the options)\n");
+  for (const char* command : {"simulate", "replay", "report", "calibrate", "bench", "campaign", "models"}) {
+    EXPECT_NE(bare.output.find(fmt::format("\n  {} ", command)), std::string::npos) << command << "\n" << bare.output;
+  }
+  EXPECT_NE(bare.output.find("re-simulate a recording, compare it cycle by cycle"), std::string::npos) << bare.output;
+  EXPECT_TRUE(bare.output.ends_with("\nrcsim: a command is required: rcsim COMMAND --help lists its options\n")) << bare.output;
+  EXPECT_EQ(run("replay").output, "rcsim: RECORDING_DIR is required (--help lists the options)\n");
   EXPECT_EQ(run("--help").exit_code, 0);
   EXPECT_EQ(run("--version").exit_code, 0);
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "app/cli/run_rcsim.hpp"
 #include "scratch_dir.hpp"
 
 namespace rcsim::verdict_options_test {
@@ -114,6 +115,24 @@ TEST_F(VerdictFiles, ABadCriteriaFileOrAJunitPathThatIsADirectoryIsRefusedBefore
   defaults.criteria_file = std::string(cli::kDefaultCriteriaArg);
   cli::read_verdict_criteria(defaults);
   EXPECT_FALSE(defaults.file_criteria.has_value());  // "defaults" names no file
+}
+
+// Issue 53: a mistyped criteria name ("default" for "defaults") said "File does not exist". Now
+// the names it takes, the nearest one asked about; status 2, before any work (no report made).
+TEST_F(VerdictFiles, AMistypedCriteriaNameIsAnsweredWithTheNamesItTakes) {
+  const std::string recording = (std::filesystem::path(RCSIM_SOURCE_DIR) / "recordings_synthetic" / "front_approach").string();
+  const auto db = dir_ / "r.sqlite";
+  const auto typo = rcsim::testing::run_rcsim("replay " + recording + " --db " + db.string() + " --criteria default");
+  EXPECT_EQ(typo.exit_code, 2) << typo.output;
+  EXPECT_EQ(typo.output.find("File does not exist"), std::string::npos) << typo.output;
+  EXPECT_NE(typo.output.find("--criteria: 'default' is neither a file nor a criteria name (did you mean 'defaults'?); it "
+                             "takes a criteria file (rcsim-criteria or rcsim-campaign) or a name: defaults"),
+            std::string::npos)
+      << typo.output;
+  const auto far = rcsim::testing::run_rcsim("replay " + recording + " --db " + db.string() + " --criteria tolerances");
+  EXPECT_EQ(far.exit_code, 2) << far.output;
+  EXPECT_NE(far.output.find("'tolerances' is neither a file nor a criteria name; it takes"), std::string::npos) << far.output;
+  EXPECT_FALSE(std::filesystem::exists(db));
 }
 
 }  // namespace rcsim::verdict_options_test

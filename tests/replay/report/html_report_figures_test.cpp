@@ -20,6 +20,22 @@ RunData two_sensor_run(int cycles) {
   return run;
 }
 
+// Issue 53: the thinned series' note read "every 2th cycle".
+TEST(HtmlReportFigures, TheThinnedSeriesNoteSaysItsOrdinalInEnglish) {
+  EXPECT_EQ(every_nth_cycle(1), "every cycle");
+  EXPECT_EQ(every_nth_cycle(2), "every 2nd cycle");
+  EXPECT_EQ(every_nth_cycle(3), "every 3rd cycle");
+  EXPECT_EQ(every_nth_cycle(4), "every 4th cycle");
+  EXPECT_EQ(every_nth_cycle(11), "every 11th cycle");
+  EXPECT_EQ(every_nth_cycle(12), "every 12th cycle");
+  EXPECT_EQ(every_nth_cycle(13), "every 13th cycle");
+  EXPECT_EQ(every_nth_cycle(15), "every 15th cycle");
+  EXPECT_EQ(every_nth_cycle(21), "every 21st cycle");
+  EXPECT_EQ(every_nth_cycle(22), "every 22nd cycle");
+  EXPECT_EQ(every_nth_cycle(103), "every 103rd cycle");
+  EXPECT_EQ(every_nth_cycle(112), "every 112th cycle");
+}
+
 TEST(HtmlReportFigures, ChosenCyclesAreDistinctInTimeOrderWithTheirReasons) {
   CycleHighlights found;
   found.largest_gospa = CycleFound{40, 1.25, 1};
