@@ -5,7 +5,7 @@
 //    IMMEDIATE) before its own snapshot is read; the campaigns and criteria are checked to agree,
 //    the plan is made against that snapshot (which runs and benches are new, which are
 //    duplicates, their ids in the output), and the new rows are copied from each input into the
-//    output in that same transaction (report_merge_copy.cpp), then committed. SQLite's WAL makes
+//    output in that same transaction (report_merge_copy.cpp), then committed. SQLite's journal makes
 //    it all or nothing: a refusal, a failure or a kill at any moment leaves the output as it was.
 //    A process writing the output meanwhile (a replay into it) waits for the lock or gives up
 //    ("database is locked"); what it committed is never lost, since the output is read under the
@@ -162,14 +162,10 @@ void merge_in_place(const std::string& output, const std::vector<Snapshot>& inpu
   try {
     SQLite::Database db(output, SQLite::OPEN_READWRITE);
     db.setBusyTimeout(kOutputBusyTimeoutMs);
-    // Another program's database, or another version's report, is refused before it is touched;
-    // an empty one becomes a report in WAL mode like every report (set outside a transaction).
+    // Another program's database, or another version's report, is refused before it is touched.
+    // Its journal as it is: a finished report's rollback journal (or a live one's WAL) makes the
+    // transaction all or nothing alike, and a merge that adds nothing leaves the file unwritten.
     check_header(db, output);
-    if (const std::string mode = db.execAndGet("PRAGMA journal_mode").getString(); mode != "wal") {
-      if (db.execAndGet("PRAGMA journal_mode = WAL").getString() != "wal") {
-        throw InputError(output, "", "cannot set the report to WAL");
-      }
-    }
     db.exec("PRAGMA foreign_keys = ON");
     db.exec("PRAGMA synchronous = FULL");  // the commit synced: durable as soon as the merge says so
     db.exec("PRAGMA cache_size = -32768");
@@ -187,7 +183,16 @@ void merge_in_place(const std::string& output, const std::vector<Snapshot>& inpu
     const Plan plan = plan_merge(snapshot, inputs, result);
     if (header == Header::empty) create_report_schema(db);  // an empty output is made a report
     fill(db, output, inputs, plan, merge_copy::Copying::rows, result);
-    if (header == Header::empty || plan.writes()) transaction.commit();
+    if (header == Header::empty || plan.writes()) {
+      transaction.commit();
+      // A finished report needs no -shm to be read (read-only storage): a rollback journal, unless
+      // another connection has it open (then it stays as it is, and that one switches it).
+      try {
+        db.setBusyTimeout(0);
+        db.exec("PRAGMA journal_mode = DELETE");
+      } catch (const SQLite::Exception&) {
+      }
+    }
     // else rolled back: nothing new, the output not written
   } catch (const SQLite::Exception& e) {
     if (e.getErrorCode() == SQLITE_NOTADB) merge_read::throw_named(e, output);
@@ -222,9 +227,9 @@ void merge_into_new(const fs::path& output_path, const std::vector<Snapshot>& in
     // Each input ATTACHed and copied with INSERT ... SELECT in a transaction of its own: the
     // fastest copy, for a file nobody else sees yet.
     fill(db, output, inputs, plan, merge_copy::Copying::attach, result);
-    // A report like every other; closed next, the last connection leaves no -wal or -shm.
-    if (db.execAndGet("PRAGMA journal_mode = WAL").getString() != "wal") {
-      throw InputError(output, "", "cannot set the merged report to WAL");
+    // A finished report like every other: a rollback journal, readable without a -shm.
+    if (db.execAndGet("PRAGMA journal_mode = DELETE").getString() != "delete") {
+      throw InputError(output, "", "cannot set the merged report's journal");
     }
   } catch (const SQLite::Exception& e) {
     throw InputError(output, "", std::string("cannot write the merged report: ") + e.what());

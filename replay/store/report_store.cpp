@@ -236,6 +236,17 @@ SchemaState read_schema_state_once(SQLite::Database& db, const std::string& path
 
 }  // namespace
 
+void ReportDatabase::finish_journal() noexcept {
+  try {
+    if (sqlite3_db_readonly(getHandle(), "main") != 0) return;
+    setBusyTimeout(0);  // another connection open: it switches when it closes; nobody waits here
+    exec("PRAGMA journal_mode = DELETE");
+  } catch (...) {
+    // SQLITE_BUSY (another reader or writer) or a failing file system: the file stays in WAL mode,
+    // as consistent as before.
+  }
+}
+
 std::unique_ptr<ReportDatabase> open_report_database(const std::string& path, bool create) {
   const bool existed = std::filesystem::exists(path);
   if (!create && !existed) throw InputError(path, "", "no such report database");

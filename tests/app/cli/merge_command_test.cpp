@@ -53,7 +53,10 @@ struct ReportContent {
 };
 
 ReportContent content(const fs::path& path) {
-  SQLite::Database db(path.string(), SQLite::OPEN_READONLY);
+  // Read-write, as sqlite3 and rcsim open a report they may write: a finished report has a rollback
+  // journal (issue 53), and a merge killed in it leaves a hot journal that the next such connection
+  // rolls back (a read-only one cannot).
+  SQLite::Database db(path.string(), SQLite::OPEN_READWRITE);
   ReportContent c;
   c.integrity = db.execAndGet("PRAGMA integrity_check").getString();
   c.rows = fmt::format("{} {}\n", db.execAndGet("PRAGMA application_id").getInt(),

@@ -6,6 +6,7 @@
 #include <csignal>
 #include <fcntl.h>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -219,6 +220,37 @@ TEST_F(ReplayCli, ReplayKilledMidwayLeavesEarlierRunsComplete) {
   // And the database takes the next run.
   EXPECT_EQ(run_rcsim("replay " + small.string() + " --db " + db + " --again").exit_code, 0);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM summaries").getInt(), 3);
+}
+
+// Issue 53: a finished report was left in WAL mode, which sqlite3 cannot read on read-only storage
+// (it needs a -shm beside the file). The last writer to close it switches it back to a rollback
+// journal: no -wal, no -shm, and sqlite3 reads it from a read-only mount (where one can be made).
+TEST_F(ReplayCli, AFinishedReportIsReadableOnReadOnlyStorage) {
+  const fs::path rec = recording(1.0);
+  const fs::path folder = dir_ / "reports";
+  fs::create_directories(folder);
+  const std::string db = (folder / "r.sqlite").string();
+  ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db).exit_code, 0);
+  ASSERT_EQ(run_rcsim("replay " + rec.string() + " --db " + db + " --again --seed 2").exit_code, 0);
+  for (const char* suffix : {"-wal", "-shm", "-journal"}) EXPECT_FALSE(fs::exists(db + suffix)) << suffix;
+  {
+    std::ifstream file(db, std::ios::binary);
+    char header[20] = {};
+    file.read(header, sizeof header);
+    EXPECT_EQ(header[18], 1) << "the file's write version: 2 is WAL";
+    EXPECT_EQ(header[19], 1) << "the file's read version: 2 is WAL";
+  }
+  SQLite::Database d(db, SQLite::OPEN_READONLY);
+  EXPECT_EQ(d.execAndGet("PRAGMA journal_mode").getString(), "delete");
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 2);
+  if (std::system("command -v sqlite3 >/dev/null 2>&1 && unshare -rm true >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "sqlite3 or unshare -rm unavailable: not read from a read-only mount";
+  }
+  const auto r = testing::run_shell_command("unshare -rm sh -c 'mount --bind " + folder.string() + " " + folder.string() +
+                                            " && mount -o remount,ro,bind " + folder.string() + " && sqlite3 " + db +
+                                            " \"SELECT count(*) FROM runs\"'");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output, "2\n");
 }
 
 // --store summary keeps the per-cycle figures, bit for bit those of a full run, and every table per

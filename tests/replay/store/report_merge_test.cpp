@@ -196,7 +196,8 @@ TEST_F(ReportMerge, TwoShardsMergeIntoWhatASerialReplayStoresFigureForFigure) {
   EXPECT_EQ(r.inputs[1].run_ids, (std::vector<std::pair<std::int64_t, std::int64_t>>{{1, 3}, {2, 4}}));
   // Every row of every table, the moment and the timings aside (the run ids match: shard a's runs
   // come first, as in the serial replay).
-  // A report like every other: WAL, closed cleanly (no -wal, -shm), no temporary file left.
+  // A finished report like every other: a rollback journal (issue 53: readable on read-only
+  // storage), closed cleanly (no -wal, -shm), no temporary file left.
   EXPECT_FALSE(fs::exists(out.string() + "-wal"));
   EXPECT_FALSE(fs::exists(out.string() + "-shm"));
   EXPECT_TRUE(merge_files(dir_).empty());
@@ -211,7 +212,7 @@ TEST_F(ReportMerge, TwoShardsMergeIntoWhatASerialReplayStoresFigureForFigure) {
   EXPECT_EQ(count(out, "SELECT count(*) FROM object_ranges WHERE targets_recorded IS NULL OR targets_simulated IS NULL"), 0);
   EXPECT_GT(count(out, "SELECT sum(targets_recorded) FROM object_ranges"), 0);
   SQLite::Database db(out.string(), SQLite::OPEN_READONLY);
-  EXPECT_EQ(db.execAndGet("PRAGMA journal_mode").getString(), "wal");
+  EXPECT_EQ(db.execAndGet("PRAGMA journal_mode").getString(), "delete");
   EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
   EXPECT_EQ(db.execAndGet("SELECT count(*) FROM pragma_foreign_key_check").getInt(), 0);
   // It reads as a report and takes new runs.
@@ -365,6 +366,7 @@ TEST_F(ReportMerge, InputsAreOnlyRead) {
   // the merge reads them, and leaves the WAL as it was.
   const std::string live = shard("b.sqlite", "live.sqlite");
   SQLite::Database writer(live, SQLite::OPEN_READWRITE);
+  writer.exec("PRAGMA journal_mode = WAL");  // a writer's, as the store opens it (a finished report has none)
   writer.exec("PRAGMA wal_autocheckpoint = 0");
   writer.exec("UPDATE runs SET seed = seed + 100");
   ASSERT_GT(fs::file_size(live + "-wal"), 0u);
@@ -384,6 +386,7 @@ TEST_F(ReportMerge, AnExistingOutputsWalIsTakenIn) {
   const fs::path copy = dir_ / "copy.sqlite";
   {
     SQLite::Database writer(out.string(), SQLite::OPEN_READWRITE);
+    writer.exec("PRAGMA journal_mode = WAL");  // a writer's, as the store opens it (a finished report has none)
     writer.exec("PRAGMA wal_autocheckpoint = 0");
     writer.exec("UPDATE runs SET recording_name = 'renamed' WHERE run_id = 1");
     fs::copy_file(out, copy);
@@ -419,7 +422,7 @@ TEST_F(ReportMerge, AnExistingOutputIsWrittenInPlaceInOneTransaction) {
   EXPECT_FALSE(fs::exists(out.string() + "-wal")) << "checkpointed when the merge closed it";
   EXPECT_TRUE(merge_files(dir_).empty()) << "no temporary file";
   SQLite::Database db(out.string(), SQLite::OPEN_READONLY);
-  EXPECT_EQ(db.execAndGet("PRAGMA journal_mode").getString(), "wal");
+  EXPECT_EQ(db.execAndGet("PRAGMA journal_mode").getString(), "delete");
   EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
   EXPECT_EQ(db.execAndGet("SELECT count(*) FROM pragma_foreign_key_check").getInt(), 0);
   // The same as merging both into a new report.
