@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/fidelity_option.hpp"
+#include "cli/fit_progress.hpp"
 #include "cli/replay_options.hpp"
 #include "cli/seed_option.hpp"
 #include "cli/verdict_options.hpp"
@@ -265,9 +266,23 @@ void replay_and_store(ReplayArgs& args) {
   options.stationary_gate_mps = args.stationary_gate_mps;
   const bool existed = std::filesystem::exists(args.db_path);
   auto db = replay::open_report_database(args.db_path, true);
+  // Ctrl-C (issue 53, trap 4: it exited 130 silently and left an empty database): the replay stops
+  // at the next cycle boundary and stores nothing, the run being one transaction; the report keeps
+  // the runs stored before it, and one this replay created is removed.
+  const FitInterrupt interrupt;
+  options.stop = interrupt.flag();
   try {
     if (!args.again && print_if_stored(*db, args, recording, options)) return;
     store_and_print(*db, args, recording, options);
+  } catch (const replay::ReplayStopped& stopped) {
+    if (!existed) replay::discard_if_unused(db, args.db_path);
+    const bool kept = db != nullptr && std::filesystem::exists(args.db_path);
+    throw FitInterrupted(fmt::format(
+        "{}: the replay stopped at cycle {} of {}; nothing of it stored{} (a run is stored whole or not at all); "
+        "run the same command again to replay it",
+        recording.name, stopped.cycles_done, stopped.cycles,
+        kept ? fmt::format(": {} holds the runs stored before, unchanged", args.db_path)
+             : fmt::format(", and {}, which this replay created, removed", args.db_path)));
   } catch (...) {
     // A replay refused (a damaged row found as it went) leaves no report it created behind; a
     // stored run keeps it (a failed verdict).

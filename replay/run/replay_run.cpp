@@ -272,7 +272,11 @@ ReplaySummary compare_cycles(const Recording& rec, const ImportedScene& imported
   std::vector<RecordedTarget> recorded;
   int k = 0, only_sensor = -1;
   double t_rec_s = 0.0;
+  int cycles_done = 0;
   while (cycles.next(k, t_rec_s, only_sensor, recorded)) {
+    // Asked to stop (Ctrl-C): at this cycle boundary, the cycles before it handed to the sink.
+    if (options.stop != nullptr && options.stop->load()) throw ReplayStopped(cycles_done, rec.cycle_count());
+    ++cycles_done;
     // read the cycle => simulate => per sensor: boxes, detectability, match, figures, store
     if (const auto window = cycles.take_moved_window()) {
       source.cull_within(window->first, window->second);

@@ -3,9 +3,11 @@
 // compare the simulated target lists with the recorded ones cycle by cycle and sensor by sensor.
 // Results stream into a ReplaySink (the SQLite report store) so that an hour-long recording
 // never has to be held in memory twice.
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 #include <limits>
 #include <string>
@@ -37,6 +39,17 @@ struct ReplayOptions {
   // for a search that needs only counts and detection rates (calibrate --real-drive's objective:
   // the assignment is 70 % of an imaging radar's replay).
   bool match_targets = true;
+  // Set (by SIGINT: rcsim replay, calibrate): the replay stops at the next cycle boundary and
+  // throws ReplayStopped; null: never. Not part of a run's identity.
+  const std::atomic<bool>* stop = nullptr;
+};
+
+// A replay stopped by ReplayOptions::stop before its cycle `cycles_done` (of `cycles`): its sink
+// saw begin_run and those cycles, never end_run.
+class ReplayStopped : public std::runtime_error {
+ public:
+  ReplayStopped(int done, int of) : std::runtime_error("replay stopped"), cycles_done(done), cycles(of) {}
+  int cycles_done, cycles;
 };
 
 // One target of one cycle and sensor, recorded or simulated.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <chrono>
 #include <csignal>
 #include <fcntl.h>
 #include <filesystem>
@@ -220,6 +221,45 @@ TEST_F(ReplayCli, ReplayKilledMidwayLeavesEarlierRunsComplete) {
   // And the database takes the next run.
   EXPECT_EQ(run_rcsim("replay " + small.string() + " --db " + db + " --again").exit_code, 0);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM summaries").getInt(), 3);
+}
+
+// Issue 53, trap 4: Ctrl-C during a replay exited 130 silently and left an empty database. Now it
+// stops at the next cycle boundary (within a second), says where and what became of the report,
+// and stores nothing of the run (one transaction): an earlier report keeps its runs unchanged, one
+// the replay created is removed. Exit status 130, as a shell reports Ctrl-C.
+TEST_F(ReplayCli, AnInterruptedReplayStopsPromptlyAndLeavesTheReportAsItWas) {
+  const fs::path small = recording(1.0, "small");
+  const fs::path large = recording(6000.0, "large");  // 150,000 cycles: seconds to replay
+  const std::string db = (dir_ / "r.sqlite").string(), fresh = (dir_ / "new.sqlite").string();
+  ASSERT_EQ(run_rcsim("replay " + small.string() + " --db " + db).exit_code, 0);
+  for (const std::string& target : {db, fresh}) {
+    const auto start = std::chrono::steady_clock::now();
+    // SIGINT every 0.1 s from the start (a background job ignores it until the replay's handler is
+    // in place), as the interrupted-fit test sends it.
+    const auto r = testing::run_shell_command(fmt::format(
+        "{} replay {} --db {} --again & pid=$!; for i in $(seq 1 600); do sleep 0.1; kill -INT $pid 2>/dev/null || break; "
+        "done; wait $pid; echo \"rc $?\"",
+        RCSIM_BINARY, large.string(), target));
+    const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_NE(r.output.find("rc 130\n"), std::string::npos) << r.output;
+    EXPECT_LT(elapsed_s, 3.0) << "the replay went on after Ctrl-C: " << r.output;
+    const std::string said = "rcsim: interrupted: model_made: the replay stopped at cycle ";
+    const std::size_t at = r.output.find(said);
+    ASSERT_NE(at, std::string::npos) << r.output;
+    EXPECT_LT(std::stoi(r.output.substr(at + said.size())), 150001 / 2) << r.output;
+    EXPECT_NE(r.output.find(" of 150001; nothing of it stored"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("stored in"), std::string::npos) << "the replay finished before Ctrl-C: " << r.output;
+    if (target == db) {
+      EXPECT_NE(r.output.find(db + " holds the runs stored before, unchanged"), std::string::npos) << r.output;
+      SQLite::Database d(db, SQLite::OPEN_READONLY);
+      EXPECT_EQ(d.execAndGet("PRAGMA integrity_check").getString(), "ok");
+      EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 1);
+      EXPECT_EQ(d.execAndGet("SELECT count(*) FROM summaries").getInt(), 1);
+    } else {
+      EXPECT_NE(r.output.find(fresh + ", which this replay created, removed"), std::string::npos) << r.output;
+      for (const char* suffix : {"", "-wal", "-shm", "-journal"}) EXPECT_FALSE(fs::exists(fresh + suffix)) << suffix;
+    }
+  }
 }
 
 // Issue 53: a finished report was left in WAL mode, which sqlite3 cannot read on read-only storage
