@@ -91,6 +91,45 @@ std::string searched_fields(const replay::RealDriveFit& fit) {
   return names;
 }
 
+// A word as a shell reads it: as it is if it holds nothing a shell would take apart, else quoted.
+std::string shell_word(const std::string& word) {
+  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./,:=@+") ==
+                           std::string::npos) {
+    return word;
+  }
+  std::string quoted = "'";
+  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// The command that continues an interrupted fit from what it wrote: the same one, with --start
+// naming its output (issue 53: "run again to finish it" restarted from evaluation 1).
+std::string resume_command(const CalibrateArgs& args) {
+  std::string command = "rcsim calibrate";
+  for (const std::string& r : args.recordings) command += " " + shell_word(r);
+  if (args.real_drive) command += " --real-drive";
+  if (args.hold_out) command += " --hold-out";
+  if (!args.sensor.empty()) command += " --sensor " + shell_word(args.sensor);
+  if (args.real_drive && args.max_evaluations != replay::RealDriveSearch{}.max_evaluations) {
+    command += fmt::format(" --max-evaluations {}", args.max_evaluations);
+  }
+  if (!args.real_drive) {
+    if (args.fit != CalibrateArgs{}.fit) command += " --fit " + shell_word(args.fit);
+    if (args.initial_step_db != CalibrateArgs{}.initial_step_db) command += fmt::format(" --initial-step-db {}", args.initial_step_db);
+    if (args.final_step_db != CalibrateArgs{}.final_step_db) command += fmt::format(" --final-step-db {}", args.final_step_db);
+    if (args.cross_validate) command += " --cross-validate";
+  }
+  if (args.seed != kDefaultSeed) command += fmt::format(" --seed {}", args.seed);
+  return command + " --start " + shell_word(args.output_dir) + " -o " + shell_word(args.output_dir);
+}
+
+// What an interrupted fit left, and how to go on.
+std::string interrupted_text(const CalibrateArgs& args, int evaluations) {
+  return fmt::format("{} holds the best fit so far ({} evaluations), marked partial (\"partial\": true in {}; replay "
+                     "--calibration says so); to continue the search from it: {}",
+                     args.output_dir, evaluations, replay::kCalibrationIndexFile, resume_command(args));
+}
+
 // rcsim calibrate --real-drive (docs/sensor-profiles.md): the profile's free values and the
 // stationary background fitted to real drives by their figures, with the hold-outs.
 void run_real_drive_calibration(const CalibrateArgs& args) {
@@ -110,19 +149,26 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
       for (RecordingSensor& s : r.sensors) s.type = type;
     }
   }
+  const FitInterrupt interrupt;
   replay::ReplayOptions options;
   options.seed = args.seed;
   options.fidelity = Fidelity::no_tracking;
+  options.stop = interrupt.flag();  // the figures' replays stop at the next cycle too
+  const nlohmann::ordered_json start =
+      args.start_dir.empty() ? nlohmann::ordered_json() : replay::start_sensor_document(args.start_dir);
   std::vector<const Recording*> all;
   for (const Recording& r : recordings) all.push_back(&r);
   std::cout << fmt::format("rcsim calibrate --real-drive: {} recording(s), seed {}, at most {} evaluations\n", recordings.size(),
                            args.seed, args.max_evaluations);
-  const FitInterrupt interrupt;
   replay::RealDriveFit fit;
-  {
+  try {
     FitProgress progress("calibrate --real-drive");
-    replay::RealDriveSearch search{args.max_evaluations, interrupt.flag(), [&](const replay::SearchProgress& p) { progress.update(p); }};
+    replay::RealDriveSearch search{args.max_evaluations, interrupt.flag(), [&](const replay::SearchProgress& p) { progress.update(p); },
+                                   start};
     fit = replay::fit_real_drive(all, options, search);
+  } catch (const replay::ReplayStopped&) {
+    throw FitInterrupted("stopped while the stationary background was fitted, before the first evaluation: nothing "
+                         "written; run the same command again");
   }
   std::cout << fmt::format("fitted: {} evaluations, objective {:.4f}, {}; background {:.1f} targets per sensor cycle\n",
                            fit.evaluations, fit.objective, search_outcome(fit),
@@ -149,20 +195,24 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
                   {"partial", fit.partial}, {"flat", fit.flat}, {"reference_rcs_dbsm", fit.reference_rcs_dbsm},
                   {"diffuse_relative_ercs_per_sqrt_m", fit.diffuse_relative_ercs_per_sqrt_m},
                   {"occlusion_loss_db", fit.occlusion_loss_db}, {"values", values}};
-  print_figures_header();
+  // Interrupted: the fit is written at once, without the figures' replays (issue 53: the figures
+  // took 15 s after Ctrl-C, with a bare table header on screen).
   nlohmann::ordered_json in_sample = nlohmann::ordered_json::array();
-  const SensorConfig fitted = parse_sensor_config(JsonField(fit.sensor_document, "fitted", ""));
-  for (const Recording& r : recordings) {
-    const auto figures = replay::real_drive_figures(r, replay::replay_with_sensor(r, options, fitted));
-    print_figures(fmt::format("in sample: {}", r.name.substr(0, 22)), figures);
-    in_sample.push_back({{"recording", r.name}, {"figures", replay::figures_to_json(figures)}});
-  }
-  index["in_sample"] = in_sample;
   nlohmann::ordered_json hold_outs = nlohmann::ordered_json::array();
-  if (args.hold_out && !fit.partial) {
+  try {
+    if (fit.partial || interrupt.interrupted()) throw replay::ReplayStopped(0, 0);
+    print_figures_header();
+    const SensorConfig fitted = parse_sensor_config(JsonField(fit.sensor_document, "fitted", ""));
     for (const Recording& r : recordings) {
+      const auto figures = replay::real_drive_figures(r, replay::replay_with_sensor(r, options, fitted));
+      print_figures(fmt::format("in sample: {}", r.name.substr(0, 22)), figures);
+      in_sample.push_back({{"recording", r.name}, {"figures", replay::figures_to_json(figures)}});
+    }
+    for (const Recording& r : recordings) {
+      if (!args.hold_out) break;
       FitProgress progress("calibrate --real-drive --hold-out");
-      replay::RealDriveSearch search{args.max_evaluations, interrupt.flag(), [&](const replay::SearchProgress& p) { progress.update(p); }};
+      replay::RealDriveSearch search{args.max_evaluations, interrupt.flag(), [&](const replay::SearchProgress& p) { progress.update(p); },
+                                     {}};
       for (const replay::HoldOut& h : replay::hold_outs(r, options, search)) {
         print_figures(fmt::format("{}: in sample", h.name.substr(0, 22)), h.in_sample);
         print_figures(fmt::format("{}: held out", h.name.substr(0, 22)), h.held_out);
@@ -174,9 +224,14 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
                              {"in_sample", replay::figures_to_json(h.in_sample)},
                              {"held_out", replay::figures_to_json(h.held_out)}});
       }
+      if (interrupt.interrupted()) throw replay::ReplayStopped(0, 0);
     }
+  } catch (const replay::ReplayStopped&) {
+    std::cout << "interrupted: the in-sample and held-out figures are not measured (replay --calibration measures them)\n";
   }
+  index["in_sample"] = in_sample;
   index["hold_outs"] = hold_outs;
+  index["partial"] = fit.partial || interrupt.interrupted();
   nlohmann::ordered_json document = fit.sensor_document;
   const std::string name = document.value("name", "sensor");
   document["description"] = document.value("description", "") +
@@ -194,10 +249,7 @@ void run_real_drive_calibration(const CalibrateArgs& args) {
   index_writer.commit();
   std::cout << fmt::format("\ncalibration written to {}; use it with rcsim replay --calibration {}\n", args.output_dir,
                            args.output_dir);
-  if (fit.partial || interrupt.interrupted()) {
-    throw FitInterrupted(fmt::format("{} holds the best fit so far, marked partial (fit.partial); run again to finish it",
-                                     args.output_dir));
-  }
+  if (fit.partial || interrupt.interrupted()) throw FitInterrupted(interrupted_text(args, fit.evaluations));
 }
 
 void run_calibrate(const CalibrateArgs& args) {
@@ -219,12 +271,28 @@ void run_calibrate(const CalibrateArgs& args) {
   for (const auto& dir : recording_dirs(args.recordings)) recordings.push_back(read_recording(dir));
   if (args.cross_validate && recordings.size() < 2) throw InputError("--cross-validate", "", "needs at least two recordings");
 
+  // Ctrl-C: the search stops at once (a replay under way at its next cycle) and writes the best so far.
+  const FitInterrupt interrupt;
+  options.replay.stop = interrupt.flag();
   std::cout << fmt::format("rcsim calibrate: {} recording(s), fitting {}, seed {}\n", recordings.size(), args.fit, options.seed);
   const auto progress = [](double step_db, double objective, int evaluations) {
+    if (step_db == 0.0) {
+      std::cout << fmt::format("  start: objective {:.4f} after {} evaluation (Ctrl-C: stop, keep the best so far)\n",
+                               objective, evaluations);
+      std::cout.flush();
+      return;
+    }
     std::cout << fmt::format("  step {:5.2f} dB: objective {:.4f} after {} evaluations\n", step_db, objective, evaluations);
     std::cout.flush();
   };
-  const replay::CalibrationResult result = replay::calibrate(recordings, options, progress);
+  replay::CalibrationResult result;
+  try {
+    result = replay::calibrate(recordings, options, progress);
+  } catch (const replay::ReplayStopped&) {
+    throw FitInterrupted("stopped during the first evaluation (the starting parameters): nothing written; run the same "
+                         "command again");
+  }
+  if (result.partial) std::cout << "interrupted: the best parameters so far\n";
 
   std::cout << fmt::format("\n{:<48} {:>10} {:>10} {:>11}\n", "parameter", "initial", "fitted", "change");
   for (const auto& p : result.parameters) {
@@ -240,7 +308,7 @@ void run_calibrate(const CalibrateArgs& args) {
   }
 
   std::vector<replay::RecordingFit> held_out;
-  if (args.cross_validate) {
+  if (args.cross_validate && !result.partial) {
     std::cout << "\nleave-one-out: fitting on all but one recording, in turn\n";
     held_out = replay::cross_validate(recordings, options, [](const replay::RecordingFit& f) {
       std::cout << fmt::format("  {}: {:.3f} m -> {:.3f} m\n", f.recording, f.gospa_before_m, f.gospa_after_m);
@@ -251,6 +319,7 @@ void run_calibrate(const CalibrateArgs& args) {
   replay::write_calibration(args.output_dir, result, options, recordings, args.cross_validate ? &held_out : nullptr);
   std::cout << fmt::format("\ncalibration written to {}; use it with rcsim replay or rcsim bench --calibration {}\n",
                            args.output_dir, args.output_dir);
+  if (result.partial) throw FitInterrupted(interrupted_text(args, result.evaluations));
 }
 
 }  // namespace
@@ -270,7 +339,8 @@ void add_calibrate_command(CLI::App& app) {
       ->check(CLI::Range(0.01, 40.0))
       ->capture_default_str();
   cmd->add_option("--start", args->start_dir,
-                  "calibration directory to start from instead of the built-ins (an earlier fit, or hand-edited models)");
+                  "calibration directory to start from instead of the built-ins (an earlier fit, one interrupted by "
+                  "Ctrl-C too, or hand-edited models); with --real-drive its sensor profile's values start the search");
   cmd->add_flag("--cross-validate", args->cross_validate,
                 "also fit on all recordings but one, in turn, and report each held-out recording's GOSPA");
   cmd->add_flag("--real-drive", args->real_drive,

@@ -15,6 +15,7 @@
 #include "io/recording.hpp"
 #include "io/recording_stream.hpp"
 #include "model/model_library.hpp"
+#include "replay/import/calibration.hpp"
 #include "replay/import/importer.hpp"
 #include "replay/run/run_sink_wrapper.hpp"
 #include "replay/run/replay_run.hpp"
@@ -261,6 +262,13 @@ void replay_and_store(ReplayArgs& args) {
   options.fidelity = args.fidelity.empty() ? default_fidelity_for(recording) : fidelity_from_arg(args.fidelity);
   options.import = import_options(args.import);
   options.import.calibration_dir = args.calibration;
+  // A fit interrupted by Ctrl-C is the best so far, not a finished one (issue 53): said before the run.
+  if (!args.calibration.empty() && replay::load_calibration(args.calibration)->partial) {
+    std::cerr << fmt::format("rcsim: warning: the calibration {} is a partial fit (interrupted, \"partial\": true in its "
+                             "calibration.json): the best values so far, not a finished fit; rcsim calibrate --start {} "
+                             "continues it\n",
+                             args.calibration, args.calibration);
+  }
   options.gospa = {args.cutoff_m, args.order_p};
   options.association_gate_m = args.gate_m;
   options.stationary_gate_mps = args.stationary_gate_mps;

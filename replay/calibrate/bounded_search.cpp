@@ -28,6 +28,7 @@ SearchResult compass_search(const std::vector<SearchParameter>& parameters,
   double lowest = INFINITY, highest = -INFINITY;
   const auto evaluate = [&](const std::vector<double>& x) {
     const double value = objective(x);
+    if (stopped()) return static_cast<double>(INFINITY);  // cut short by the stop (a replay stopped midway): counts for nothing
     lowest = std::min(lowest, value), highest = std::max(highest, value);
     ++r.evaluations;
     if (progress) progress({r.evaluations, max_evaluations, std::min(value, r.objective), r.best});

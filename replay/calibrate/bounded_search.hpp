@@ -38,7 +38,8 @@ struct SearchResult {
 };
 
 // `objective` is called at most max_evaluations times; `stop` (may be null) is read before each
-// call; `progress` (may be empty) after each.
+// call, and after it: an evaluation during which it was set (the objective may then have returned
+// anything) counts for nothing; `progress` (may be empty) after each.
 SearchResult compass_search(const std::vector<SearchParameter>& parameters,
                             const std::function<double(const std::vector<double>&)>& objective, int max_evaluations,
                             const std::atomic<bool>* stop = nullptr,

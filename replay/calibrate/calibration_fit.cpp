@@ -499,20 +499,33 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
   };
   double best = objective(figures);
   result.objective_before = best;
+  if (progress) progress(0.0, best, result.evaluations);  // the start, evaluated
   bool moved_objective = false;
 
   auto& parameters = fitter.parameters();
-  for (double step_db = options.initial_step_db; step_db >= options.final_step_db * (1.0 - 1e-12); step_db *= 0.5) {
-    for (int sweep = 0; sweep < options.max_sweeps_per_step; ++sweep) {
+  const auto stop_asked = [&] { return options.replay.stop != nullptr && options.replay.stop->load(); };
+  for (double step_db = options.initial_step_db; step_db >= options.final_step_db * (1.0 - 1e-12) && !result.partial;
+       step_db *= 0.5) {
+    for (int sweep = 0; sweep < options.max_sweeps_per_step && !result.partial; ++sweep) {
       bool improved = false;
-      for (std::size_t k = 0; k < parameters.size(); ++k) {
+      for (std::size_t k = 0; k < parameters.size() && !result.partial; ++k) {
         const double kept = parameters[k].value;
         for (const int direction : {+1, -1}) {
+          if (stop_asked()) {
+            result.partial = true;  // between evaluations: the best so far stands
+            break;
+          }
           const double trial = moved(parameters[k], step_db, direction);
           if (trial == kept || !fitter.set(k, trial)) continue;
           std::vector<Figures> g = figures;
-          for (std::size_t i = 0; i < n; ++i) {
-            if (fitter.touches(i, parameters[k].document)) g[i] = fitter.figures(i);
+          try {
+            for (std::size_t i = 0; i < n; ++i) {
+              if (fitter.touches(i, parameters[k].document)) g[i] = fitter.figures(i);
+            }
+          } catch (const ReplayStopped&) {
+            fitter.set(k, kept);  // the trial cut short: dropped
+            result.partial = true;
+            break;
           }
           ++result.evaluations;
           const double f = objective(g);
@@ -528,7 +541,7 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
       }
       if (!improved) break;
     }
-    if (progress) progress(step_db, best, result.evaluations);
+    if (progress && !result.partial) progress(step_db, best, result.evaluations);
   }
   result.objective_after = best;
   result.flat = result.evaluations >= 2 && !moved_objective;
@@ -581,6 +594,14 @@ Json fits_json(const std::vector<RecordingFit>& fits) {
 
 }  // namespace
 
+Json start_sensor_document(const std::string& dir) {
+  for (auto& [key, doc] : start_documents(dir)) {
+    if (key.starts_with("sensor:")) return doc;
+  }
+  throw InputError((std::filesystem::path(dir) / kCalibrationIndexFile).string(), "sensors",
+                   "holds no sensor profile to start a --real-drive fit from");
+}
+
 void check_calibration_output(const std::string& dir) {
   check_output_folder_writable(dir);
   check_output_file(std::filesystem::path(dir) / kCalibrationIndexFile);
@@ -605,6 +626,8 @@ void write_calibration(const std::string& dir, const CalibrationResult& result, 
   for (const Recording& r : recordings) fitted_on.push_back({{"recording", r.name}, {"checksum", fmt::format("{:016x}", r.checksum)}});
   index["fitted_on"] = fitted_on;
   index["objective"] = {{"before", result.objective_before}, {"after", result.objective_after}, {"flat", result.flat}};
+  // Interrupted (Ctrl-C): the best values so far; replay --calibration says so.
+  index["partial"] = result.partial;
   index["recordings"] = fits_json(result.recordings);
   index["cross_validation"] = held_out != nullptr ? fits_json(*held_out) : Json();
   Json parameters = Json::array();

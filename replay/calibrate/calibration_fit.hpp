@@ -80,6 +80,9 @@ struct CalibrationResult {
   int evaluations = 0;  // objective evaluations (each replays the recordings a parameter touches)
   // Every evaluation (at least two) gave the start's objective: no parameter moved it, nothing fitted.
   bool flat = false;
+  // options.replay.stop was set (Ctrl-C): the search ended early, at once (a replay under way
+  // stops at its next cycle and its trial is dropped); the parameters are the best so far.
+  bool partial = false;
   // The fitted rcsim-sensor and rcsim-object-model documents, keyed as CalibrationParameter::document.
   std::map<std::string, nlohmann::ordered_json> documents;
 };
@@ -98,7 +101,8 @@ bool compares_tracks(const Recording& recording);
 // no_tracking), some sensor's profile simulates a tracker.
 void check_fittable(const Recording& recording, Fidelity fidelity);
 
-// Progress: the step just finished, the objective and the evaluations so far.
+// Progress: the step just finished, the objective and the evaluations so far; first with step 0
+// once the starting parameters are evaluated.
 using CalibrationProgress = std::function<void(double step_db, double objective, int evaluations)>;
 
 CalibrationResult calibrate(const std::vector<Recording>& recordings, const CalibrationOptions& options,
@@ -108,6 +112,11 @@ CalibrationResult calibrate(const std::vector<Recording>& recordings, const Cali
 // the starting parameters), an estimate of the error on a recording the fit has not seen.
 std::vector<RecordingFit> cross_validate(const std::vector<Recording>& recordings, const CalibrationOptions& options,
                                          const std::function<void(const RecordingFit&)>& done = {});
+
+// The rcsim-sensor document a calibration directory holds (its first sensor), to start a
+// --real-drive search from (calibrate --start DIR, e.g. an interrupted fit); InputError naming the
+// file for a directory that is no calibration or holds no sensor.
+nlohmann::ordered_json start_sensor_document(const std::string& dir);
 
 // Refuses (InputError naming it) an output directory a calibration cannot be written into (not a
 // directory, read-only, no permission; its index a link or a device): called before the first

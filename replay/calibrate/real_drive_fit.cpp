@@ -360,7 +360,7 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
                             const RealDriveSearch& search) {
   const std::string type = shared_sensor_type(recordings);
   const Recording& first = *recordings.front();
-  Json doc = sensor_document(type, first.dir.string());
+  Json doc = search.start.is_null() ? sensor_document(type, first.dir.string()) : search.start;
   doc.erase("background");
   SensorConfig config = parse_sensor_config(JsonField(doc, type, ""));
   if (config.amplitude.kind != AmplitudeLawKind::radar_equation) {
@@ -371,7 +371,9 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
                      "(rcsim models --sensors --export aimotive_lrr -o radar.json) and name the file as the sensors' type");
   }
   // The background first: the profile's values are then fitted with it in place.
-  config.background = fit_stationary_background(recordings, options, config);
+  ReplayOptions stoppable = options;
+  stoppable.stop = search.stop;  // Ctrl-C ends a replay at its next cycle (here: ReplayStopped, nothing fitted yet)
+  config.background = fit_stationary_background(recordings, stoppable, config);
   doc["background"] = stationary_background_to_json(config.background);
   const std::vector<SearchParameter> parameters = search_parameters(config);
   // Whatever the search finds must be a profile that reads back: the background and every bound
@@ -386,7 +388,11 @@ RealDriveFit fit_real_drive(const std::vector<const Recording*>& recordings, con
   const auto objective_of = [&](const std::vector<double>& x) {
     SensorConfig c = config;
     for (std::size_t i = 0; i < x.size(); ++i) set_value(c, parameters[i].name, x[i]);
-    return objective(recordings, options, c);
+    try {
+      return objective(recordings, stoppable, c);
+    } catch (const ReplayStopped&) {
+      return static_cast<double>(INFINITY);  // the search sees the stop and drops this evaluation
+    }
   };
   const SearchResult r = compass_search(parameters, objective_of, search.max_evaluations, search.stop, search.progress);
   RealDriveFit best;

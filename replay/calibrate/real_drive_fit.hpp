@@ -77,6 +77,9 @@ struct RealDriveSearch {
   int max_evaluations = 60;
   const std::atomic<bool>* stop = nullptr;  // set (e.g. by SIGINT): the fit ends with the best so far, partial
   std::function<void(const SearchProgress&)> progress;
+  // The rcsim-sensor document to start from (an earlier fit, e.g. a partial one: calibrate
+  // --start DIR); null: the recordings' own profile.
+  nlohmann::ordered_json start;
 };
 
 struct RealDriveFit {

@@ -59,6 +59,11 @@ std::shared_ptr<const Calibration> load_calibration(const std::string& dir) {
       }
     }
   }
+  const auto is_true = [](const nlohmann::json& j, const char* key) {
+    const auto it = j.find(key);
+    return it != j.end() && it->is_boolean() && it->get<bool>();
+  };
+  calibration->partial = is_true(json, "partial") || (json.contains("fit") && json["fit"].is_object() && is_true(json["fit"], "partial"));
   return calibration;
 }
 

@@ -22,6 +22,9 @@ struct Calibration {
   std::map<std::string, SensorConfig> sensors;  // by the configuration's name (srr24, ...)
   std::map<std::string, ObjectModel> models;    // by the model's name (the class)
   std::vector<std::string> fitted_on_checksums;  // of the recordings it was fitted on (16 hex digits)
+  // The fit was interrupted (Ctrl-C): the best values so far, not a finished fit (the index's
+  // "partial": true; a --real-drive index's fit.partial too).
+  bool partial = false;
 };
 
 // Reads DIR/calibration.json and the sensor and model files it lists; errors name the file and

@@ -2,6 +2,7 @@
 // calibration (the bench flags in-sample recordings), and refusals that name the input.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -13,6 +14,7 @@
 
 #include "app/cli/run_rcsim.hpp"
 #include "replay/calibrate/snapshot_frames.hpp"
+#include "replay/replay_fixtures.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 
@@ -336,10 +338,71 @@ TEST_F(CalibrateCli, AnInterruptLeavesTheBestFitSoFarMarkedPartial) {
   const std::string output = testing::read_file(log);
   EXPECT_EQ(testing::read_file(rc), "130\n") << output;
   EXPECT_NE(output.find("interrupted: the best so far (partial)"), std::string::npos) << output;
+  // Issue 53, trap 3: what was saved and the command that continues it, with --start; the figures'
+  // replays skipped (they held the exit 15 s with a bare table header on screen).
+  EXPECT_NE(output.find("rcsim: interrupted: " + out.string() + " holds the best fit so far ("), std::string::npos) << output;
+  EXPECT_NE(output.find("to continue the search from it: rcsim calibrate " + rec.string() +
+                        " --real-drive --max-evaluations 10000 --start " + out.string() + " -o " + out.string()),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(output.find("in sample:"), std::string::npos) << output;
   const nlohmann::json index = nlohmann::json::parse(testing::read_file(out / "calibration.json"));
   EXPECT_TRUE(index.at("fit").at("partial").get<bool>());
+  EXPECT_TRUE(index.at("partial").get<bool>());
+  const auto replayed = run_rcsim("replay " + rec.string() + " --db " + (dir_ / "r.sqlite").string() + " --calibration " + out.string());
+  EXPECT_NE(replayed.output.find("rcsim: warning: the calibration " + out.string() + " is a partial fit"), std::string::npos)
+      << replayed.output;
+  // The command said continues from the values written: they are the search's start.
+  const auto resumed = run_rcsim("calibrate " + rec.string() + " --real-drive --max-evaluations 1 --start " + out.string() +
+                                 " -o " + (dir_ / "resumed").string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const nlohmann::json again = nlohmann::json::parse(testing::read_file(dir_ / "resumed" / "calibration.json"));
+  EXPECT_EQ(again.at("fit").at("values").at(0).at("start"), index.at("fit").at("values").at(0).at("value"));
+  EXPECT_FALSE(again.at("partial").get<bool>());
   EXPECT_LT(index.at("fit").at("evaluations").get<int>(), 10000);
   EXPECT_TRUE(fs::exists(out / index.at("sensors").begin().value().get<std::string>()));
+}
+
+
+// Issue 53, trap 3, the GOSPA fit: Ctrl-C was not handled (the fit was lost). Now it stops within
+// about a second of SIGINT (between evaluations, and inside an evaluation's replay), writes the best
+// so far marked partial, prints the command that continues it with --start, and replay
+// --calibration says the fit is partial. SIGINT every 0.1 s once the start is evaluated.
+TEST_F(CalibrateCli, AnInterruptedGospaFitStopsPromptlyAndSaysHowToContinue) {
+  const fs::path rec = dir_ / "long", out = dir_ / "fit", log = dir_ / "fit.log";
+  write_recording(rec, testing::model_recording(testing::two_cars_scene(400.0), 2, 0.03, 0.01));  // 10,000 cycles
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = testing::run_shell_command(fmt::format(
+      "{} calibrate {} -o {} > {} 2>&1 & pid=$!; "
+      "for i in $(seq 1 600); do grep -q 'start: objective' {} && break; sleep 0.05; done; "
+      "t0=$(date +%s%N); for i in $(seq 1 600); do kill -INT $pid 2>/dev/null || break; sleep 0.1; done; wait $pid; "
+      "echo \"rc $?\"; echo \"ms $(( ($(date +%s%N) - t0) / 1000000 ))\"",
+      RCSIM_BINARY, rec.string(), out.string(), log.string(), log.string()));
+  const std::string output = testing::read_file(log);
+  EXPECT_NE(r.output.find("rc 130\n"), std::string::npos) << r.output << output;
+  const std::size_t ms_at = r.output.find("ms ");
+  ASSERT_NE(ms_at, std::string::npos) << r.output;
+  EXPECT_LT(std::stoi(r.output.substr(ms_at + 3)), 1500) << "stopped too late: " << output;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 120.0);
+  EXPECT_NE(output.find("interrupted: the best parameters so far"), std::string::npos) << output;
+  EXPECT_NE(output.find("rcsim: interrupted: " + out.string() + " holds the best fit so far ("), std::string::npos) << output;
+  EXPECT_NE(output.find("to continue the search from it: rcsim calibrate " + rec.string() + " --start " + out.string() +
+                        " -o " + out.string()),
+            std::string::npos)
+      << output;
+  const nlohmann::json index = nlohmann::json::parse(testing::read_file(out / "calibration.json"));
+  EXPECT_TRUE(index.at("partial").get<bool>());
+  const auto replayed = run_rcsim("replay " + rec.string() + " --db " + (dir_ / "r.sqlite").string() + " --calibration " + out.string());
+  EXPECT_EQ(replayed.exit_code, 0) << replayed.output;
+  EXPECT_NE(replayed.output.find("rcsim: warning: the calibration " + out.string() + " is a partial fit"), std::string::npos)
+      << replayed.output;
+  // A finished fit is not partial, and replay says nothing of it.
+  const fs::path done = dir_ / "done";
+  ASSERT_EQ(run_rcsim("calibrate " + recording("front_approach") + " --final-step-db 6 -o " + done.string()).exit_code, 0);
+  EXPECT_FALSE(nlohmann::json::parse(testing::read_file(done / "calibration.json")).at("partial").get<bool>());
+  const auto finished = run_rcsim("replay " + recording("front_approach") + " --db " + (dir_ / "r2.sqlite").string() +
+                                  " --calibration " + done.string());
+  EXPECT_EQ(finished.output.find("partial fit"), std::string::npos) << finished.output;
 }
 
 }  // namespace
