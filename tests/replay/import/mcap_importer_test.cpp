@@ -431,7 +431,9 @@ TEST_F(McapImport, AnAttachmentIsSkippedUnread) {
   DatasetImportOptions options;
   options.mapping = mapping_;
   const auto added = testing::peak_memory_added_by([&] { import_mcap_to(log, options, dir_ / "out"); });
-  if (added) EXPECT_LT(*added, 32 << 20) << "peak memory added by the import";
+  if (added) {
+    EXPECT_LT(*added, 32 << 20) << "peak memory added by the import";
+  }
   EXPECT_EQ(read_recording(dir_ / "out").targets.size(), read_recording(dir).targets.size());
 }
 

@@ -105,11 +105,12 @@ TEST(TfTree, RefusalsNameTheFrames) {
   EXPECT_THAT(refusal([&] { tree.add({zero}, false); }), HasSubstr("no unit quaternion"));
   // Issue 51 (MEDIUM): a chain of 10,000 frames made every lookup walk it, quadratically (163 s for
   // a 1 MB log); a chain deeper than kMaxChainDepth is refused at once.
+  const auto f = [](int i) { return std::string("f").append(std::to_string(i)); };  // (GCC 12 warns on "f" + std::string)
   TfTree deep;
-  for (int i = 0; i < 10'000; ++i) deep.add({transform("f" + std::to_string(i), "f" + std::to_string(i + 1), 0, 0, 0, 0, 0)}, true);
+  for (int i = 0; i < 10'000; ++i) deep.add({transform(f(i), f(i + 1), 0, 0, 0, 0, 0)}, true);
   EXPECT_THAT(refusal([&] { deep.pose("f10000", "f0", 0); }), HasSubstr("the chain from 'f10000' up to its root holds more than 64 transforms"));
   TfTree shallow;
-  for (int i = 0; i < 64; ++i) shallow.add({transform("f" + std::to_string(i), "f" + std::to_string(i + 1), 0, 1, 0, 0, 0)}, true);
+  for (int i = 0; i < 64; ++i) shallow.add({transform(f(i), f(i + 1), 0, 1, 0, 0, 0)}, true);
   EXPECT_NEAR(shallow.pose("f64", "f0", 0).translation().x(), 64.0, 1e-9);
 }
 
