@@ -95,7 +95,7 @@ void run_simulate(const SimulateArgs& args, const CLI::App& cmd) {
   std::ostream& out = file ? file->stream() : std::cout;
 
   Simulation simulation(scene, options);
-  TargetListWriter writer(out, format, options.level);
+  TargetListWriter writer(out, format, options.level, rows_carry_elevation(scene));
   writer.write_header();
   for (int cycle = 0; cycle < simulation.cycle_count(); ++cycle) {
     simulation.run_cycle(cycle);

@@ -210,14 +210,13 @@ EgoAtFrame read_canbus(const fs::path& file) {
 const std::map<std::string, std::string, std::less<>>& model_of_class() {
   static const std::map<std::string, std::string, std::less<>> models{
       {"Car", "passenger_car"},        {"Truck", "truck_trailer"},         {"Bus", "truck_trailer"},
-      {"Trailer", "truck_trailer"},    {"Towed Object", "truck_trailer"},  {"Other Vehicle", "truck_trailer"}};
+      {"Trailer", "truck_trailer"},    {"Towed Object", "truck_trailer"},  {"Other Vehicle", "truck_trailer"},
+      {"Person", "pedestrian"},        {"Person with Object", "pedestrian"}, {"Cyclist", "cyclist"}};
   return models;
 }
 
-// The dataset's classes without an object model: people and riders.
-bool is_person_or_rider(std::string_view name) {
-  return name == "Person" || name == "Person with Object" || name == "Cyclist" || name == "Motorcyclist";
-}
+// The dataset's classes without an object model: riders of motorcycles.
+bool is_motorcyclist(std::string_view name) { return name == "Motorcyclist"; }
 
 // One labelled box of a frame, in the radar's reference frame.
 struct Box {
@@ -543,7 +542,7 @@ std::vector<std::string> left_out_warnings(const std::map<std::string, int>& lef
     std::string normalised = name;
     std::replace(normalised.begin(), normalised.end(), '_', ' ');
     warnings.push_back(fmt::format("{} boxes of class {} left out: {} (the object models: {})", count, name,
-                                   is_person_or_rider(normalised) ? "no object model for people and riders"
+                                   is_motorcyclist(normalised) ? "no object model for motorcycles"
                                                                   : "not a class the dataset documents, and no object model for it",
                                    fmt::join(models, ", ")));
   }
@@ -649,9 +648,9 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
   const bool demo = dataset.listing.filename() == "dataset_info.json";
   rec.description = fmt::format(
       "Astyx HiRes2019 {}: {} labelled frames ({}) of the imaging radar {}, one frame one cycle (snapshots); {} boxes "
-      "of cars and {} of trucks and buses; {}",
+      "of cars, {} of trucks and buses, {} of pedestrians and {} of cyclists; {}",
       demo ? "demo frames" : "dataset", frames.size(), astyx::as_ranges(numbers), dataset.radar, kept["passenger_car"],
-      kept["truck_trailer"], ego_known ? "ego motion from CAN" : "no ego motion (snapshots without CAN)");
+      kept["truck_trailer"], kept["pedestrian"], kept["cyclist"], ego_known ? "ego motion from CAN" : "no ego motion (snapshots without CAN)");
   rec.source = astyx::astyx_source(dataset_name, numbers, frame_indices, ego_known, doppler);
   if (doppler.unfitted > 0) {
     out.warnings.push_back(fmt::format("{} of {} frames: too few stationary points agree on a speed; the ego is taken "

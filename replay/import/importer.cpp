@@ -174,6 +174,8 @@ Scene build_scene(const ImportedScene& in, const ModelLibrary& library, const st
                        fmt::format("sensors[{}].type", i), e.what());
     }
     sensor.X_VS = {s.x_m, s.y_m, s.yaw_rad};
+    sensor.z_m = s.z_m;  // version 5: a radar that measures elevation reads them
+    sensor.pitch_rad = s.pitch_rad;
     sensor.cycle_time_s = s.cycle_time_s;  // its own clock (recording v4), else 0: the scene's
     scene.sensors.push_back(std::move(sensor));
   }
@@ -218,6 +220,8 @@ void write_scene_file(const std::string& path, const ImportedScene& in) {
   Json sensors = Json::array();
   for (const auto& s : in.sensors) {
     sensors.push_back({{"id", s.id}, {"type", s.type}, {"x_m", s.x_m}, {"y_m", s.y_m}, {"yaw_rad", s.yaw_rad}});
+    if (s.z_m != 0.0) sensors.back()["z_m"] = s.z_m;
+    if (s.pitch_rad != 0.0) sensors.back()["pitch_rad"] = s.pitch_rad;
   }
   scene["ego"] = {{"trajectory", std::move(ego_trajectory)}, {"sensors", std::move(sensors)}};
   Json objects = Json::array();

@@ -173,6 +173,12 @@ std::vector<Label> read_labels(const fs::path& path) {
   return labels;
 }
 
+bool part_of_a_cyclist(const RadarBox& box, const std::vector<RadarBox>& cyclists) {
+  return std::any_of(cyclists.begin(), cyclists.end(), [&](const RadarBox& c) {
+    return (c.p_RO_R.head<2>() - box.p_RO_R.head<2>()).norm() <= kCyclistPartReach_m;
+  });
+}
+
 RadarBox box_in_radar_frame(const Label& label, const Eigen::Matrix4d& T_camera_radar, const Eigen::Matrix4d& T_camera_lidar) {
   const Eigen::Matrix4d T_lidar_camera = T_camera_lidar.inverse();
   const Eigen::Matrix4d T_radar_lidar = T_camera_radar.inverse() * T_camera_lidar;
@@ -365,10 +371,12 @@ const std::map<std::string, ClassMapping, std::less<>>& class_mappings() {
       {"Car", {"passenger_car", ""}},
       {"truck", {"truck_trailer", ""}},
       {"vehicle_other", {"passenger_car", ""}},
-      {"Pedestrian", {"", "a person: the object library has no model of people yet"}},
-      {"Cyclist", {"", "a rider on a bicycle: the object library has no model of cyclists yet"}},
-      {"rider", {"", "a person riding: the object library has no model of riders yet"}},
-      {"bicycle", {"", "a bicycle (parked or ridden): the object library has no model of bicycles yet"}},
+      {"Pedestrian", {"pedestrian", ""}},
+      {"Cyclist", {"cyclist", ""}},
+      // Parts of a Cyclist box are boxed again (its rider, its bicycle): those are left out as
+      // parts (part_of_a_cyclist); a rider or a bicycle alone is one of its own.
+      {"rider", {"cyclist", ""}},
+      {"bicycle", {"bicycle", ""}},
       {"moped_scooter", {"", "a moped or scooter: the object library has no model of two-wheelers yet"}},
       {"motor", {"", "a motorcycle: the object library has no model of two-wheelers yet"}},
       {"ride_other", {"", "another ridden vehicle: no object model for it"}},
@@ -471,6 +479,7 @@ std::optional<double> box_speed_mps(const RadarBox& box, const Label& label, con
 
 struct Tally {
   std::map<std::string, int> kept, left_out;  // by model, by class
+  std::map<std::string, int> parts_of_cyclists;  // rider and bicycle boxes inside a Cyclist box, by class
   std::size_t earlier_scan_points = 0, boxes_without_speed = 0, frames_without_velocity = 0, frames_without_path = 0;
   std::size_t backwards_frames = 0;
   double max_lateral_mps = 0.0, max_residual_mps = 0.0;
@@ -574,6 +583,10 @@ DatasetRecording import_vod(const fs::path& raw_dir, const DatasetImportOptions&
 
     // boxes: each label of the frame an object of its own, in the radar (vehicle) frame
     const std::vector<vod::Label> labels = vod::read_labels(frame.labels);
+    std::vector<vod::RadarBox> cyclists;
+    for (const vod::Label& label : labels) {
+      if (label.label_class == "Cyclist") cyclists.push_back(vod::box_in_radar_frame(label, T_camera_radar, T_camera_lidar));
+    }
     for (std::size_t i = 0; i < labels.size(); ++i) {
       const vod::Label& label = labels[i];
       const auto mapping = vod::class_mappings().find(label.label_class);
@@ -582,6 +595,10 @@ DatasetRecording import_vod(const fs::path& raw_dir, const DatasetImportOptions&
         continue;
       }
       const vod::RadarBox box = vod::box_in_radar_frame(label, T_camera_radar, T_camera_lidar);
+      if ((label.label_class == "rider" || label.label_class == "bicycle") && vod::part_of_a_cyclist(box, cyclists)) {
+        ++tally.parts_of_cyclists[label.label_class];
+        continue;
+      }
       if (box.p_RO_R.head<2>().cwiseAbs().maxCoeff() > limits::kMaxRange_m) {
         throw InputError(frame.labels.string(), fmt::format("line {}", label.line), "the box lies beyond the limit of 10 km from the radar");
       }
@@ -612,6 +629,11 @@ DatasetRecording import_vod(const fs::path& raw_dir, const DatasetImportOptions&
                                                                               : "not a class View-of-Delft documents",
                                        fmt::join(models, ", ")));
   }
+  for (const auto& [name, count] : tally.parts_of_cyclists) {
+    out.warnings.push_back(fmt::format("{} boxes of class {} left out: parts of a Cyclist box (the same road user boxed "
+                                       "again, within {} m of its centre)",
+                                       count, name, vod::kCyclistPartReach_m));
+  }
   if (tally.earlier_scan_points > 0) {
     out.warnings.push_back(fmt::format("{} points of earlier scans (time < 0: an accumulated radar_3_scans or radar_5_scans "
                                        "folder?) left out: a cycle is one scan",
@@ -636,9 +658,10 @@ DatasetRecording import_vod(const fs::path& raw_dir, const DatasetImportOptions&
                                      vod::kSensorFile));
 
   rec.description = fmt::format(
-      "View-of-Delft: {} frames of the ZF FRGen21 3+1D radar, one frame one cycle (snapshots); {} boxes of cars and {} of "
-      "trucks; the ego's speed from each frame's compensated Doppler",
-      frames.size(), tally.kept["passenger_car"], tally.kept["truck_trailer"]);
+      "View-of-Delft: {} frames of the ZF FRGen21 3+1D radar, one frame one cycle (snapshots); {} boxes of cars, {} of "
+      "trucks, {} of pedestrians, {} of cyclists and {} of bicycles; the ego's speed from each frame's compensated Doppler",
+      frames.size(), tally.kept["passenger_car"], tally.kept["truck_trailer"], tally.kept["pedestrian"], tally.kept["cyclist"],
+      tally.kept["bicycle"]);
   rec.source = {
       {"dataset", "View-of-Delft (Palffy, Pool, Baratam, Kooij and Gavrila, Multi-class Road User Detection with 3+1D "
                   "Radar in the View-of-Delft Dataset, IEEE RA-L 2022)"},

@@ -65,6 +65,12 @@ struct RadarBox {
 };
 RadarBox box_in_radar_frame(const Label& label, const Eigen::Matrix4d& T_camera_radar, const Eigen::Matrix4d& T_camera_lidar);
 
+// VoD boxes a cyclist three times: the Cyclist box and, inside it, its rider and its bicycle. A
+// rider or bicycle box whose centre lies within this reach of a Cyclist box's centre is a part of
+// it (left out); one alone is a road user of its own (a rider: cyclist, a bicycle: bicycle).
+inline constexpr double kCyclistPartReach_m = 1.0;
+bool part_of_a_cyclist(const RadarBox& box, const std::vector<RadarBox>& cyclists);
+
 // The radar's own velocity over the ground in its frame, from one frame's points: a point's
 // v_r_compensated - v_r is the radar's velocity along its line of sight u (v_r = (v_T - v_S).u,
 // v_r_compensated = v_T.u), least squares over all points; vz left out (0) where the points

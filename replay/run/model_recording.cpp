@@ -39,6 +39,7 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
     RecordingSensor& sensor = rec.sensors.emplace_back();
     sensor.id = s.id, sensor.type = s.config.name;
     sensor.x_m = s.X_VS.x_m, sensor.y_m = s.X_VS.y_m, sensor.yaw_rad = s.X_VS.yaw_rad;
+    sensor.z_m = s.z_m, sensor.pitch_rad = s.pitch_rad;
     sensor.reports = s.config.reports;
     sensor.amplitude_unit = s.config.amplitude.unit;
     if (s.config.resolution.aliases_range_rate()) {
@@ -76,6 +77,7 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
         if (reports_cross_sections(config)) {
           target.rcs_dbsm = radar_cross_section_estimate_dbsm(config.amplitude, antennas[i], t.range_m, t.azimuth_rad, t.amplitude_db);
         }
+        if (config.fov.measures_elevation()) target.elevation_rad = t.elevation_rad;
       }
     }
   }
@@ -84,6 +86,11 @@ Recording model_recording(const Scene& scene, const std::string& name, std::uint
                                                [](const RecordedTarget& t) { return std::isfinite(t.rcs_dbsm); });
   if (!every_cross_section) {
     for (RecordedTarget& t : rec.targets) t.rcs_dbsm = RecordedTarget::kNoValue;
+  }
+  const bool every_elevation = std::all_of(rec.targets.begin(), rec.targets.end(),
+                                           [](const RecordedTarget& t) { return std::isfinite(t.elevation_rad); });
+  if (!every_elevation) {
+    for (RecordedTarget& t : rec.targets) t.elevation_rad = RecordedTarget::kNoValue;
   }
   // Objects never annotated are not listed (a recording lists what was annotated).
   Recording listed = std::move(rec);

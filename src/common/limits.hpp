@@ -21,6 +21,7 @@ inline constexpr double kMaxLevel_dB = 1000.0;       // an amplitude, threshold,
 inline constexpr double kMaxUnwrappedYaw_rad = 1e6;  // an unwrapped heading (laps of a ring road)
 inline constexpr double kMaxYaw_rad = 6.2832;        // a wrapped heading, ±2π: beyond, degrees?
 inline constexpr double kMaxMountYaw_rad = 3.1416;   // a mounting angle, ±π: beyond, degrees?
+inline constexpr double kMaxMountPitch_rad = 0.7854; // a mounting's pitch, ±π/4: a radar looks along the road
 inline constexpr int kMaxCount = 1'000'000;          // a count in a configuration (tracks, hits)
 inline constexpr int kMaxTracks = 100'000;           // a sensor's track table
 // An imported scan's returns (a RadarScan's, a point cloud's points): the densest imaging radars

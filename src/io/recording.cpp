@@ -112,7 +112,7 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
   const std::string file = path.string();
   const nlohmann::json json = parse_json_text(read_text_file(path), file);
   const JsonField root(json, file, "");
-  const int version = root.expect_format_versions("rcsim-recording", 1, 4);
+  const int version = root.expect_format_versions("rcsim-recording", 1, 5);
   refuse_newer_fields(root, version, 3, {"timeline", "ego_motion_known"});
   refuse_newer_fields(root, version, 4, {"clock"});
   root.expect_only({"format", "version", "name", "description", "cycle_time_s", "timeline", "ego_motion_known", "clock",
@@ -132,8 +132,9 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
     refuse_newer_fields(s, version, 2, {"reports"});
     refuse_newer_fields(s, version, 3, {"amplitude_unit", "range_rate_interval_mps"});
     refuse_newer_fields(s, version, 4, {"cycle_time_s"});
+    refuse_newer_fields(s, version, 5, {"z_m", "pitch_rad"});
     s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad", "reports", "amplitude_unit", "range_rate_interval_mps",
-                   "cycle_time_s"});
+                   "cycle_time_s", "z_m", "pitch_rad"});
     using namespace limits;
     RecordingSensor sensor{s.string("id"), s.string("type"),
                            s.number_within("x_m", -kMaxMountOffset_m, kMaxMountOffset_m, "m"),
@@ -167,6 +168,8 @@ void read_header(Recording& rec, const fs::path& path) {  // recording.json
     } else if (s.has("cycle_time_s")) {
       s.fail("cycle_time_s", "a sensor's own cycle time needs the recording's \"clock\": \"per_sensor\"");
     }
+    if (s.has("z_m")) sensor.z_m = s.number_within("z_m", 0.0, kMaxMountOffset_m, "m");
+    if (s.has("pitch_rad")) sensor.pitch_rad = s.angle_rad("pitch_rad", kMaxMountPitch_rad);
     if (sensor.id.empty()) s.fail("id", "must not be empty");
     if (rec.sensor_index(sensor.id) >= 0) s.fail("id", fmt::format("sensor '{}' is listed twice", sensor.id));
     rec.sensors.push_back(std::move(sensor));
@@ -254,12 +257,18 @@ bool uses_version_3(const Recording& rec) {
   return false;
 }
 
+// Version 5: a sensor mounted at a height or pitched.
+bool uses_version_5(const Recording& rec) {
+  return std::any_of(rec.sensors.begin(), rec.sensors.end(), [](const RecordingSensor& s) { return s.z_m != 0.0 || s.pitch_rad != 0.0; });
+}
+
 std::string header_text(const Recording& rec) {
   nlohmann::ordered_json json;
   // The lowest version that holds the fields used, so that version 1 to 3 recordings are
   // rewritten byte for byte as they were: 4 where the sensors run on their own clocks, 3 where a
   // version 3 field differs from its default, 2 where a sensor reports detections, else 1.
-  const int version = rec.clock == Clock::per_sensor ? 4
+  const int version = uses_version_5(rec)            ? 5
+                      : rec.clock == Clock::per_sensor ? 4
                       : uses_version_3(rec)           ? 3
                       : !rec.all_sensors_report(ListLevel::tracks) ? 2
                                                                    : 1;
@@ -285,6 +294,10 @@ std::string header_text(const Recording& rec) {
       }
     }
     if (rec.clock == Clock::per_sensor) sensor["cycle_time_s"] = s.cycle_time_s;
+    if (version >= 5) {
+      sensor["z_m"] = s.z_m;
+      sensor["pitch_rad"] = s.pitch_rad;
+    }
   }
   json["objects"] = nlohmann::ordered_json::array();
   for (const auto& o : rec.objects) {

@@ -50,6 +50,9 @@ struct RecordingSensor {
   AmplitudeUnit amplitude_unit = AmplitudeUnit::snr_db;     // version 3
   std::optional<RangeRateInterval> range_rate_interval_mps = std::nullopt;  // version 3: none, unambiguous
   double cycle_time_s = 0.0;  // version 4, sensors on their own clocks: this sensor's nominal cycle time (0: the recording's)
+  // Version 5: the sensor's height above the road and its pitch (boresight down positive), which
+  // a radar that measures elevation reads (a planar one ignores them).
+  double z_m = 0.0, pitch_rad = 0.0;
 };
 
 struct RecordingObject {

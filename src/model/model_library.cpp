@@ -23,8 +23,36 @@ VisibilityFunction parse_visibility(const JsonField& field) {
   return {deg_to_rad(center_deg), deg_to_rad(full_deg), deg_to_rad(falloff_deg)};
 }
 
-PolylineTemplate parse_polyline_template(const JsonField& f) {
-  f.expect_only({"spacing_m", "post_ercs", "post_visibility", "face_ercs_per_m"});
+// A height above the road (version 2): 0 to 100 m.
+double parse_height_m(const JsonField& f, std::string_view key) { return f.number_within(key, 0.0, 100.0, "m"); }
+
+// A reflector's micro-Doppler (version 2, object_model.hpp Swing).
+Swing parse_swing(const JsonField& f) {
+  f.expect_only({"relative_amplitude", "period_s", "rolling_radius_m", "phase_deg"});
+  Swing swing;
+  swing.relative_amplitude = f.number_within("relative_amplitude", 0.0, 10.0, "");
+  require_positive(f, "relative_amplitude", swing.relative_amplitude);
+  if (f.has("period_s") == f.has("rolling_radius_m")) {
+    f.fail("needs one of period_s (a gait or a crank) and rolling_radius_m (a point on a wheel)");
+  }
+  if (f.has("period_s")) {
+    swing.period_s = f.number_within("period_s", 0.0, 60.0, "s");
+    require_positive(f, "period_s", swing.period_s);
+  } else {
+    swing.rolling_radius_m = f.number_within("rolling_radius_m", 0.0, 10.0, "m");
+    require_positive(f, "rolling_radius_m", swing.rolling_radius_m);
+  }
+  swing.phase_rad = deg_to_rad(f.number_or("phase_deg", 0.0));
+  if (!(std::abs(swing.phase_rad) <= kTwoPi)) f.fail("phase_deg", "must be in [-360, 360]");
+  return swing;
+}
+
+PolylineTemplate parse_polyline_template(const JsonField& f, int version) {
+  if (version >= 2) {
+    f.expect_only({"spacing_m", "post_ercs", "post_visibility", "face_ercs_per_m", "z_m"});
+  } else {
+    f.expect_only({"spacing_m", "post_ercs", "post_visibility", "face_ercs_per_m"});
+  }
   PolylineTemplate t;
   t.spacing_m = f.number("spacing_m");
   if (!(t.spacing_m >= 0.1 && t.spacing_m <= 1000.0)) f.fail("spacing_m", "must be in [0.1, 1000] m");
@@ -38,15 +66,24 @@ PolylineTemplate parse_polyline_template(const JsonField& f) {
   }
   if (!(t.post_ercs > 0.0) && !(t.face_ercs_per_m > 0.0)) f.fail("needs post_ercs or face_ercs_per_m above 0");
   if (t.post_ercs > 0.0) t.post_visibility = parse_visibility(f.member("post_visibility"));
+  if (version >= 2 && f.has("z_m")) t.z_m = parse_height_m(f, "z_m");
   return t;
 }
 
 }  // namespace
 
 ObjectModel parse_object_model(const JsonField& root) {
-  root.expect_only({"format", "version", "name", "description", "length_m", "width_m", "point_reflectors",
-                    "plane_reflectors", "polyline"});
-  root.expect_format("rcsim-object-model", 1);
+  // Version 2 adds heights (z_m, height_m, clearance_m) and micro-Doppler (swing); a version 1
+  // file is read as before, its reflectors on the road (z 0).
+  const int version = root.expect_format_versions("rcsim-object-model", 1, 2);
+  if (version >= 2) {
+    root.expect_only({"format", "version", "name", "description", "length_m", "width_m", "height_m", "clearance_m",
+                      "diffuse_ercs_factor",
+                      "point_reflectors", "plane_reflectors", "polyline"});
+  } else {
+    root.expect_only({"format", "version", "name", "description", "length_m", "width_m", "point_reflectors",
+                      "plane_reflectors", "polyline"});
+  }
   ObjectModel model;
   model.name = root.string("name");
   model.description = root.has("description") ? root.string("description") : "";
@@ -64,12 +101,29 @@ ObjectModel parse_object_model(const JsonField& root) {
   };
   require_positive(root, "length_m", model.length_m);
   require_positive(root, "width_m", model.width_m);
+  if (version >= 2) {
+    model.height_m = root.has("height_m") ? parse_height_m(root, "height_m") : 0.0;
+    model.clearance_m = root.has("clearance_m") ? parse_height_m(root, "clearance_m") : 0.0;
+    model.diffuse_ercs_factor = root.has("diffuse_ercs_factor") ? root.number_within("diffuse_ercs_factor", 0.0, 1.0, "") : 1.0;
+    if (model.clearance_m > 0.0 && model.height_m > 0.0 && model.clearance_m >= model.height_m) {
+      root.fail("clearance_m", "must be below height_m (the free height under the object, within its height)");
+    }
+  }
+  const auto height_of = [&](const JsonField& f) { return version >= 2 && f.has("z_m") ? parse_height_m(f, "z_m") : 0.0; };
   if (root.has("point_reflectors")) {
     for (const auto& p : root.array("point_reflectors")) {
-      p.expect_only({"name", "x_m", "y_m", "ercs", "visibility"});
+      if (version >= 2) {
+        p.expect_only({"name", "x_m", "y_m", "z_m", "ercs", "visibility", "swing"});
+      } else {
+        p.expect_only({"name", "x_m", "y_m", "ercs", "visibility"});
+      }
       PointReflector point;
       point.name = p.string("name");
       point.p_OR_O = {offset_m(p, "x_m"), offset_m(p, "y_m")};
+      point.z_m = height_of(p);
+      if (version >= 2) {
+        if (const auto swing = p.optional_member("swing")) point.swing = parse_swing(*swing);
+      }
       point.ercs_max = p.number_within("ercs", 0.0, limits::kMaxErcs, "");
       require_positive(p, "ercs", point.ercs_max);
       point.visibility = parse_visibility(p.member("visibility"));
@@ -78,7 +132,11 @@ ObjectModel parse_object_model(const JsonField& root) {
   }
   if (root.has("plane_reflectors")) {
     for (const auto& p : root.array("plane_reflectors")) {
-      p.expect_only({"name", "from_x_m", "from_y_m", "to_x_m", "to_y_m", "sagitta_m", "ercs"});
+      if (version >= 2) {
+        p.expect_only({"name", "from_x_m", "from_y_m", "to_x_m", "to_y_m", "z_m", "sagitta_m", "ercs"});
+      } else {
+        p.expect_only({"name", "from_x_m", "from_y_m", "to_x_m", "to_y_m", "sagitta_m", "ercs"});
+      }
       const Vec2 from{offset_m(p, "from_x_m"), offset_m(p, "from_y_m")};
       const Vec2 to{offset_m(p, "to_x_m"), offset_m(p, "to_y_m")};
       const double sagitta_m = offset_m(p, "sagitta_m");
@@ -88,13 +146,14 @@ ObjectModel parse_object_model(const JsonField& root) {
       if ((to - from).norm() <= 0.0) p.fail("to_x_m", "chord has zero length (from and to coincide)");
       if (sagitta_m > 0.5 * (to - from).norm()) p.fail("sagitta_m", "must be at most half the chord length");
       model.planes.push_back(plane_from_chord(p.string("name"), from, to, sagitta_m, ercs));
+      model.planes.back().z_m = height_of(p);
     }
   }
   if (const auto polyline = root.optional_member("polyline")) {
     if (!model.points.empty() || !model.planes.empty()) {
       root.fail("polyline", "a polyline model has no point or plane reflectors of its own (its polyline makes them)");
     }
-    model.polyline = parse_polyline_template(*polyline);
+    model.polyline = parse_polyline_template(*polyline, version);
     return model;
   }
   if (model.points.empty() && model.planes.empty()) root.fail("a model needs at least one reflector");

@@ -115,6 +115,7 @@ ObjectModel scale_model(const ObjectModel& model, double length_m, double width_
     const Vec2 apex = scale(plane.arc_point_O(plane.start_rad + 0.5 * plane.span_rad));
     const Vec2 mid = 0.5 * (from + to);
     out.planes[i] = plane_from_chord(plane.name, from, to, std::max((apex - mid).norm(), 1e-9), plane.ercs);
+    out.planes[i].z_m = plane.z_m;  // heights do not scale: a recording's boxes give length and width only
   }
   return out;
 }
@@ -127,6 +128,7 @@ ObjectModel expand_polyline(const ObjectModel& polyline_model, const std::vector
   out.name = polyline_model.name;
   out.description = polyline_model.description;
   out.length_m = out.width_m = 1e-3;
+  out.height_m = 2.0 * t.z_m;
   out.polyline_points = vertices_O.size();
   // A face this flat: 1 cm over a piece of up to spacing_m (a flat face's specular return
   // comes only from near its normal).
@@ -144,6 +146,7 @@ ObjectModel expand_polyline(const ObjectModel& polyline_model, const std::vector
       post.name = fmt::format("post_{}", out.points.size());
       post.p_OR_O = a + (next_post_m - walked_m) * along;
       post.ercs_max = t.post_ercs;
+      post.z_m = t.z_m;
       post.visibility = VisibilityFunction(left_rad + t.post_visibility.center_rad(), t.post_visibility.full_halfwidth_rad(),
                                            t.post_visibility.falloff_rad());
       out.points.push_back(std::move(post));
@@ -155,6 +158,7 @@ ObjectModel expand_polyline(const ObjectModel& polyline_model, const std::vector
       const double piece_m = length_m / pieces;
       out.planes.push_back(plane_from_chord_facing(fmt::format("face_{}", out.planes.size()), from, to,
                                                    std::min(kFaceSagittaM, 0.5 * piece_m), t.face_ercs_per_m * piece_m, left));
+      out.planes.back().z_m = t.z_m;
     }
   }
   return out;

@@ -69,11 +69,34 @@ class VisibilityFunction {
   bool everywhere_, nowhere_beyond_;
 };
 
+// Micro-Doppler of a reflector on a limb or a wheel (docs/model.md, "Road users"): it moves back
+// and forth along the object's heading about its place, so that its radial speed swings about the
+// body's. Its speed along the heading is v + k |v| cos(phase(t)), with phase(t) = 2 pi t / T +
+// phase_rad for a gait or a crank of period T, and |v| t / R + phase_rad for a point on a wheel of
+// rolling radius R (period 2 pi R / |v|). A standing object (v = 0) does not swing. The point's
+// position stays at its mean: the swing's reach (k |v| T / 2 pi, 0.2 m for a walking leg) is left out.
+struct Swing {
+  double relative_amplitude = 0.0;  // k: the swing's speed amplitude over the object's speed
+  double period_s = 0.0;            // a gait's or a crank's period; 0: a wheel's, from rolling_radius_m
+  double rolling_radius_m = 0.0;    // > 0 with period_s 0: a point on a wheel of this radius
+  double phase_rad = 0.0;
+  bool active() const { return relative_amplitude > 0.0; }
+  // The swing's speed along the heading at t_s, for an object moving at speed_mps (signed).
+  double speed_offset_mps(double speed_mps, double t_s) const {
+    if (!active() || speed_mps == 0.0) return 0.0;
+    const double phase_rad_t =
+        (period_s > 0.0 ? kTwoPi * t_s / period_s : std::abs(speed_mps) * t_s / rolling_radius_m) + phase_rad;
+    return relative_amplitude * speed_mps * std::cos(phase_rad_t);
+  }
+};
+
 struct PointReflector {
   std::string name;
   Vec2 p_OR_O = Vec2::Zero();  // position in the object frame
+  double z_m = 0.0;             // height above the road (a radar that measures elevation reads it)
   double ercs_max = 1.0;        // ERCS where the visibility function is 1 (paper II-C)
   VisibilityFunction visibility;
+  Swing swing;                  // micro-Doppler; inactive: moves with the body
 
   // ERCS as the scaled visibility function (paper II-C).
   double ercs(double alpha_rad) const { return ercs_max * visibility(alpha_rad); }
@@ -88,6 +111,7 @@ struct PlaneReflector {
   double start_rad = 0.0;
   double span_rad = 0.0;
   double ercs = 1.0;
+  double z_m = 0.0;  // height of its specular point above the road
   // Unit directions from the centre to the arc's ends; set with start_rad and span_rad by set_arc.
   Vec2 u_start_O = Vec2::UnitX();
   Vec2 u_end_O = Vec2::UnitX();
@@ -121,6 +145,7 @@ struct PolylineTemplate {
   // The face: plane reflectors of length l <= spacing_m facing left, ERCS face_ercs_per_m x l
   // (a flat face reflects coherently: amplitude grows with its length); 0: no face.
   double face_ercs_per_m = 0.0;
+  double z_m = 0.0;  // version 2: the height of its posts and face above the road
 };
 
 struct ObjectModel {
@@ -128,6 +153,16 @@ struct ObjectModel {
   std::string description;
   double length_m = 0.0;
   double width_m = 0.0;
+  // Version 2 (a radar that measures elevation reads them): the body's height, where the diffuse
+  // pieces of its box sides spread (0: not given, pieces at 0.5 m), and, for a thing that stands
+  // above the road (a sign gantry, a bridge), the free height under it: lines of sight pass
+  // beneath, so it hides nothing behind it.
+  double height_m = 0.0;
+  double clearance_m = 0.0;
+  // Version 2: how strongly its body returns diffusely where a profile puts diffuse pieces on the
+  // box sides (extended_objects.diffuse_surface "box"), relative to a car's metal body (1): a
+  // person or a bicycle far less; 0 for a thing whose box holds no body (a gantry's). 0 to 1.
+  double diffuse_ercs_factor = 1.0;
   std::vector<PointReflector> points;
   std::vector<PlaneReflector> planes;
   std::optional<PolylineTemplate> polyline;  // set: a template; a scene's polyline makes the model

@@ -224,7 +224,7 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
   if (sensors.empty()) ego.fail("sensors", "the ego vehicle needs at least one sensor");
   std::set<std::string> sensor_ids;
   for (const auto& s : sensors) {
-    s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad"});
+    s.expect_only({"id", "type", "x_m", "y_m", "yaw_rad", "z_m", "pitch_rad"});
     MountedSensor sensor;
     sensor.id = s.string("id");
     if (!sensor_ids.insert(sensor.id).second) s.fail("id", "duplicate sensor id \"" + sensor.id + "\"");
@@ -232,6 +232,8 @@ Scene parse_scene(const JsonField& root, const ModelLibrary& library, const std:
     sensor.X_VS = {s.number_within("x_m", -limits::kMaxMountOffset_m, limits::kMaxMountOffset_m, "m"),
                    s.number_within("y_m", -limits::kMaxMountOffset_m, limits::kMaxMountOffset_m, "m"),
                    s.angle_rad("yaw_rad", limits::kMaxMountYaw_rad)};
+    sensor.z_m = s.has("z_m") ? s.number_within("z_m", 0.0, limits::kMaxMountOffset_m, "m") : 0.0;
+    sensor.pitch_rad = s.has("pitch_rad") ? s.angle_rad("pitch_rad", limits::kMaxMountPitch_rad) : 0.0;
     scene.sensors.push_back(std::move(sensor));
   }
 

@@ -21,6 +21,10 @@ struct MountedSensor {
   std::string id;
   SensorConfig config;
   Pose2 X_VS;  // sensor pose in the ego vehicle frame
+  // A radar that measures elevation reads these (planar ones ignore them): the sensor's height
+  // above the road and its pitch, positive with the boresight tilted down (ISO 8855: about y).
+  double z_m = 0.0;
+  double pitch_rad = 0.0;
   double cycle_time_s = 0.0;  // a sensor on its own clock (a replayed recording v4): its cycle time; 0: the scene's
 };
 

@@ -173,13 +173,18 @@ MultibounceConfig parse_multibounce(const JsonField& mb) {
 
 FieldOfView parse_field_of_view(const JsonField& fov) {
   FieldOfView out;
-  fov.expect_only({"azimuth_half_deg", "min_range_m", "max_range_m"});
+  fov.expect_only({"azimuth_half_deg", "elevation_half_deg", "min_range_m", "max_range_m"});
   const double half_deg = positive(fov, "azimuth_half_deg");
   if (half_deg >= 90.0) fov.fail("azimuth_half_deg", "must be below 90 (the antenna model covers the front half)");
   out.azimuth_half_rad = deg_to_rad(half_deg);
   out.min_range_m = non_negative(fov, "min_range_m");
   out.max_range_m = positive(fov, "max_range_m", limits::kMaxRange_m);
   if (out.max_range_m <= out.min_range_m) fov.fail("max_range_m", "must exceed min_range_m");
+  if (fov.has("elevation_half_deg")) {
+    const double elevation_deg = positive(fov, "elevation_half_deg");
+    if (elevation_deg >= 90.0) fov.fail("elevation_half_deg", "must be below 90");
+    out.elevation_half_rad = deg_to_rad(elevation_deg);
+  }
   return out;
 }
 
@@ -234,10 +239,12 @@ AntennaGeometry parse_antenna(const JsonField& antenna, const FieldOfView& fov) 
 
 ResolutionCell parse_resolution(const JsonField& res) {
   ResolutionCell out;
-  res.expect_only({"range_cell_m", "range_rate_cell_mps", "azimuth_cell_deg", "unambiguous_range_rate_mps", "spectral_window"});
+  res.expect_only({"range_cell_m", "range_rate_cell_mps", "azimuth_cell_deg", "elevation_cell_deg", "unambiguous_range_rate_mps",
+                   "spectral_window"});
   out.range_cell_m = positive(res, "range_cell_m");
   out.range_rate_cell_mps = positive(res, "range_rate_cell_mps");
   if (res.has("azimuth_cell_deg")) out.azimuth_cell_rad = deg_to_rad(positive(res, "azimuth_cell_deg", 30.0));
+  if (res.has("elevation_cell_deg")) out.elevation_cell_rad = deg_to_rad(positive(res, "elevation_cell_deg", 30.0));
   if (res.has("unambiguous_range_rate_mps")) {
     const auto interval = number_pair(res, "unambiguous_range_rate_mps");
     if (!(interval.first < 0.0 && interval.second > 0.0 && interval.second - interval.first <= 2.0 * limits::kMaxSpeed_mps)) {
@@ -282,11 +289,12 @@ void parse_angle_noise(const JsonField& root, SensorConfig& c) {
 MeasurementNoise parse_measurement_noise(const JsonField& noise) {
   MeasurementNoise out;
   noise.expect_only({"range_sigma_at_threshold_m", "range_sigma_min_m", "range_rate_sigma_at_threshold_mps",
-                     "range_rate_sigma_min_mps"});
+                     "range_rate_sigma_min_mps", "elevation_sigma_deg"});
   out.range_sigma_at_threshold_m = non_negative(noise, "range_sigma_at_threshold_m");
   out.range_sigma_min_m = non_negative(noise, "range_sigma_min_m");
   out.range_rate_sigma_at_threshold_mps = non_negative(noise, "range_rate_sigma_at_threshold_mps");
   out.range_rate_sigma_min_mps = non_negative(noise, "range_rate_sigma_min_mps");
+  if (noise.has("elevation_sigma_deg")) out.elevation_sigma_rad = deg_to_rad(non_negative(noise, "elevation_sigma_deg", 30.0));
   return out;
 }
 
@@ -327,6 +335,15 @@ SensorConfig parse_sensor_config(const JsonField& root) {
   }
   parse_angle_noise(root, c);
   c.noise = parse_measurement_noise(root.member("measurement_noise"));
+  // Elevation cells and noise belong to a radar that measures elevation (field_of_view.elevation_half_deg).
+  if (!c.fov.measures_elevation()) {
+    if (c.resolution.resolves_elevation()) {
+      root.fail("resolution.elevation_cell_deg", "needs a radar that measures elevation (field_of_view.elevation_half_deg)");
+    }
+    if (c.noise.elevation_sigma_rad > 0.0) {
+      root.fail("measurement_noise.elevation_sigma_deg", "needs a radar that measures elevation (field_of_view.elevation_half_deg)");
+    }
+  }
   // A sensor that reports detections has no tracker: its `tracking` section may be left out.
   if (c.reports == ListLevel::tracks || root.has("tracking")) c.tracker = parse_tracker(root.member("tracking"));
 

@@ -17,6 +17,10 @@ struct FieldOfView {
   double azimuth_half_rad = 0.0;
   double min_range_m = 0.0;
   double max_range_m = 0.0;
+  // A radar that measures elevation (a 3+1D radar, docs/model.md "Elevation"): its view's half
+  // angle in elevation, > 0. 0: planar, the paper's model (no heights, no elevation).
+  double elevation_half_rad = 0.0;
+  bool measures_elevation() const { return elevation_half_rad > 0.0; }
 };
 
 // How the range-dependent amplitude of the reference reflector falls with range.
@@ -88,6 +92,11 @@ struct ResolutionCell {
   // (Doppler aliasing); min == max: no aliasing.
   double unambiguous_min_mps = 0.0, unambiguous_max_mps = 0.0;
   SpectralWindow window = SpectralWindow::none;
+  // A radar that measures elevation: > 0, its cells are that wide in elevation too (beams in
+  // elevation: one range-Doppler cell may report several, one per elevation cell; docs/model.md);
+  // 0: one elevation per cell, its members' amplitude-weighted mean.
+  double elevation_cell_rad = 0.0;
+  bool resolves_elevation() const { return elevation_cell_rad > 0.0; }
   bool aliases_range_rate() const { return unambiguous_max_mps > unambiguous_min_mps; }
   bool resolves_azimuth() const { return azimuth_cell_rad > 0.0; }
 };
@@ -109,6 +118,7 @@ struct MeasurementNoise {
   double range_sigma_min_m = 0.02;
   double range_rate_sigma_at_threshold_mps = 0.15;
   double range_rate_sigma_min_mps = 0.03;
+  double elevation_sigma_rad = 0.0;  // a radar that measures elevation: Gaussian noise of its elevation
 };
 
 struct TrackerConfig {

@@ -75,6 +75,7 @@ void compute_echoes(const AmplitudeLaw& law, const MonopulseAntenna& antenna, co
     e.delta_pointer = weight * h.delta;
     e.amplitude = magnitude(e.sum_pointer);  // eqs. (2)-(3): A^phi = |H_sum|
     e.azimuth_rad = t.azimuth_rad;  // an array that resolves azimuth forms its beams by it
+    e.elevation_rad = t.elevation_rad;
     e.ideal_index = static_cast<int>(i);
   }
 }

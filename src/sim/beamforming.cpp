@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <tuple>
 
 #include "common/angles.hpp"
 #include "common/decibel.hpp"
@@ -26,6 +27,7 @@ void estimate_beam_angles(double azimuth_sigma_rad, double pointer_noise_sigma, 
     d.range_m = c.range_m;
     d.range_rate_mps = c.range_rate_mps;
     d.azimuth_rad = azimuth_rad;
+    d.elevation_rad = c.elevation_rad;
     const double power = std::norm(sum);
     d.amplitude_db = power > 0.0 ? power_to_db(power) : -300.0;
     d.object_index = ideal[static_cast<std::size_t>(c.strongest_ideal_index)].object_index;
@@ -33,8 +35,11 @@ void estimate_beam_angles(double azimuth_sigma_rad, double pointer_noise_sigma, 
 }
 
 void keep_strongest_beam_per_cell(const ResolutionCell& cell, Detections& detections, std::vector<std::size_t>& order) {
+  // With cells in elevation, the strongest beam of each range-Doppler cell at each elevation: a
+  // radar of beams in elevation reports one per elevation cell.
   const auto grid_cell = [&](const Detection& d) {
-    return std::pair(map_cell_index(d.range_m, cell.range_cell_m), map_cell_index(d.range_rate_mps, cell.range_rate_cell_mps));
+    return std::tuple(map_cell_index(d.range_m, cell.range_cell_m), map_cell_index(d.range_rate_mps, cell.range_rate_cell_mps),
+                      cell.resolves_elevation() ? map_cell_index(d.elevation_rad, cell.elevation_cell_rad) : 0.0);
   };
   order.resize(detections.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;

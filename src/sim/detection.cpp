@@ -72,7 +72,10 @@ void keep_local_maxima(const ResolutionCell& cell, Detections& detections, Local
   const auto neighbours = [&](const Detection& a, const Detection& b) {
     return std::abs(map_cell_index(a.range_m, cell.range_cell_m) - map_cell_index(b.range_m, cell.range_cell_m)) <= 1.0 &&
            std::abs(map_cell_index(a.range_rate_mps, cell.range_rate_cell_mps) -
-                    map_cell_index(b.range_rate_mps, cell.range_rate_cell_mps)) <= 1.0;
+                    map_cell_index(b.range_rate_mps, cell.range_rate_cell_mps)) <= 1.0 &&
+           // cells in elevation: a peak of another elevation cell beside is a peak of its own
+           (!cell.resolves_elevation() || std::abs(map_cell_index(a.elevation_rad, cell.elevation_cell_rad) -
+                                                   map_cell_index(b.elevation_rad, cell.elevation_cell_rad)) <= 1.0);
   };
   // `other` dominates `self`: in a neighbouring cell (or the same) and stronger (or as strong and earlier).
   const auto dominates = [&](std::size_t other, std::size_t self) {

@@ -64,6 +64,7 @@ void apply_occlusion(const OcclusionConfig& occlusion, const SensorKinematics& s
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (!candidates[i]) continue;
     const auto& model = objects[i].model;
+    if (model.clearance_m > 0.0) continue;  // it stands above the road: lines of sight pass beneath
     const Pose2& X_WB = object_states[i].X_WB;
     Occluder o{i, 0.5 * std::hypot(model.length_m, model.width_m), (X_WB.translation() - p_WS_W).squaredNorm(),
                std::cos(-X_WB.yaw_rad), std::sin(-X_WB.yaw_rad), Vec2::Zero()};

@@ -13,6 +13,11 @@ namespace rcsim {
 struct SensorKinematics {
   Pose2 X_WS;
   Vec2 v_WS_W = Vec2::Zero();
+  // A radar that measures elevation: its height above the road and its pitch (boresight down
+  // positive), from the mounting; the cycle's time sets the phase of limbs' and wheels' swing.
+  double z_WS_m = 0.0;
+  double pitch_rad = 0.0;
+  double t_s = 0.0;
 };
 
 // The sensor's pose and velocity from the ego vehicle's motion and the mounting pose X_VS
@@ -38,7 +43,10 @@ struct IdealTargetFilter {
 
 // Per reflection center of every object: range check, view-field check, visibility check;
 // for each one that passes, range, azimuth, range rate (relative velocity of the reflecting
-// point on the line of sight) and ERCS. Appends to `out` after clearing it. Without
+// point on the line of sight, a swinging limb's or wheel's swing included) and ERCS. Where the
+// view has an elevation (FieldOfView::measures_elevation), in 3D: each reflector at its height,
+// the sensor at its height and pitch, range and range rate along the slant line of sight,
+// azimuth and elevation in the pitched sensor frame, the view checked in elevation too. Appends to `out` after clearing it. Without
 // filter.culling every reflection center of every visited object (ascending indices) is visited.
 void compute_ideal_targets(const FieldOfView& fov, const SensorKinematics& sensor, std::span<const SceneObject> objects,
                            std::span<const BodyState> object_states, std::span<const std::uint32_t> visited,

@@ -33,6 +33,7 @@ void estimate_monopulse_angles(const MonopulseAntenna& antenna, double pointer_n
       d.range_m = c.range_m;
       d.range_rate_mps = c.range_rate_mps;
       d.azimuth_rad = antenna.estimate_azimuth(h);  // eq. (7) inverted, sign from the phase
+      d.elevation_rad = c.elevation_rad;
       const double power = std::norm(h.sum);        // |A|^2 of the resulting amplitude
       d.amplitude_db = power > 0.0 ? power_to_db(power) : -300.0;
       d.object_index = ideal[static_cast<std::size_t>(c.strongest_ideal_index)].object_index;
@@ -50,6 +51,7 @@ void estimate_ideal_angles(double angle_sigma_rad, const ResolutionCells& cells,
     d.range_m = c.range_m;
     d.range_rate_mps = c.range_rate_mps;
     d.azimuth_rad = strongest.azimuth_rad + (noisy ? angle_sigma_rad * rng->normal() : 0.0);
+    d.elevation_rad = c.elevation_rad;
     const double power = std::norm(c.sum_pointer);  // |A|^2, eq. (3) summed over the cell
     d.amplitude_db = power > 0.0 ? power_to_db(power) : -300.0;
     d.object_index = strongest.object_index;

@@ -44,6 +44,8 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
   const double half_rate_mps = 0.5 * cell.range_rate_cell_mps;
   // An array that resolves azimuth: cells are range x range rate x azimuth (one beam wide).
   const double half_azimuth_rad = cell.resolves_azimuth() ? 0.5 * cell.azimuth_cell_rad : kPi;
+  // A radar with cells in elevation: one beam high too (several per range-Doppler cell).
+  const double half_elevation_rad = cell.resolves_elevation() ? 0.5 * cell.elevation_cell_rad : kPi;
   // Gathers the echo at by_range[p] if it is free and within half a cell of the centre.
   const auto gather = [&](std::size_t p, const Echo& centre) {
     const int rank = by_range[p].rank;
@@ -52,7 +54,8 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
     const Echo& e = echoes[static_cast<std::size_t>(echo)];
     if (std::abs(e.range_m - centre.range_m) > half_range_m ||
         std::abs(e.range_rate_mps - centre.range_rate_mps) > half_rate_mps ||
-        std::abs(angle_difference_rad(e.azimuth_rad, centre.azimuth_rad)) > half_azimuth_rad) {
+        std::abs(angle_difference_rad(e.azimuth_rad, centre.azimuth_rad)) > half_azimuth_rad ||
+        std::abs(e.elevation_rad - centre.elevation_rad) > half_elevation_rad) {
       return;
     }
     members.push_back(rank);
@@ -74,6 +77,7 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
     c.strongest_ideal_index = centre.ideal_index;
     // Sums of A_n R_n and A_n v_n (amplitude times metres, times metres per second), eqs. (4)-(5).
     double amplitude_range_sum_m = 0.0, amplitude_rate_sum_mps = 0.0, amplitude_azimuth_offset_sum_rad = 0.0;
+    double amplitude_elevation_sum_rad = 0.0;
     for (const int r : members) {
       const auto& rank = by_amplitude[static_cast<std::size_t>(r)];
       const Echo& e = echoes[static_cast<std::size_t>(rank.echo)];
@@ -81,6 +85,7 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
       amplitude_range_sum_m += e.amplitude * e.range_m;
       amplitude_rate_sum_mps += e.amplitude * e.range_rate_mps;
       amplitude_azimuth_offset_sum_rad += e.amplitude * angle_difference_rad(e.azimuth_rad, centre.azimuth_rad);
+      amplitude_elevation_sum_rad += e.amplitude * e.elevation_rad;
       c.sum_pointer += e.sum_pointer;
       c.delta_pointer += e.delta_pointer;
       ++c.member_count;
@@ -95,6 +100,7 @@ void form_resolution_cells(const ResolutionCell& cell, double threshold_amplitud
     c.range_m = amplitude_range_sum_m / c.amplitude_upper;         // eqs. (4)-(5)
     c.range_rate_mps = amplitude_rate_sum_mps / c.amplitude_upper;
     c.azimuth_rad = wrap_angle_rad(centre.azimuth_rad + amplitude_azimuth_offset_sum_rad / c.amplitude_upper);
+    c.elevation_rad = amplitude_elevation_sum_rad / c.amplitude_upper;  // eq. (4) on the elevation
     out.push_back(c);
   }
 }

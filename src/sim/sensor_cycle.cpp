@@ -25,7 +25,9 @@ SensorModel::SensorModel(const MountedSensor& mount_in, const Effects& effects_i
       options(options_in),
       // The ideal target list shows every echo: only the view culling (exact) applies there.
       culling(options_in.culling && !objects.empty()
-                  ? make_culling_bounds(mount_in.config, effects_in, objects, options_in.level != ListLevel::ideal, true)
+                  ? make_culling_bounds(mount_in.config, effects_in, objects, options_in.level != ListLevel::ideal,
+                                        // a pitched 3D view is no level wedge: cull by range only
+                                        !(mount_in.config.fov.measures_elevation() && mount_in.pitch_rad != 0.0))
                   : CullingBounds{}) {}
 
 SensorCycleState::SensorCycleState(const SensorModel& model, std::size_t reflector_capacity, double cycle_time_s, std::uint64_t seed,
@@ -64,6 +66,9 @@ void run_sensor_cycle(const SensorModel& model, const SceneObjects& scene_object
   const SensorConfig& config = model.mount.config;
   Rng* rng = model.options.noise ? &state.rng : nullptr;
   state.kinematics = sensor_kinematics(snapshot.ego, model.mount.X_VS);
+  state.kinematics.z_WS_m = model.mount.z_m;  // the road is level: the mounting's height is the world's
+  state.kinematics.pitch_rad = model.mount.pitch_rad;
+  state.kinematics.t_s = snapshot.t_s;
 
   // objects, sensor pose => ideal target list of visible reflection centers     (paper II-B, IV-2/3)
   IdealTargetFilter filter;

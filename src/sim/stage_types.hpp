@@ -36,6 +36,12 @@ struct IdealTarget {
     sin_azimuth = std::sin(angle_rad);
     cos_azimuth = std::cos(angle_rad);
   }
+
+  double z_WT_m = 0.0;         // its height above the road (a radar that measures elevation)
+  double elevation_rad = 0.0;  // 0 for a planar radar
+  // A limb's or a wheel's swing (micro-Doppler, object_model.hpp Swing): its speed along the
+  // object's heading on top of the body's motion at this cycle's time.
+  double swing_mps = 0.0;
 };
 using IdealTargets = std::vector<IdealTarget>;
 
@@ -48,6 +54,7 @@ struct Echo {
   std::complex<double> sum_pointer;
   std::complex<double> delta_pointer;
   int ideal_index = -1;
+  double elevation_rad = 0.0;
 };
 using Echoes = std::vector<Echo>;
 
@@ -61,6 +68,7 @@ struct ResolutionCellSum {
   std::complex<double> delta_pointer;
   int strongest_ideal_index = -1;
   int member_count = 0;
+  double elevation_rad = 0.0;    // eq. (4) applied to the elevation (a radar that measures it)
 };
 using ResolutionCells = std::vector<ResolutionCellSum>;
 
@@ -71,6 +79,7 @@ struct Detection {
   double range_rate_mps = 0.0;
   double amplitude_db = 0.0;
   int object_index = -1;  // truth of the strongest member; -1 for clutter
+  double elevation_rad = 0.0;  // 0 for a planar radar
 };
 using Detections = std::vector<Detection>;
 
@@ -81,6 +90,7 @@ struct ReportedTarget {
   double azimuth_rad = 0.0;
   double range_rate_mps = 0.0;
   double amplitude_db = 0.0;
+  double elevation_rad = 0.0;  // 0 for a planar radar
 };
 using ReportedTargets = std::vector<ReportedTarget>;
 

@@ -59,8 +59,10 @@ void McapTargetListWriter::write_cycle(const Scene& scene, int cycle, double t_s
   for (std::size_t i = 0; i < states.size() && i < frames_.size(); ++i) {
     foxglove::text::Entity targets(ns, foxglove::text::quoted(frames_[i]), simulated, lifetime_ns_);
     for_each_target_list_row(scene, *states[i], level_, [&](const TargetListRow& row) {
-      const Vec2 p = point_from_polar(row.range_m, row.azimuth_rad);
-      targets.sphere(p.x(), p.y(), 0.0, 0.0, kTargetSizeM, kTargetSizeM, kTargetSizeM, simulated_colour);
+      // A radar that measures elevation: the point in 3D (its frame is the sensor's, level).
+      const double horizontal_m = row.elevation_rad == 0.0 ? row.range_m : row.range_m * std::cos(row.elevation_rad);
+      const Vec2 p = point_from_polar(horizontal_m, row.azimuth_rad);
+      targets.sphere(p.x(), p.y(), row.range_m * std::sin(row.elevation_rad), 0.0, kTargetSizeM, kTargetSizeM, kTargetSizeM, simulated_colour);
     });
     message(target_channels_[i], ns, targets.scene_update());
   }

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "io/csv_reader.hpp"
@@ -10,12 +12,18 @@
 
 namespace rcsim {
 
-TargetListWriter::TargetListWriter(std::ostream& out, TargetListFormat format, ListLevel level)
-    : out_(out), format_(format), level_(level) {}
+bool rows_carry_elevation(const Scene& scene) {
+  return std::any_of(scene.sensors.begin(), scene.sensors.end(),
+                     [](const MountedSensor& s) { return s.config.fov.measures_elevation(); });
+}
+
+TargetListWriter::TargetListWriter(std::ostream& out, TargetListFormat format, ListLevel level, bool elevation)
+    : out_(out), format_(format), level_(level), elevation_(elevation) {}
 
 void TargetListWriter::write_header() {
   if (format_ != TargetListFormat::Csv) return;
   out_ << "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db";
+  if (elevation_) out_ << ",elevation_rad";
   if (level_ == ListLevel::ideal) out_ << ",object,reflector";
   out_ << '\n';
 }
@@ -25,6 +33,7 @@ void TargetListWriter::write_row(int cycle, double t_s, const std::string& senso
   if (format_ == TargetListFormat::Csv) {
     out_ << fmt::format("{:.6f},{},{},{},{:.4f},{:.6f},{:.4f},{:.3f}", t_s, cycle, csv_field(sensor_id), row.id,
                         row.range_m, row.azimuth_rad, row.range_rate_mps, row.amplitude_db);
+    if (elevation_) out_ << fmt::format(",{:.6f}", row.elevation_rad);
     if (level_ == ListLevel::ideal) out_ << ',' << csv_field(*row.object) << ',' << csv_field(row.reflector);
     out_ << '\n';
     return;
@@ -34,6 +43,7 @@ void TargetListWriter::write_row(int cycle, double t_s, const std::string& senso
       "\"range_rate_mps\":{:.4f},\"amplitude_db\":{:.3f}",
       t_s, cycle, nlohmann::json(sensor_id).dump(), row.id, row.range_m, row.azimuth_rad, row.range_rate_mps,
       row.amplitude_db);
+  if (elevation_) out_ << fmt::format(",\"elevation_rad\":{:.6f}", row.elevation_rad);
   if (level_ == ListLevel::ideal) {
     out_ << ",\"object\":" << nlohmann::json(*row.object).dump() << ",\"reflector\":" << nlohmann::json(row.reflector).dump();
   }
@@ -55,18 +65,18 @@ void for_each_target_list_row(const Scene& scene, const SensorCycleState& state,
         if (t.bounce_order > 1) reflector += fmt::format("#bounce{}", t.bounce_order);
         // echoes[i] belongs to ideal[i] at this level (cells are not formed).
         visit({static_cast<int>(i), t.range_m, t.azimuth_rad, t.range_rate_mps,
-                        amplitude_to_db(state.echoes[i].amplitude), &object.id, std::move(reflector)});
+                        amplitude_to_db(state.echoes[i].amplitude), &object.id, std::move(reflector), t.elevation_rad});
       }
       break;
     case ListLevel::detections:
       for (std::size_t i = 0; i < state.detections.size(); ++i) {
         const auto& d = state.detections[i];
-        visit({static_cast<int>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, nullptr, {}});
+        visit({static_cast<int>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, nullptr, {}, d.elevation_rad});
       }
       break;
     case ListLevel::tracks:
       for (const auto& r : state.reported) {
-        visit({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, nullptr, {}});
+        visit({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, nullptr, {}, r.elevation_rad});
       }
       break;
   }

@@ -18,6 +18,7 @@ struct TargetListRow {
   double range_m, azimuth_rad, range_rate_mps, amplitude_db;
   const std::string* object;  // ideal targets only
   std::string reflector;      // ideal targets only
+  double elevation_rad = 0.0;  // 0 from a planar radar
 };
 
 // The rows of one sensor's cycle at `level`, in order: ideal targets, detections or reported
@@ -25,9 +26,14 @@ struct TargetListRow {
 void for_each_target_list_row(const Scene& scene, const SensorCycleState& state, ListLevel level,
                               const std::function<void(const TargetListRow&)>& visit);
 
+// Whether a scene's target lists carry elevations: some sensor of it measures elevation.
+bool rows_carry_elevation(const Scene& scene);
+
 class TargetListWriter {
  public:
-  TargetListWriter(std::ostream& out, TargetListFormat format, ListLevel level);
+  // elevation: the scene has a radar that measures elevation; the rows then carry elevation_rad
+  // (schemas/target-list.md), and a planar scene's file stays as it was.
+  TargetListWriter(std::ostream& out, TargetListFormat format, ListLevel level, bool elevation = false);
 
   void write_header();
   // All rows of one sensor's cycle at the writer's level.
@@ -41,6 +47,7 @@ class TargetListWriter {
   std::ostream& out_;
   TargetListFormat format_;
   ListLevel level_;
+  bool elevation_;
   long long rows_ = 0;
 };
 

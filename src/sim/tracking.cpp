@@ -143,6 +143,7 @@ void Tracker::associate(const Detections& detections) {
     kalman_update(model_, d, track);  // updater
     track.updated = true;
     track.object_index = d.object_index;
+    track.elevation_rad = d.elevation_rad;
     ++track.hits;
     track.misses = 0;
     confirm_if_due(track);
@@ -172,6 +173,7 @@ void Tracker::initiate(const Detections& detections) {
     t.updated = true;
     t.object_index = d.object_index;
     t.x << d.range_m, d.range_rate_mps, d.azimuth_rad, d.amplitude_db;
+    t.elevation_rad = d.elevation_rad;
     t.P = model_.R;
     confirm_if_due(t);
     tracks_.push_back(t);
@@ -193,7 +195,7 @@ void Tracker::step(const Detections& detections, ReportedTargets& reported) {
   reported.clear();
   for (const auto& t : tracks_) {
     if (t.status != TrackStatus::Confirmed || !t.updated) continue;
-    reported.push_back({t.id, std::max(0.0, t.x(0)), t.x(2), t.x(1), t.x(3)});
+    reported.push_back({t.id, std::max(0.0, t.x(0)), t.x(2), t.x(1), t.x(3), t.elevation_rad});
   }
 }
 
@@ -205,6 +207,7 @@ void report_detections_directly(const Detections& detections, ReportedTargets& r
     r.id = static_cast<int>(i);
     r.range_m = d.range_m;
     r.azimuth_rad = d.azimuth_rad;
+    r.elevation_rad = d.elevation_rad;
     r.range_rate_mps = d.range_rate_mps;
     r.amplitude_db = d.amplitude_db;
   }

@@ -25,6 +25,7 @@ struct Track {
   bool updated = false;     // got a measurement this cycle
   int object_index = -1;    // truth of the last assigned detection (for metrics, never for tracking)
   TrackState x = TrackState::Zero();
+  double elevation_rad = 0.0;  // a radar that measures elevation: its last detection's (not filtered)
   TrackCovariance P = TrackCovariance::Identity();
 };
 

@@ -136,6 +136,8 @@ Recording make_recording(const Scene& scene, const SynthConfig& design, std::uin
     recorded.x_m = sensor.X_VS.x_m;
     recorded.y_m = sensor.X_VS.y_m;
     recorded.yaw_rad = sensor.X_VS.yaw_rad;
+    recorded.z_m = sensor.z_m;
+    recorded.pitch_rad = sensor.pitch_rad;
     recorded.reports = config.reports_detections ? ListLevel::detections : ListLevel::tracks;
     const Derived derived = derive(config);
     signal_chains[sensor.id] = {{"carrier_hz", config.waveform.carrier_hz},

@@ -114,9 +114,31 @@ TEST_F(RecordingFiles, VersionTwoDeclaresRawDetectionsAndVersionOneStaysReadable
   std::string bad_level = header;
   bad_level.replace(bad_level.find("\"detections\""), 12, "\"plots\"");
   expect_refused("recording.json", bad_level, "plots");
-  std::string v5 = header;
-  v5.replace(v5.find("\"version\": 2"), 12, "\"version\": 5");
-  expect_refused("recording.json", v5, "versions 1 to 4");
+  std::string v6 = header;
+  v6.replace(v6.find("\"version\": 2"), 12, "\"version\": 6");
+  expect_refused("recording.json", v6, "versions 1 to 5");
+}
+
+// Version 5: a sensor's height and pitch (a radar that measures elevation reads them), written
+// only where one is set, read back; a version 4 file that names them is refused.
+TEST_F(RecordingFiles, VersionFiveHoldsTheMountingsHeightAndPitch) {
+  write_recording(dir_ / "level", rec_);
+  EXPECT_EQ(testing::read_file(dir_ / "level" / "recording.json").find("pitch_rad"), std::string::npos);
+  Recording raised = rec_;
+  raised.sensors[0].z_m = 0.8;
+  raised.sensors[0].pitch_rad = 0.02;
+  write_recording(dir_ / "raised", raised);
+  const std::string header = testing::read_file(dir_ / "raised" / "recording.json");
+  EXPECT_NE(header.find("\"version\": 5"), std::string::npos);
+  const Recording back = read_recording(dir_ / "raised");
+  EXPECT_DOUBLE_EQ(back.sensors[0].z_m, 0.8);
+  EXPECT_DOUBLE_EQ(back.sensors[0].pitch_rad, 0.02);
+  std::string v4 = header;
+  v4.replace(v4.find("\"version\": 5"), 12, "\"version\": 4");
+  expect_refused("recording.json", v4, "z_m");
+  std::string steep = header;
+  steep.replace(steep.find("\"pitch_rad\": 0.02"), 18, "\"pitch_rad\": 1.2");
+  expect_refused("recording.json", steep, "pitch_rad");
 }
 
 // Optional per-target columns: RCS, SNR and elevation, written only where given, read back.

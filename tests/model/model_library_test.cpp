@@ -60,6 +60,42 @@ TEST(ObjectModelDocument, ReflectorsAreReadInRadiansAndFromTheirChordByHand) {
   EXPECT_FALSE(m.polyline.has_value());
 }
 
+// Version 2: heights, the body's diffuse factor, the free height under it, a limb's swing; a
+// version 1 file that names them is refused, and one without them reads as before (on the road).
+TEST(ObjectModelDocument, VersionTwoGivesHeightsAndSwingsAndVersionOneStaysOnTheRoad) {
+  nlohmann::json doc = nlohmann::json::parse(kSmall);
+  EXPECT_DOUBLE_EQ(parsed(doc).points[0].z_m, 0.0);
+  EXPECT_FALSE(parsed(doc).points[0].swing.active());
+  doc["version"] = 2;
+  doc["height_m"] = 1.8;
+  doc["clearance_m"] = 0.5;
+  doc["diffuse_ercs_factor"] = 0.25;
+  doc["point_reflectors"][0]["z_m"] = 1.2;
+  doc["point_reflectors"][0]["swing"] = {{"relative_amplitude", 0.6}, {"period_s", 1.1}, {"phase_deg", 90}};
+  doc["plane_reflectors"][0]["z_m"] = 0.7;
+  const ObjectModel m = parsed(doc);
+  EXPECT_DOUBLE_EQ(m.height_m, 1.8);
+  EXPECT_DOUBLE_EQ(m.clearance_m, 0.5);
+  EXPECT_DOUBLE_EQ(m.diffuse_ercs_factor, 0.25);
+  EXPECT_DOUBLE_EQ(m.points[0].z_m, 1.2);
+  EXPECT_DOUBLE_EQ(m.planes[0].z_m, 0.7);
+  // k |v| cos(2 pi t / T + phase): at t = 0 and 90 deg, 0; a quarter period later, -k v.
+  EXPECT_NEAR(m.points[0].swing.speed_offset_mps(2.0, 0.0), 0.0, 1e-15);
+  EXPECT_NEAR(m.points[0].swing.speed_offset_mps(2.0, 1.1 / 4.0), -0.6 * 2.0, 1e-12);
+  EXPECT_DOUBLE_EQ(m.points[0].swing.speed_offset_mps(0.0, 0.3), 0.0);  // standing: no swing
+  // Heights survive scaling to an annotated box (a recording gives length and width only).
+  EXPECT_DOUBLE_EQ(scale_model(m, 4.0, 2.0).planes[0].z_m, 0.7);
+  nlohmann::json both = doc;
+  both["point_reflectors"][0]["swing"]["rolling_radius_m"] = 0.3;
+  EXPECT_NE(refusal_of(both).find("one of period_s"), std::string::npos) << refusal_of(both);
+  nlohmann::json above = doc;
+  above["clearance_m"] = 2.0;
+  EXPECT_NE(refusal_of(above).find("clearance_m"), std::string::npos) << refusal_of(above);
+  nlohmann::json v1 = doc;
+  v1["version"] = 1;
+  EXPECT_NE(refusal_of(v1).find("unknown field"), std::string::npos) << refusal_of(v1);
+}
+
 TEST(ObjectModelDocument, BadReflectorsAreRefusedNamingTheField) {
   const nlohmann::json small = nlohmann::json::parse(kSmall);
   nlohmann::json doc = small;

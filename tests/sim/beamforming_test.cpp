@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/angles.hpp"
+
 namespace rcsim {
 namespace {
 
@@ -81,6 +83,29 @@ TEST(Beamforming, OneDetectionPerRangeDopplerCellTheStrongestBeam) {
   EXPECT_DOUBLE_EQ(d[1].range_rate_mps, 0.09);
   EXPECT_DOUBLE_EQ(d[2].range_m, 10.01);
   EXPECT_DOUBLE_EQ(d[2].amplitude_db, 55.0);
+}
+
+// A radar with cells in elevation reports the strongest beam of each range-Doppler cell at each
+// elevation cell: two beams of one range-Doppler cell 3 deg apart in elevation, both kept; two
+// 0.5 deg apart (one 2-deg cell: round(el / 2 deg) both 0), the stronger only.
+TEST(Beamforming, WithCellsInElevationOneDetectionPerElevationCellOfARangeDopplerCell) {
+  ResolutionCell cell;
+  cell.range_cell_m = 0.075;
+  cell.range_rate_cell_mps = 0.0812;
+  cell.elevation_cell_rad = 2.0 * kPi / 180.0;
+  Detections d{detection_at(10.00, 0.0, 50.0), detection_at(10.00, 0.0, 48.0), detection_at(10.00, 0.0, 49.0)};
+  d[1].elevation_rad = 3.0 * kPi / 180.0;
+  d[2].elevation_rad = 0.5 * kPi / 180.0;
+  std::vector<std::size_t> order;
+  keep_strongest_beam_per_cell(cell, d, order);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d[0].amplitude_db, 50.0);
+  EXPECT_DOUBLE_EQ(d[1].amplitude_db, 48.0);
+  cell.elevation_cell_rad = 0.0;  // no cells in elevation: one per range-Doppler cell
+  Detections one{detection_at(10.00, 0.0, 50.0), detection_at(10.00, 0.0, 48.0)};
+  one[1].elevation_rad = 3.0 * kPi / 180.0;
+  keep_strongest_beam_per_cell(cell, one, order);
+  EXPECT_EQ(one.size(), 1u);
 }
 
 }  // namespace

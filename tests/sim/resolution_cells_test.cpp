@@ -24,6 +24,28 @@ Echo echo(double range_m, double rate_mps, double amplitude, int index) {
   return e;
 }
 
+TEST(ResolutionCells, CellsInElevationKeepEchoesACellApartAndWeighTheirElevation) {
+  // Same range and range rate; elevations 0, 1 deg and 4 deg; 2-deg cells in elevation.
+  Echoes echoes{echo(20.0, 0.0, 3.0, 0), echo(20.0, 0.0, 1.0, 1), echo(20.0, 0.0, 2.0, 2)};
+  const double deg = std::numbers::pi / 180.0;
+  echoes[1].elevation_rad = 1.0 * deg;
+  echoes[2].elevation_rad = 4.0 * deg;
+  ResolutionCell cells_in_elevation;
+  cells_in_elevation.elevation_cell_rad = 2.0 * deg;
+  ResolutionCellBuffers buffers;
+  ResolutionCells cells;
+  form_resolution_cells(cells_in_elevation, 0.5, echoes, buffers, cells);
+  ASSERT_EQ(cells.size(), 2u);
+  // The strongest cell holds echoes 0 and 1: elevation (3 x 0 + 1 x 1) / 4 = 0.25 deg (eq. (4)).
+  EXPECT_EQ(cells[0].member_count, 2);
+  EXPECT_NEAR(cells[0].elevation_rad, 0.25 * deg, 1e-15);
+  EXPECT_NEAR(cells[1].elevation_rad, 4.0 * deg, 1e-15);
+  // Without cells in elevation all three merge, at (0 + 1 + 8) / 6 = 1.5 deg.
+  form_resolution_cells(ResolutionCell{}, 0.5, echoes, buffers, cells);
+  ASSERT_EQ(cells.size(), 1u);
+  EXPECT_NEAR(cells[0].elevation_rad, 1.5 * deg, 1e-15);
+}
+
 TEST(ResolutionCells, AnArrayThatResolvesAzimuthKeepsEchoesABeamApart) {
   // Same range and range rate; azimuths 0, 0.4 deg and 2 deg; 1-deg beams.
   Echoes echoes{echo(20.0, 0.0, 3.0, 0), echo(20.0, 0.0, 1.0, 1), echo(20.0, 0.0, 2.0, 2)};
