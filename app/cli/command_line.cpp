@@ -12,6 +12,7 @@
 #include "cli/suggestions.hpp"
 #include "cli/verdict_options.hpp"
 #include "common/input_error.hpp"
+#include "common/safe_text.hpp"
 
 namespace rcsim::cli {
 
@@ -43,7 +44,7 @@ int run_command_line(int argc, char** argv) {
     // named first, with what was probably meant: it is often why a required one is missing.
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
     if (const auto unknown = unknown_argument_message(app)) {
-      std::cerr << *unknown << '\n';
+      std::cerr << escape_control_characters(*unknown) << '\n';
       return 2;
     }
     // No command at all (a bare `rcsim`): the commands, then what is missing (issue 53: it said
@@ -54,24 +55,27 @@ int run_command_line(int argc, char** argv) {
     }
     // CLI11's own message ("--seed: 1 required UINT missing"), in
     // rcsim's form: the program first, the way to the options after.
-    std::cerr << "rcsim: " << e.what() << " (--help lists the options)\n";
+    std::cerr << "rcsim: " << escape_control_characters(e.what()) << " (--help lists the options)\n";
     return 2;
   } catch (const VerdictsFailed& e) {
-    std::cerr << "rcsim: failed: " << e.what() << '\n';
+    std::cerr << "rcsim: failed: " << escape_control_characters(e.what()) << '\n';
     return kExitVerdictsFailed;
   } catch (const FitInterrupted& e) {
-    std::cerr << "rcsim: interrupted: " << e.what() << '\n';
+    std::cerr << "rcsim: interrupted: " << escape_control_characters(e.what()) << '\n';
     return kExitInterrupted;
   } catch (const rcsim::InputError& e) {
-    std::cerr << "rcsim: error: " << e.what() << '\n';
+    // Every message below may quote the input (a field, a name, a path): its control characters
+    // are written out, so that a terminal escape in a recording cannot erase the error or forge a
+    // line after it (issue 51).
+    std::cerr << "rcsim: error: " << escape_control_characters(e.what()) << '\n';
     return 2;
   } catch (const std::filesystem::filesystem_error& e) {
     // A name given that the file system refuses to look up (too long, a loop of links, no
     // permission) is bad input: named, with why.
-    std::cerr << "rcsim: error: " << (e.path1().empty() ? "" : e.path1().string() + ": ") << e.code().message() << '\n';
+    std::cerr << "rcsim: error: " << escape_control_characters((e.path1().empty() ? "" : e.path1().string() + ": ") + e.code().message()) << '\n';
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "rcsim: error: " << e.what() << '\n';
+    std::cerr << "rcsim: error: " << escape_control_characters(e.what()) << '\n';
     return 1;
   }
   return 0;

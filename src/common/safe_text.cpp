@@ -49,6 +49,49 @@ std::optional<std::string> find_control_character(std::string_view text) {
   return std::nullopt;
 }
 
+std::string escape_control_characters(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    if (lead < 0x80) {
+      if (lead < 0x20 || lead == 0x7f) {
+        out += fmt::format("\\x{:02X}", lead);
+      } else {
+        out += static_cast<char>(lead);
+      }
+      ++i;
+      continue;
+    }
+    std::size_t length = 0;
+    if (lead >= 0xc2 && lead <= 0xdf) length = 2;
+    if (lead >= 0xe0 && lead <= 0xef) length = 3;
+    if (lead >= 0xf0 && lead <= 0xf4) length = 4;
+    bool valid = length != 0 && i + length <= text.size();
+    char32_t code = lead & (length == 2 ? 0x1f : length == 3 ? 0x0f : 0x07);
+    for (std::size_t k = 1; valid && k < length; ++k) {
+      const auto next = static_cast<unsigned char>(text[i + k]);
+      if ((next & 0xc0) != 0x80) valid = false;
+      code = (code << 6) | (next & 0x3f);
+    }
+    const char32_t smallest = length == 2 ? 0x80 : length == 3 ? 0x800 : 0x10000;
+    if (valid && (code < smallest || code > 0x10ffff || (code >= 0xd800 && code < 0xe000))) valid = false;
+    if (!valid) {
+      // One byte at a time: the next may start a valid sequence.
+      out += fmt::format("\\x{:02X}", lead);
+      ++i;
+      continue;
+    }
+    if (code < 0xa0 || code == 0x2028 || code == 0x2029) {
+      out += fmt::format("\\u{{{:04X}}}", static_cast<std::uint32_t>(code));
+    } else {
+      out.append(text.substr(i, length));
+    }
+    i += length;
+  }
+  return out;
+}
+
 bool is_plain_name(std::string_view name, std::size_t max_length) {
   if (name.empty() || name.size() > max_length) return false;
   const auto alnum = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); };

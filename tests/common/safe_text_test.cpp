@@ -61,4 +61,20 @@ TEST(SafeText, ShellQuotingMakesOneWordOfAnything) {
   EXPECT_EQ(shell_quoted("''"), "''\\'''\\'''");
 }
 
+// Issue 51: a message quoting the input writes its control characters out, so a terminal escape
+// can neither erase the message nor forge a line after it; printable text, UTF-8 included, stays.
+TEST(SafeText, EscapingWritesOutEveryControlCharacterAndNoOtherText) {
+  EXPECT_EQ(escape_control_characters("car\x1b[2K\rrcsim: done\n"), "car\\x1B[2K\\x0Drcsim: done\\x0A");
+  EXPECT_EQ(escape_control_characters(std::string("a\0b\x7f", 4)), "a\\x00b\\x7F");
+  EXPECT_EQ(escape_control_characters("caf\xc3\xa9 \xe2\x82\xac 50"), "caf\xc3\xa9 \xe2\x82\xac 50");
+  EXPECT_EQ(escape_control_characters("\xc2\x9b" "2J"), "\\u{009B}2J");                 // C1 CSI
+  EXPECT_EQ(escape_control_characters("a\xe2\x80\xa8" "b"), "a\\u{2028}b");             // line separator
+  EXPECT_EQ(escape_control_characters("\xff\xc3(\xed\xa0\x80"), "\\xFF\\xC3(\\xED\\xA0\\x80");  // invalid UTF-8
+  EXPECT_EQ(escape_control_characters("\xe2\x82"), "\\xE2\\x82");                     // cut short
+  for (int c = 0; c < 256; ++c) {
+    const std::string escaped = escape_control_characters(std::string(1, static_cast<char>(c)));
+    EXPECT_FALSE(find_control_character(escaped).has_value()) << c << ": " << escaped;
+  }
+}
+
 }  // namespace rcsim::safe_text_test

@@ -199,4 +199,22 @@ TEST_F(CliUsage, HelpShowsChoicesAsWordsNotAnEnumMapping) {
   EXPECT_FALSE(output_has(wrong, "->")) << wrong.output;
 }
 
+// Issue 51: an error message quotes the input, and the input's control characters reached the
+// terminal raw: an escape sequence could erase the error and a carriage return or newline forge
+// "done" after it. Every message is printed with them written out (\xNN).
+TEST_F(Cli, ControlCharactersOfTheInputAreWrittenOutInTheErrorMessage) {
+  std::ifstream in(kExamples + "front_approach.json");
+  auto scene = nlohmann::json::parse(in);
+  scene["objects"][0]["model"] = "car\x1b[2K\r\nrcsim: wrote out.csv\x1b]0;x\x07";
+  const fs::path path = dir_ / "escapes.json";
+  std::ofstream(path) << scene.dump();
+  const auto r = run("simulate " + path.string() + " -o " + (dir_ / "out.csv").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("car\\x1B[2K\\x0D\\x0Arcsim: wrote out.csv\\x1B]0;x\\x07"), std::string::npos) << r.output;
+  for (const char c : r.output.substr(0, r.output.size() - 1)) {
+    EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << "a raw control character in: " << r.output;
+  }
+  EXPECT_EQ(r.output.back(), '\n');
+}
+
 }  // namespace rcsim::command_line_test
