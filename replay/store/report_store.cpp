@@ -192,6 +192,18 @@ SchemaState read_schema_state(SQLite::Database& db, const std::string& path) {
     throw InputError(path, "", fmt::format("report schema version {}, expected {}: written by a newer rcsim",
                                            user_version, kReportSchemaVersion));
   }
+  // Tagged as a report of this version, yet without a report's tables (issue 51: a bare "no such
+  // table", exit 1): refused here, naming the first missing.
+  for (const char* table : {"runs", "summaries", "cycle_blocks", "target_blocks", "object_state_blocks"}) {
+    SQLite::Statement exists(db, "SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = ?");
+    exists.bind(1, table);
+    exists.executeStep();
+    if (exists.getColumn(0).getInt() == 0) {
+      throw InputError(path, "", fmt::format("tagged as an rcsim report (application_id {:#x}, schema version {}) but "
+                                             "has no table {}: not an rcsim report database, or a damaged one",
+                                             kReportApplicationId, kReportSchemaVersion, table));
+    }
+  }
   return SchemaState::current;
 }
 
@@ -322,14 +334,37 @@ void discard_if_unused(std::unique_ptr<ReportDatabase>& db, const std::string& p
 std::unique_ptr<ReportDatabase> open_report_database_read_only(const std::string& path) {
   auto db = std::make_unique<ReportDatabase>(path, SQLite::OPEN_READONLY);
   db->setBusyTimeout(5000);
+  // Another application's database (or an empty or older one) is named as such, not met with an
+  // SQL error on a table it lacks (docs/sql.md; issue 51).
+  switch (read_schema_state_once(*db, path)) {
+    case SchemaState::empty:
+      throw InputError(path, "", "the database is empty: not an rcsim report database");
+    case SchemaState::older:
+      throw InputError(path, "", fmt::format("an older report schema: open it once with rcsim (rcsim report) to migrate "
+                                             "it to version {}", kReportSchemaVersion));
+    case SchemaState::current:
+      break;
+  }
   return db;
 }
 
 std::unique_ptr<ReportDatabase> open_report_database_for_reading(const std::string& path) {
   if (!std::filesystem::exists(path)) throw InputError(path, "", "no such report database");
   check_database_file(path);
-  // A file this process may write is opened as a writer would (an old schema is migrated).
-  if (::access(path.c_str(), W_OK) == 0) return open_report_database(path, false);
+  // A file this process may write and that holds an older schema is migrated, as a writer would;
+  // one of the current schema is read as it is: a read never switches it to WAL (issue 51).
+  if (::access(path.c_str(), W_OK) == 0) {
+    std::unique_ptr<ReportDatabase> db;
+    try {
+      db = std::make_unique<ReportDatabase>(path, SQLite::OPEN_READWRITE);
+      db->setBusyTimeout(kBusyTimeout_ms);
+      if (read_schema_state_once(*db, path) == SchemaState::current) return db;
+    } catch (const SQLite::Exception& e) {
+      throw InputError(path, "", std::string("cannot read as a report database: ") + e.what());
+    }
+    db.reset();
+    return open_report_database(path, false);
+  }
   std::unique_ptr<ReportDatabase> db;
   try {
     // Without write access SQLite cannot make the WAL's -shm beside it: read the file as immutable.

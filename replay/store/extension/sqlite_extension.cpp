@@ -8,13 +8,16 @@
 #include <sqlite3ext.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <exception>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "common/input_error.hpp"
 #include "replay/store/decoded_rows.hpp"
 #include "replay/store/report_reader.hpp"
 #include "replay/store/report_store.hpp"
@@ -93,8 +96,9 @@ int disconnect(sqlite3_vtab* vtab) {
   return SQLITE_OK;
 }
 
-// Uses `run_id = ?`, and `cycle = ?` or the last lower and upper bounds on cycle given; SQLite
-// checks the cycle constraints again (they only narrow the blocks read).
+// Uses `run_id = ?`, and `cycle = ?` or the last lower and upper bounds on cycle given, to narrow
+// the runs and blocks read; SQLite checks every constraint again (omit = 0): a value that is not a
+// number (`cycle <= 'zzz'`) or not a whole one (`run_id = 1.5`) narrows nothing here (issue 51).
 int best_index(sqlite3_vtab*, sqlite3_index_info* info) {
   int run = -1, equals = -1, lowest = -1, highest = -1;
   for (int i = 0; i < info->nConstraint; ++i) {
@@ -115,7 +119,7 @@ int best_index(sqlite3_vtab*, sqlite3_index_info* info) {
     info->aConstraintUsage[constraint].argvIndex = ++argument;
     info->aConstraintUsage[constraint].omit = omit ? 1 : 0;
   };
-  use(run, kRunEquals, true);
+  use(run, kRunEquals, false);
   use(equals, kCycleEquals, false);
   use(lowest, kCycleLowest, false);
   use(highest, kCycleHighest, false);
@@ -170,6 +174,37 @@ int clamp_to_int(sqlite3_int64 v) {
   return static_cast<int>(std::clamp<sqlite3_int64>(v, 0, std::numeric_limits<int>::max()));
 }
 
+// A constraint's value as a bound on cycle, rounded outwards (`upward` for an upper bound): only an
+// integer or a real narrows what is read; text, a blob or NULL compare by SQLite's own rules, so
+// they leave the bound open (nullopt) and SQLite's check of every row decides.
+std::optional<int> cycle_bound(sqlite3_value* value, bool upward) {
+  switch (sqlite3_value_type(value)) {
+    case SQLITE_INTEGER:
+      return clamp_to_int(sqlite3_value_int64(value));
+    case SQLITE_FLOAT: {
+      const double v = sqlite3_value_double(value);
+      if (std::isnan(v)) return std::nullopt;
+      const double rounded = std::clamp(upward ? std::ceil(v) : std::floor(v), 0.0, double{std::numeric_limits<int>::max()});
+      return static_cast<int>(rounded);
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+// Whether run `id` may equal `value`: an integer or a whole real names a run; anything else leaves
+// the runs to SQLite's check (a real with a fraction equals none, which SQLite finds).
+bool may_be_run(std::int64_t id, sqlite3_value* value) {
+  switch (sqlite3_value_type(value)) {
+    case SQLITE_INTEGER:
+      return sqlite3_value_int64(value) == id;
+    case SQLITE_FLOAT:
+      return sqlite3_value_double(value) == static_cast<double>(id);
+    default:
+      return true;
+  }
+}
+
 int filter(sqlite3_vtab_cursor* cursor, int plan, const char*, int argc, sqlite3_value** argv) {
   Cursor& c = cursor_of(cursor);
   const Table& t = table_of(cursor->pVtab);
@@ -177,22 +212,30 @@ int filter(sqlite3_vtab_cursor* cursor, int plan, const char*, int argc, sqlite3
     if (!c.db) c.db = replay::open_report_database_read_only(t.path);
     int argument = 0;
     c.runs = replay::report::run_ids(*c.db);
-    if ((plan & kRunEquals) != 0) {
-      const sqlite3_int64 run = sqlite3_value_int64(argv[argument++]);
-      c.runs.erase(std::remove_if(c.runs.begin(), c.runs.end(), [&](std::int64_t id) { return id != run; }), c.runs.end());
+    if ((plan & kRunEquals) != 0 && argument < argc) {
+      sqlite3_value* run = argv[argument++];
+      c.runs.erase(std::remove_if(c.runs.begin(), c.runs.end(), [&](std::int64_t id) { return !may_be_run(id, run); }), c.runs.end());
     }
     c.wanted = replay::CycleSpan{};
     // `cycle > 5` reads from cycle 5 on, `cycle < 9` to cycle 9: SQLite drops the bound itself.
-    const auto next_cycle = [&] { return clamp_to_int(sqlite3_value_int64(argv[argument++])); };
-    if ((plan & kCycleEquals) != 0 && argument < argc) c.wanted.first = c.wanted.last = next_cycle();
-    if ((plan & kCycleLowest) != 0 && argument < argc) c.wanted.first = next_cycle();
-    if ((plan & kCycleHighest) != 0 && argument < argc) c.wanted.last = next_cycle();
+    const auto bound = [&](int& field, bool upward) {
+      if (const auto value = cycle_bound(argv[argument++], upward)) field = *value;
+    };
+    if ((plan & kCycleEquals) != 0 && argument < argc) {
+      sqlite3_value* value = argv[argument++];
+      if (const auto low = cycle_bound(value, false)) c.wanted.first = *low;
+      if (const auto high = cycle_bound(value, true)) c.wanted.last = *high;
+    }
+    if ((plan & kCycleLowest) != 0 && argument < argc) bound(c.wanted.first, false);
+    if ((plan & kCycleHighest) != 0 && argument < argc) bound(c.wanted.last, true);
     c.run_index = 0;
     c.rowid = 0;
     c.last_cycle = c.runs.empty() ? -1 : replay::last_stored_cycle(*c.db, c.runs.front());
     c.next_first_cycle = c.wanted.first;
     load_next_chunk(c, t.table);
     return SQLITE_OK;
+  } catch (const InputError& e) {
+    return fail(cursor->pVtab, std::string("rcsim: ") + e.what());  // names the file itself
   } catch (const std::exception& e) {
     return fail(cursor->pVtab, std::string("rcsim: ") + t.path + ": " + e.what());
   }

@@ -197,7 +197,31 @@ TEST_F(SqliteExtension, AnInMemoryConnectionOrAnotherDatabaseIsRefusedSayingWhy)
     FAIL() << "a database of another application served targets";
   } catch (const SQLite::Exception& e) {
     EXPECT_NE(std::string(e.what()).find("rcsim: " + other), std::string::npos) << e.what();
+    // docs/sql.md: named as not a report (issue 51: "no such table: runs").
+    EXPECT_NE(std::string(e.what()).find("not an rcsim report database"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("no such table"), std::string::npos) << e.what();
   }
+}
+
+// Issue 51: a constraint's value was read as an integer whatever it was: `run_id = 1.5` returned
+// run 1 and `cycle <= 'zzz'` the rows of cycle 0 only. Only an integer or a real narrows the
+// blocks read, rounded outwards, and SQLite checks every constraint again.
+TEST_F(SqliteExtension, ConstraintsOfAnotherTypeGiveWhatSqliteItselfGives) {
+  SQLite::Database db = connect();
+  const auto count = [&](const std::string& sql) { return db.execAndGet(sql).getInt64(); };
+  const long long run1 = count("SELECT count(*) FROM targets WHERE run_id = 1");
+  ASSERT_GT(run1, 0);
+  EXPECT_EQ(count("SELECT count(*) FROM targets WHERE run_id = 1.5"), 0);
+  EXPECT_EQ(count("SELECT count(*) FROM targets WHERE run_id = 1.0"), run1);
+  EXPECT_EQ(count("SELECT count(*) FROM targets WHERE run_id = 'x'"), 0);
+  EXPECT_EQ(count("SELECT count(*) FROM targets WHERE run_id = NULL"), 0);
+  for (const std::string where : {"cycle <= 'zzz'", "cycle >= 'zzz'", "cycle < x'00'", "cycle = 7.0", "cycle = 7.5", "cycle < 7.5",
+                                  "cycle > 7.5", "cycle >= 1e300", "cycle <= -1e300", "cycle <= 1e300", "cycle = NULL"}) {
+    EXPECT_EQ(count("SELECT count(*) FROM targets WHERE run_id = 1 AND " + where),
+              count("SELECT count(*) FROM (SELECT * FROM targets WHERE run_id = 1) WHERE " + where))
+        << where;
+  }
+  EXPECT_EQ(count("SELECT count(*) FROM targets WHERE run_id = 1 AND cycle <= 'zzz'"), run1);
 }
 
 }  // namespace rcsim::sqlite_extension_test
