@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/pose2.hpp"
+#include "common/safe_text.hpp"
 #include "common/target_colours.hpp"
 #include "io/foxglove_json.hpp"
 #include "io/mcap_writer.hpp"
@@ -90,6 +91,7 @@ class McapReplayWriter {
   McapReplayWriter(ReportDatabase& db, std::int64_t run_id, std::ostream& out, McapClock clock)
       : db_(db), run_id_(run_id), run_(report::load_run(db, run_id)), writer_(out, "", mcap::Compression::zstd) {
     if (clock == McapClock::log) offset_ns_ = first_timestamp_ns(run_.info.recording_source);
+    check_names_are_utf8();
     scene_ = writer_.add_schema("foxglove.SceneUpdate", "jsonschema", foxglove::scene_update_schema());
     transform_ = writer_.add_schema("foxglove.FrameTransform", "jsonschema", foxglove::frame_transform_schema());
     figures_ = writer_.add_schema("rcsim.CycleFigures", "jsonschema", cycle_figures_schema());
@@ -133,6 +135,25 @@ class McapReplayWriter {
     std::string frame_json;  // quoted
     std::uint16_t recorded = 0, simulated = 0, view_field = 0, figures = 0;
   };
+
+  // The sensors' and objects' names go into JSON messages, which hold UTF-8 only (issue 51: a
+  // non-UTF-8 object id threw the JSON library's type_error.316, exit 1): refused by position.
+  void check_names_are_utf8() const {
+    const auto check = [](const std::string& text, const std::string& what) {
+      const auto bad = find_control_character(text);
+      if (bad && bad->rfind("invalid UTF-8", 0) == 0) {
+        throw std::invalid_argument(fmt::format("{} is not UTF-8 text ({}); an MCAP export's JSON messages hold UTF-8 only", what, *bad));
+      }
+    };
+    for (const report::SensorInfo& s : run_.sensors) {
+      check(s.id, fmt::format("sensor {}'s id", s.sensor));
+      check(s.type, fmt::format("sensor {}'s type", s.sensor));
+    }
+    for (const report::ObjectInfo& o : run_.objects) {
+      check(o.id, fmt::format("object {}'s id", o.object));
+      check(o.object_class, fmt::format("object {}'s class", o.object));
+    }
+  }
 
   CycleBlock read_block(CycleSpan span) {
     CycleBlock b;

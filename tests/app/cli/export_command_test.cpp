@@ -121,5 +121,56 @@ TEST_F(ExportCli, McapIsOneFileWrittenAtomicallyAndRefusedWithoutAName) {
   EXPECT_NE(no_table.output.find("--table: is required for --format csv"), std::string::npos) << no_table.output;
 }
 
+// Issue 51: a non-UTF-8 object id threw the JSON library's type_error.316 (exit 1); it is refused
+// by the object's position, exit 2, leaving no file.
+TEST_F(ExportCli, ANonUtf8ObjectIdIsRefusedByItsPosition) {
+  {
+    SQLite::Database db(this->db(), SQLite::OPEN_READWRITE);
+    db.exec("UPDATE run_objects SET object_id = CAST(x'6361ff72' AS TEXT) WHERE run_id = 1 AND object = 0");
+  }
+  const fs::path out = dir_ / "bad.mcap";
+  const auto r = run_rcsim(fmt::format("export {} --run 1 --format mcap -o {}", db(), out.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("run 1: object 0's id is not UTF-8 text (invalid UTF-8 at byte 2)"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("json.exception"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Issue 51: a file tagged as a report (application_id RCSR, the current version) without its
+// tables gave SQLite's bare "no such table", exit 1: now named with its file, exit 2.
+TEST_F(ExportCli, AFileTaggedAsAReportWithoutItsTablesIsRefusedByName) {
+  const std::string tagged = (dir_ / "tagged.sqlite").string();
+  int application_id = 0, version = 0;
+  {
+    SQLite::Database db(this->db(), SQLite::OPEN_READONLY);
+    application_id = db.execAndGet("PRAGMA application_id").getInt();
+    version = db.execAndGet("PRAGMA user_version").getInt();
+  }
+  {
+    SQLite::Database db(tagged, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE);
+    db.exec(fmt::format("PRAGMA application_id = {}", application_id));
+    db.exec(fmt::format("PRAGMA user_version = {}", version));
+    db.exec("CREATE TABLE t(x)");
+  }
+  for (const std::string& command : {fmt::format("export {} --run 1 --table cycles", tagged), fmt::format("report {} -o {}", tagged, (dir_ / "report.html").string())}) {
+    const auto r = run_rcsim(command);
+    EXPECT_EQ(r.exit_code, 2) << command << ": " << r.output;
+    EXPECT_NE(r.output.find(tagged + ": tagged as an rcsim report"), std::string::npos) << command << ": " << r.output;
+    EXPECT_NE(r.output.find("has no table runs"), std::string::npos) << command << ": " << r.output;
+  }
+}
+
+// Issue 51: export, a read, switched the report to WAL (and back as it closed): the file is now
+// left byte for byte as it was, and no -wal file appears beside it.
+TEST_F(ExportCli, ExportingLeavesTheReportAsItWas) {
+  const std::string before = testing::read_file(db());
+  for (const std::string& args : {std::string("--table targets -o ") + (dir_ / "t.csv").string(),
+                                  std::string("--format mcap -o ") + (dir_ / "t.mcap").string()}) {
+    ASSERT_EQ(run_rcsim(fmt::format("export {} --run 1 {}", db(), args)).exit_code, 0) << args;
+    EXPECT_TRUE(testing::read_file(db()) == before) << args << ": the report changed";
+    EXPECT_FALSE(fs::exists(db() + "-wal")) << args;
+  }
+}
+
 }  // namespace
 }  // namespace rcsim
