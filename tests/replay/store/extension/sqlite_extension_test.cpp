@@ -153,6 +153,26 @@ TEST_F(SqliteExtension, ARunClaimingTwoBillionCyclesIsReadAtOnce) {
   EXPECT_EQ(db.execAndGet("SELECT count(*) FROM cycles WHERE run_id = 1 AND cycle < 2147483000").getInt(), 0);
 }
 
+// Issue 51: each xFilter decoded every cycle block of the run (to find its last cycle), so a join
+// (an xFilter per outer row) was quadratic in the run's length. A second block, damaged, is
+// added after the run's one: a query for a cycle of the first reads the first only.
+TEST_F(SqliteExtension, AConstraintOnOneCycleDecodesOnlyItsBlock) {
+  {
+    SQLite::Database write(db_, SQLite::OPEN_READWRITE);
+    write.exec("UPDATE runs SET cycles = cycles + 256 WHERE run_id = 1");
+    write.exec("CREATE TEMP TABLE copy AS SELECT * FROM cycle_blocks WHERE run_id = 1");
+    write.exec("UPDATE copy SET first_cycle = first_cycle + 256, gospa_m = x'ff'");
+    write.exec("INSERT INTO cycle_blocks SELECT * FROM copy");
+  }
+  SQLite::Database db = connect();
+  const int sensors = db.execAndGet("SELECT count(DISTINCT sensor) FROM cycle_blocks WHERE run_id = 1").getInt();
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM cycles WHERE run_id = 1 AND cycle = 7").getInt(), sensors);
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM cycles a JOIN cycles b ON b.run_id = a.run_id AND b.cycle = a.cycle "
+                          "AND b.sensor = a.sensor WHERE a.run_id = 1 AND a.cycle < 100").getInt(),
+            100 * sensors);
+  EXPECT_THROW(db.execAndGet("SELECT count(*) FROM cycles WHERE run_id = 1 AND cycle >= 256").getInt(), SQLite::Exception);
+}
+
 TEST_F(SqliteExtension, Sqlite3AndPythonLoadItAsAUserWould) {
   const std::string ext = extension_path().string();
   if (std::system("command -v sqlite3 > /dev/null 2>&1") != 0) {
