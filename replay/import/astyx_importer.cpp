@@ -62,14 +62,36 @@ std::string quoted_paths(const std::vector<fs::path>& paths) {
   return fmt::format("{}", fmt::join(names, " or "));
 }
 
-// A file a listing names: a path relative to the dataset directory that stays inside it.
-fs::path dataset_file(const JsonField& entry, std::string_view key, const fs::path& dir) {
+// A file a listing names: a path relative to the dataset directory that stays inside it, also
+// after symbolic links (issue 51: a link inside the dataset led to /etc/passwd, whose first line
+// the refusal of its header printed). `real_dir` is the dataset directory's canonical path.
+fs::path dataset_file(const JsonField& entry, std::string_view key, const fs::path& dir, const fs::path& real_dir) {
   const fs::path relative = entry.string(key);
   if (relative.is_absolute()) entry.fail(key, "must be a path relative to the dataset directory");
   for (const fs::path& part : relative) {
     if (part == "..") entry.fail(key, "must not leave the dataset directory ('..')");
   }
-  return dir / relative;
+  const fs::path path = dir / relative;
+  std::error_code error;
+  const fs::path real = fs::weakly_canonical(path, error);
+  if (!error && !real_dir.empty()) {
+    const auto [left, unused] = std::mismatch(real_dir.begin(), real_dir.end(), real.begin(), real.end());
+    if (left != real_dir.end()) {
+      entry.fail(key, fmt::format("leads out of the dataset directory through a symbolic link (to {}): a dataset's "
+                                  "files are inside it", real.string()));
+    }
+  }
+  return path;
+}
+
+// A file a frame needs, there and a regular file (issue 51: a FIFO was called "missing").
+void require_regular_file(const fs::path& file, const char* missing) {
+  std::error_code error;
+  const fs::file_status status = fs::status(file, error);
+  if (!fs::exists(status)) throw InputError(file.string(), "", fmt::format("missing: {}", missing));
+  if (!fs::is_regular_file(status)) {
+    throw InputError(file.string(), "", "not a regular file (a directory, FIFO, device or socket): a dataset's files are");
+  }
 }
 
 int frame_key(const JsonField& data, const std::string& key) {
@@ -130,7 +152,7 @@ struct Mount {
 
 Mount read_mount(const fs::path& file, const std::string& radar) {
   const std::string path = file.string();
-  if (!fs::is_regular_file(file)) throw InputError(path, "", "missing: every frame needs its calibration file");
+  require_regular_file(file, "every frame needs its calibration file");
   const nlohmann::json json = parse_json_file(path);
   const JsonField root(json, path, "");
   for (const JsonField& sensor : root.array("sensors")) {
@@ -190,7 +212,7 @@ struct EgoAtFrame {
 
 EgoAtFrame read_canbus(const fs::path& file) {
   const std::string path = file.string();
-  if (!fs::is_regular_file(file)) throw InputError(path, "", "missing: the dataset lists CAN data for this frame");
+  require_regular_file(file, "the dataset lists CAN data for this frame");
   const nlohmann::json json = parse_json_text(nan_as_null(read_text_file(file)), path);
   const JsonField root(json, path, "");
   // vehicle_speed in km/h; YAW_RATE in deg/s, taken as counter-clockwise positive (ISO 8855, as
@@ -233,7 +255,7 @@ struct Labels {
 
 Labels read_labels(const Frame& frame) {
   const std::string path = frame.groundtruth.string();
-  if (!fs::is_regular_file(frame.groundtruth)) throw InputError(path, "", "missing: every frame needs its labels");
+  require_regular_file(frame.groundtruth, "every frame needs its labels");
   const nlohmann::json json = parse_json_file(path);
   const JsonField root(json, path, "");
   Labels labels;
@@ -315,6 +337,8 @@ Dataset find_dataset(const fs::path& raw_dir) {
   const nlohmann::json json = parse_json_file(file);
   const JsonField root(json, file, "");
   const JsonField data = root.member("data");
+  std::error_code no_real_dir;
+  const fs::path real_dir = fs::canonical(raw_dir, no_real_dir);
   for (const auto& [key, unused] : data.json().items()) {
     const JsonField entry = data.member(key);
     Frame frame;
@@ -328,10 +352,10 @@ Dataset find_dataset(const fs::path& raw_dir) {
     if (radar != dataset.radar) {
       entry.fail(radar, fmt::format("frames of two radars ({} and {}): one dataset, one radar", dataset.radar, radar));
     }
-    frame.radar = dataset_file(entry, radar, raw_dir);
-    frame.groundtruth = dataset_file(entry, "groundtruth_obj3d", raw_dir);
-    frame.calibration = dataset_file(entry, "calibration", raw_dir);
-    if (entry.has("canbus")) frame.canbus = dataset_file(entry, "canbus", raw_dir);
+    frame.radar = dataset_file(entry, radar, raw_dir, real_dir);
+    frame.groundtruth = dataset_file(entry, "groundtruth_obj3d", raw_dir, real_dir);
+    frame.calibration = dataset_file(entry, "calibration", raw_dir, real_dir);
+    if (entry.has("canbus")) frame.canbus = dataset_file(entry, "canbus", raw_dir, real_dir);
     dataset.frames.push_back(std::move(frame));
   }
   if (dataset.frames.empty()) data.fail("lists no frames");
@@ -351,8 +375,20 @@ std::vector<Frame> choose_frames(const Dataset& dataset, const std::string& fram
                                      [](const Frame& f, long long n) { return f.number < n; });
     return it != dataset.frames.end() && it->number == number ? &*it : nullptr;
   };
+  // Ranges that overlap are refused before any is expanded (issue 51: '0-999,0-999,...' was
+  // copied 21,000 times, 6.8 GB, before the duplicates were found); then every number expanded
+  // is a distinct frame of the dataset or refused at once, so the list costs what it holds.
+  std::vector<FrameRange> ranges = parse_frame_list(frames);
+  std::sort(ranges.begin(), ranges.end(), [](const FrameRange& a, const FrameRange& b) { return a.first < b.first; });
+  for (std::size_t i = 1; i < ranges.size(); ++i) {
+    if (ranges[i].first <= ranges[i - 1].last) {
+      const auto text = [](const FrameRange& r) { return r.first == r.last ? fmt::format("{}", r.first) : fmt::format("{}-{}", r.first, r.last); };
+      throw InputError("--frames", "", fmt::format("frame {} is chosen twice ({} and {} overlap)", ranges[i].first,
+                                                   text(ranges[i - 1]), text(ranges[i])));
+    }
+  }
   std::vector<Frame> chosen;
-  for (const FrameRange& range : parse_frame_list(frames)) {
+  for (const FrameRange& range : ranges) {
     for (long long number = range.first; number <= range.last; ++number) {
       const Frame* frame = find(number);
       if (frame == nullptr) {
@@ -374,7 +410,7 @@ std::vector<Frame> choose_frames(const Dataset& dataset, const std::string& fram
 
 std::vector<RadarPoint> read_radar_file(const fs::path& path) {
   const std::string file = path.string();
-  if (!fs::is_regular_file(path)) throw InputError(file, "", "missing: every frame needs its radar file");
+  require_regular_file(path, "every frame needs its radar file");
   LineReader lines(path);
   std::string_view line;
   bool header = false;

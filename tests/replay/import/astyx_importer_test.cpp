@@ -16,10 +16,12 @@
 #include <map>
 #include <regex>
 #include <sstream>
+#include <sys/stat.h>
 
 #include "app/cli/run_rcsim.hpp"
 #include "common/input_error.hpp"
 #include "fuzz/astyx_targets.hpp"
+#include "peak_memory.hpp"
 #include "scratch_dir.hpp"
 #include "test_support.hpp"
 
@@ -517,6 +519,67 @@ TEST(AstyxFuzzBase, TheBaseAndTheSeedsImportAndReadBack) {
               std::string(seed) == "snapshots_without_canbus" ? 3 : 2)
         << seed;
   }
+}
+
+// ---- issue 51: hostile datasets and lists, on the made-up base (no real data needed) ----
+
+// A repeated range was expanded whole before its duplicates were found (21,000 copies of the
+// dataset's frames, 6.8 GB): overlapping ranges are refused before any is expanded.
+TEST(AstyxHostile, ARepeatedRangeIsRefusedBeforeItIsExpanded) {
+  replay::DatasetImportOptions options;
+  const fs::path dir = fuzz::write_astyx_dataset({}, options);
+  std::string list = "0-2";
+  for (int i = 0; i < 200000; ++i) list += ",0-2";
+  options.frames = list;
+  std::string message;
+  const auto added = rcsim::testing::peak_memory_added_by([&] {
+    try {
+      import_astyx(dir / "raw" / "dataset_astyx_fuzz", options);
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+  });
+  EXPECT_EQ(message.rfind("--frames: frame 0 is chosen twice (0-2 and 0-2 overlap)", 0), 0u) << message.substr(0, 200);
+  EXPECT_LT(message.size(), 200u);
+  if (added) {
+    EXPECT_LT(*added, 64 << 20) << "bytes added";
+  }
+}
+
+// A symbolic link inside the dataset led out of it, and the refusal of its header printed the
+// linked file's first line: it is refused as leading out, naming the listing's field; nothing of
+// the file is read. A radar file that is a FIFO is "not a regular file", not "missing".
+TEST(AstyxHostile, ALinkLeadingOutOfTheDatasetAndAFifoAreRefusedForWhatTheyAre) {
+  replay::DatasetImportOptions options;
+  const fs::path dir = fuzz::write_astyx_dataset({}, options);
+  const fs::path dataset = dir / "raw" / "dataset_astyx_fuzz";
+  const fs::path secret = dir / "secret.txt";
+  std::ofstream(secret) << "root:$6$hash:19000:0:99999:7:::\n";
+  fs::remove(dataset / "radar_6455" / "000001.txt");
+  fs::create_symlink(secret, dataset / "radar_6455" / "000001.txt");
+  std::string message;
+  try {
+    import_astyx(dataset, options);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("dataset.json"), std::string::npos) << message;
+  EXPECT_NE(message.find("leads out of the dataset directory through a symbolic link"), std::string::npos) << message;
+  EXPECT_EQ(message.find("root:"), std::string::npos) << message;
+  // A link that stays inside is followed as before.
+  fs::remove(dataset / "radar_6455" / "000001.txt");
+  fs::copy_file(dataset / "radar_6455" / "000000.txt", dataset / "radar_6455" / "copy.txt");
+  fs::create_symlink("copy.txt", dataset / "radar_6455" / "000001.txt");
+  EXPECT_NO_THROW(import_astyx(dataset, options));
+  fs::remove(dataset / "radar_6455" / "000001.txt");
+  ASSERT_EQ(::mkfifo((dataset / "radar_6455" / "000001.txt").c_str(), 0600), 0);
+  message.clear();
+  try {
+    import_astyx(dataset, options);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("000001.txt: not a regular file"), std::string::npos) << message;
 }
 
 #undef ASTYX_SKIP_WITHOUT_DATA
