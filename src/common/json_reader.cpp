@@ -25,6 +25,36 @@ std::string line_and_column(std::string_view text, std::size_t offset) {
   return fmt::format("line {}, column {}", line, column);
 }
 
+// The most values (numbers, strings, literals, arrays, objects) one document may hold. Parsed,
+// a value costs 16 bytes in its array and an object's member some 100 (a map node and its key):
+// bounded by bytes alone, 231 MB of `{"a0":0,"a1":0,...}` took more than 6 GB (issue 51). No
+// rcsim format comes near: a scene's hour-long trajectory at 10 Hz holds 180,000
+// (schemas/limits.md).
+constexpr std::size_t kMaxJsonValues = std::size_t{1} << 22;
+
+// The byte offset where a document's values first exceed kMaxJsonValues; nullopt if they never
+// do. Counts an upper bound in one pass: every value but the first of an array or object follows
+// a comma, and the first its bracket. Linear, allocates nothing.
+std::optional<std::size_t> json_too_wide_at(std::string_view text) {
+  std::size_t values = 1;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == ',' || c == '[' || c == '{') {
+      if (++values > kMaxJsonValues) return i;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::size_t> json_too_deep_at(std::string_view text, int max_depth) {
@@ -55,6 +85,12 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& file) {
                      fmt::format("arrays and objects nest deeper than {} levels; no rcsim format needs that many",
                                  kMaxJsonDepth));
   }
+  if (const auto at = json_too_wide_at(text)) {
+    throw InputError(file, line_and_column(text, *at),
+                     fmt::format("more than {} values (numbers, strings, arrays, objects) in one document; no rcsim "
+                                 "format needs that many (schemas/limits.md)",
+                                 kMaxJsonValues));
+  }
   try {
     return nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& error) {
@@ -72,7 +108,7 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& file) {
 nlohmann::json parse_json_file(const std::string& path) { return parse_json_text(read_text_file(path), path); }
 
 nlohmann::ordered_json parse_stored_json(std::string_view text) {
-  if (json_too_deep_at(text)) return nlohmann::ordered_json(nlohmann::ordered_json::value_t::discarded);
+  if (json_too_deep_at(text) || json_too_wide_at(text)) return nlohmann::ordered_json(nlohmann::ordered_json::value_t::discarded);
   return nlohmann::ordered_json::parse(text.begin(), text.end(), nullptr, false);
 }
 

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "common/input_error.hpp"
+#include "peak_memory.hpp"
 #include "refusal.hpp"
 
 namespace rcsim::json_reader_test {
@@ -51,6 +52,29 @@ TEST(JsonReader, JsonNestedBeyondTheLimitIsRefusedBeforeItIsParsed) {
   // Stored JSON (a report's manifest, parameters) nested too deep is not JSON to the reader.
   EXPECT_TRUE(parse_stored_json(nested(100'000)).is_discarded());
   EXPECT_FALSE(parse_stored_json(nested(10)).is_discarded());
+}
+
+// Issue 51: bounded by bytes alone, 231 MB of object members took more than 6 GB once parsed. A
+// document holds at most 2^22 values, counted in one pass before parsing; commas inside strings
+// do not count.
+TEST(JsonReader, JsonWiderThanTheLimitIsRefusedBeforeItIsParsed) {
+  const auto members = [](std::size_t n) {
+    std::string text = "{";
+    for (std::size_t i = 0; i < n; ++i) text.append(i ? ",\"" : "\"").append(std::to_string(i)).append("\":0");
+    return text + "}";
+  };
+  const std::string wide = members(std::size_t{1} << 22);  // 2^22 + 1 values: the object and its members
+  std::string message;
+  const auto added = rcsim::testing::peak_memory_added_by([&] { message = refusal_of([&] { parse_json_text(wide, "wide.json"); }); });
+  EXPECT_EQ(message.rfind("wide.json: line 1, column ", 0), 0u) << message;
+  EXPECT_NE(message.find("more than 4194304 values (numbers, strings, arrays, objects) in one document"), std::string::npos)
+      << message;
+  if (added) {
+    EXPECT_LT(*added, 16 << 20) << "bytes added";
+  }
+  EXPECT_TRUE(parse_stored_json(wide).is_discarded());
+  EXPECT_NO_THROW(parse_json_text(members(1000), "ok.json"));
+  EXPECT_NO_THROW(parse_json_text("[\"" + std::string(5'000'000, ',') + "\"]", "commas_in_a_string.json"));
 }
 
 TEST(JsonReader, FieldsAreReadByPathAndRefusedNamingIt) {
