@@ -449,6 +449,11 @@ void check_fittable(const Recording& recording, Fidelity fidelity) {
                                             tracks ? "its sensors report tracks" : "its sensors' profiles track"));
     }
   }
+  if (recording.targets.size() < kMinCalibrationTargets) {
+    throw InputError(dir, "targets.csv",
+                     fmt::format("{} recorded target{}: too few to fit the model to (a fit needs {} at least)",
+                                 recording.targets.size(), recording.targets.size() == 1 ? "" : "s", kMinCalibrationTargets));
+  }
   const RecordedTarget& first = recording.targets.front();
   const bool all_same = std::all_of(recording.targets.begin(), recording.targets.end(), [&](const RecordedTarget& t) {
     return t.range_m == first.range_m && t.azimuth_rad == first.azimuth_rad && t.range_rate_mps == first.range_rate_mps &&

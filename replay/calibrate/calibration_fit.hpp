@@ -92,11 +92,17 @@ struct CalibrationResult {
 // (single frames are first-class).
 inline constexpr int kMinCalibrationCycles = 4;
 
+// The fewest recorded targets a recording to fit on may hold (issue 51: one target gave a
+// "fitted" calibration): one per value the real-drive fit moves (a level offset, the diffuse
+// return, the occlusion loss, the range exponent). A single frame of 4 detections on a car is
+// still fitted (issue 48).
+inline constexpr std::size_t kMinCalibrationTargets = 4;
+
 // Whether some sensor of the recording reports tracks (then tracks are compared), not detections.
 bool compares_tracks(const Recording& recording);
 
-// Refuses, naming the recording (InputError), one that cannot inform a fit: no recorded target,
-// no annotated object, every recorded target the same point, or fewer than kMinCalibrationCycles
+// Refuses, naming the recording (InputError), one that cannot inform a fit: fewer than
+// kMinCalibrationTargets recorded targets, no annotated object, every recorded target the same point, or fewer than kMinCalibrationCycles
 // cycles where a track must confirm: some sensor reports tracks, or, at `fidelity` (not
 // no_tracking), some sensor's profile simulates a tracker.
 void check_fittable(const Recording& recording, Fidelity fidelity);

@@ -299,7 +299,16 @@ StationaryBackground fit_stationary_background(const std::vector<const Recording
   }
   StationaryBackground b;
   b.fitted_on = names;
-  if (sink.targets.empty() || sink.sensor_cycles == 0) return b;
+  // Nothing of the stationary world seen (issue 51: all-zero range rates while the ego moves gave
+  // an empty background, which then failed as "cannot create std::vector larger than max_size()").
+  const auto nothing_to_fit = [&](const std::string& why) {
+    throw InputError(recordings.front()->dir.string(), "",
+                     fmt::format("{}: the stationary background cannot be fitted (recorded range rates that no "
+                                 "stationary point gives at the ego's speed, all zero while it moves?)",
+                                 why));
+  };
+  if (sink.sensor_cycles == 0) nothing_to_fit("no sensor cycle was replayed");
+  if (sink.targets.empty()) nothing_to_fit("no recorded target is stationary background");
   for (double edge = 0.0; edge < config.fov.max_range_m; edge += kBackgroundRangeBinM) b.range_edges_m.push_back(edge);
   b.range_edges_m.push_back(config.fov.max_range_m);
   for (int k = 0; k <= kBackgroundAzimuthBins; ++k) {
@@ -321,7 +330,7 @@ StationaryBackground fit_stationary_background(const std::vector<const Recording
     all_amplitudes.push_back(t.amplitude_db);
     ++counted;
   }
-  if (counted == 0) return b;
+  if (counted == 0) nothing_to_fit(fmt::format("none of the {} stationary-background targets lies in the sensor's view field", sink.targets.size()));
   for (double& w : b.weights) w /= static_cast<double>(counted);
   b.targets_per_cycle = static_cast<double>(counted) / static_cast<double>(sink.sensor_cycles);
   // A range bin with few targets takes the deciles of all of them.

@@ -128,6 +128,11 @@ TEST_F(CalibrateCli, RecordingsThatCannotInformAFitAreRefusedBeforeAnythingIsWri
          return std::stod(f[0]) < 0.02;
        },
        "1 cycles; a fit needs 4 at least"},
+      {"one_target",  // issue 51: "fitted"
+       [](const std::string& file, std::vector<std::string>& f) {
+         return file != "targets.csv" || (f[1] == "3" && f[2] == "front_right" && f[3] == "1");
+       },
+       "targets.csv: 1 recorded target: too few to fit the model to (a fit needs 4 at least)"},
       {"one_point",
        [](const std::string& file, std::vector<std::string>& f) {
          if (file == "targets.csv") f[4] = "10.0", f[5] = "0.1", f[6] = "-1.0", f[7] = "12.0";
@@ -153,6 +158,24 @@ TEST_F(CalibrateCli, RecordingsThatCannotInformAFitAreRefusedBeforeAnythingIsWri
       EXPECT_FALSE(fs::exists(out)) << c.name << mode;
     }
   }
+}
+
+// Issue 51: range rates all zero while the ego moves left no recorded target as stationary
+// background, and the real-drive fit failed with "cannot create std::vector larger than
+// max_size()", exit 1. It is refused, naming the recording, before anything is written.
+TEST_F(CalibrateCli, NoStationaryBackgroundIsRefusedByTheRealDriveFit) {
+  const fs::path rec = edited_recording(dir_ / "still", "two_in_one_cell", [](const std::string& file, std::vector<std::string>& f) {
+    if (file == "targets.csv") f[6] = "0";
+    return true;
+  });
+  const fs::path out = dir_ / "fit";
+  const auto r = run_rcsim("calibrate " + rec.string() + " --real-drive --sensor aimotive_lrr -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(rec.string() + ": no recorded target is stationary background: the stationary background cannot be fitted"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("max_size"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // Three single frames of raw detections, each object boxed in its frame only (issue 48): the
