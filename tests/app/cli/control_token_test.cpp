@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -56,6 +57,25 @@ TEST_F(ControlToken, AMissingFileIsRefusedNamingIt) {
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
   }
+}
+
+// Issue 51: a world-readable token file was taken without a word. It is still taken (a choice),
+// with a warning naming the file, its mode and the chmod that keeps it private.
+TEST_F(ControlToken, ATokenFileOthersMayReadOrChangeIsTakenWithAWarning) {
+  namespace fs = std::filesystem;
+  const std::string path = file_with("0123456789abcdef\n");
+  fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write | fs::perms::others_read);
+  const auto warning = cli::control_token_file_warning(path);
+  ASSERT_TRUE(warning.has_value());
+  EXPECT_NE(warning->find(path + ": the control token file (mode 0604) can be read by other users"), std::string::npos) << *warning;
+  EXPECT_NE(warning->find("chmod 600 " + path), std::string::npos) << *warning;
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(cli::read_control_token(path), "0123456789abcdef");
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), *warning + "\n");
+  fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_write);
+  EXPECT_NE(cli::control_token_file_warning(path).value_or("").find("can be changed by other users"), std::string::npos);
+  fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_FALSE(cli::control_token_file_warning(path).has_value());
 }
 
 }  // namespace rcsim::control_token_test
