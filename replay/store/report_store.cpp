@@ -360,7 +360,7 @@ std::unique_ptr<ReportDatabase> open_report_database_for_reading(const std::stri
       db->setBusyTimeout(kBusyTimeout_ms);
       if (read_schema_state_once(*db, path) == SchemaState::current) return db;
     } catch (const SQLite::Exception& e) {
-      throw InputError(path, "", std::string("cannot read as a report database: ") + e.what());
+      throw InputError(path, "", std::string("cannot use as a report database: ") + e.what());
     }
     db.reset();
     return open_report_database(path, false);

@@ -87,7 +87,18 @@ int create_temp_file(const std::filesystem::path& target, std::filesystem::path&
     if (fd >= 0) return fd;
     if (errno != EEXIST) break;
   }
-  throw InputError(target.string(), "", std::string("cannot create output file: ") + std::strerror(errno));
+  // The error is the temporary file's, in the output's folder: said as such (issue 51: `-o
+  // /proc/self/status`, which exists, was "cannot create output file: No such file or directory").
+  const int error = errno;
+  const std::filesystem::path folder = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
+  std::error_code ignored;
+  if (!std::filesystem::is_directory(folder, ignored)) {
+    throw InputError(target.string(), "", std::string("cannot create output file: ") + std::strerror(error));
+  }
+  throw InputError(target.string(), "",
+                   fmt::format("cannot create output file: its folder {} takes no new file ({} for a temporary file there; "
+                               "rcsim writes an output beside it and renames it into place)",
+                               folder.string(), std::strerror(error)));
 }
 
 std::filesystem::path create_temp_directory(const std::filesystem::path& target, std::string_view tag) {

@@ -128,6 +128,13 @@ TEST_F(AtomicFile, LinksAndSpecialFilesAreRefusedAsOutputsAndNothingIsWritten) {
   // A directory that does not exist: the file cannot be created, said with the path.
   EXPECT_EQ(refusal_of([&] { AtomicFileWriter writer((dir_ / "missing" / "out.csv").string()); }),
             (dir_ / "missing" / "out.csv").string() + ": cannot create output file: No such file or directory");
+  // Issue 51: a folder that takes no new file (/proc/self) named the temporary file's error as if
+  // the output were missing: the output is named, and the error said to be its folder's.
+  if (fs::is_directory("/proc/self")) {
+    EXPECT_EQ(refusal_of([&] { AtomicFileWriter writer("/proc/self/status"); }).rfind(
+                  "/proc/self/status: cannot create output file: its folder /proc/self takes no new file (", 0),
+              0u);
+  }
 }
 
 TEST_F(AtomicFile, AnOutputDirectoryIsReplacedOnlyWhenNewEmptyOrMarked) {
