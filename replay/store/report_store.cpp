@@ -334,16 +334,10 @@ void discard_if_unused(std::unique_ptr<ReportDatabase>& db, const std::string& p
 std::unique_ptr<ReportDatabase> open_report_database_read_only(const std::string& path) {
   auto db = std::make_unique<ReportDatabase>(path, SQLite::OPEN_READONLY);
   db->setBusyTimeout(5000);
-  // Another application's database (or an empty or older one) is named as such, not met with an
-  // SQL error on a table it lacks (docs/sql.md; issue 51).
-  switch (read_schema_state_once(*db, path)) {
-    case SchemaState::empty:
-      throw InputError(path, "", "the database is empty: not an rcsim report database");
-    case SchemaState::older:
-      throw InputError(path, "", fmt::format("an older report schema: open it once with rcsim (rcsim report) to migrate "
-                                             "it to version {}", kReportSchemaVersion));
-    case SchemaState::current:
-      break;
+  // Another application's database (or an empty one) is named as such, not met with an SQL error
+  // on a table it lacks (docs/sql.md; issue 51). An older schema is read as it is.
+  if (read_schema_state_once(*db, path) == SchemaState::empty) {
+    throw InputError(path, "", "the database is empty: not an rcsim report database");
   }
   return db;
 }
