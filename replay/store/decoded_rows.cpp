@@ -195,6 +195,47 @@ void for_each_decoded_row(SQLite::Database& db, DecodedTable table, std::int64_t
   }
 }
 
+void DecodedChunk::read(SQLite::Database& db, DecodedTable table, std::int64_t run_id, CycleSpan span) {
+  table_ = table;
+  run_id_ = run_id;
+  cycles_.clear();
+  targets_.clear();
+  objects_.clear();
+  // Their capacity too: a chunk of many targets is not kept for one of few.
+  cycles_.shrink_to_fit();
+  targets_.shrink_to_fit();
+  objects_.shrink_to_fit();
+  switch (table) {
+    case DecodedTable::cycles:
+      for_each_cycle(db, run_id, span, [&](const StoredCycle& c) { cycles_.push_back(c); });
+      return;
+    case DecodedTable::targets:
+      for_each_target(db, run_id, span, [&](const StoredTarget& t) { targets_.push_back(t); });
+      return;
+    case DecodedTable::objects:
+      for_each_object_state(db, run_id, span, [&](const StoredObjectState& s) { objects_.push_back(s); });
+      return;
+  }
+}
+
+std::size_t DecodedChunk::size() const {
+  switch (table_) {
+    case DecodedTable::cycles: return cycles_.size();
+    case DecodedTable::targets: return targets_.size();
+    case DecodedTable::objects: return objects_.size();
+  }
+  return 0;
+}
+
+std::vector<DecodedValue> DecodedChunk::row(std::size_t i) const {
+  switch (table_) {
+    case DecodedTable::cycles: return cycle_row(run_id_, cycles_.at(i));
+    case DecodedTable::targets: return target_row(run_id_, targets_.at(i));
+    case DecodedTable::objects: return object_row(run_id_, objects_.at(i));
+  }
+  return {};
+}
+
 int last_stored_cycle(SQLite::Database& db, std::int64_t run_id) {
   // From the blocks' rows, never their decoded columns (issue 51: decoding every block at each
   // call made each xFilter of a join read the whole run, quadratic in its length): the last

@@ -44,6 +44,26 @@ const std::vector<DecodedColumn>& decoded_columns(DecodedTable table);
 void for_each_decoded_row(SQLite::Database& db, DecodedTable table, std::int64_t run_id, CycleSpan span,
                           const std::function<void(const std::vector<DecodedValue>&)>& visit);
 
+// The rows of `table` for `run_id` within `span`, held as the store's own records (some 130 bytes
+// a target, where its row of values takes some 850) and each made into values when asked for: what
+// the SQLite extension holds between its steps (issue 51: a decoded 256-cycle block of the Astyx
+// report's targets held as rows took 1 GB).
+class DecodedChunk {
+ public:
+  // Replaces what the chunk holds with the rows of `table` for `run_id` within `span`.
+  void read(SQLite::Database& db, DecodedTable table, std::int64_t run_id, CycleSpan span);
+  std::size_t size() const;
+  // Row `i` (< size()) as values in the order of decoded_columns(table).
+  std::vector<DecodedValue> row(std::size_t i) const;
+
+ private:
+  DecodedTable table_ = DecodedTable::cycles;
+  std::int64_t run_id_ = 0;
+  std::vector<StoredCycle> cycles_;
+  std::vector<StoredTarget> targets_;
+  std::vector<StoredObjectState> objects_;
+};
+
 // The last cycle index stored for `run_id`, or -1 if it has none; throws for a run not stored.
 int last_stored_cycle(SQLite::Database& db, std::int64_t run_id);
 

@@ -3,7 +3,8 @@
 // rows, stored as compact blocks, as the read-only tables `cycles`, `targets` and `objects`, with
 // the columns of `rcsim export` (replay/store/decoded_rows.hpp):
 //   SELECT cycle, gospa_m FROM cycles WHERE run_id = 1;
-// The rows are decoded a block of cycles at a time, so memory stays flat in a run's length; a
+// The rows are decoded a block of cycles at a time and held as the store's records (a row of values
+// is made only for the row SQLite reads), so memory stays flat in a run's length; a
 // constraint on run_id and on cycle (=, <, <=, >, >=) reads only the blocks it needs.
 #include <sqlite3ext.h>
 
@@ -51,8 +52,10 @@ struct Cursor {
   replay::CycleSpan wanted;  // from the cycle constraints
   int next_first_cycle = 0;  // of the current run's next chunk
   int last_cycle = -1;       // the current run's last stored cycle
-  std::vector<std::vector<DecodedValue>> rows;
+  replay::DecodedChunk rows;  // the store's records, a row of values made for the current one only
   std::size_t row = 0;
+  std::vector<DecodedValue> current;  // row `current_row` of `rows` as values, made when a column is asked for
+  std::size_t current_row = static_cast<std::size_t>(-1);
   sqlite3_int64 rowid = 0;
 };
 
@@ -142,15 +145,16 @@ int close_cursor(sqlite3_vtab_cursor* cursor) {
 // Decodes the next chunk of cycles holding rows, moving on to the next run where one ends;
 // leaves `rows` empty at the end.
 void load_next_chunk(Cursor& c, DecodedTable table) {
-  c.rows.clear();
+  c.rows = replay::DecodedChunk{};
   c.row = 0;
+  c.current_row = static_cast<std::size_t>(-1);
   const auto next_run = [&c] {
     if (++c.run_index < c.runs.size()) {
       c.last_cycle = replay::last_stored_cycle(*c.db, c.runs[c.run_index]);
       c.next_first_cycle = std::max(0, c.wanted.first);
     }
   };
-  while (c.rows.empty() && c.run_index < c.runs.size()) {
+  while (c.rows.size() == 0 && c.run_index < c.runs.size()) {
     const std::int64_t run = c.runs[c.run_index];
     const int last = std::min(c.last_cycle, c.wanted.last);
     // From the next cycle a stored block holds (the spans between are empty: never walked), in
@@ -161,7 +165,7 @@ void load_next_chunk(Cursor& c, DecodedTable table) {
       continue;
     }
     const replay::CycleSpan chunk{first, static_cast<int>(std::min<std::int64_t>(last, std::int64_t{first} + kChunkCycles - 1))};
-    replay::for_each_decoded_row(*c.db, table, run, chunk, [&](const std::vector<DecodedValue>& row) { c.rows.push_back(row); });
+    c.rows.read(*c.db, table, run, chunk);
     if (chunk.last >= last) {
       next_run();
     } else {
@@ -259,8 +263,17 @@ int eof(sqlite3_vtab_cursor* cursor) {
 }
 
 int column(sqlite3_vtab_cursor* cursor, sqlite3_context* context, int index) {
-  const Cursor& c = cursor_of(cursor);
-  const DecodedValue& value = c.rows[c.row][static_cast<std::size_t>(index)];
+  Cursor& c = cursor_of(cursor);
+  if (c.current_row != c.row) {
+    try {
+      c.current = c.rows.row(c.row);
+    } catch (const std::exception& e) {
+      sqlite3_result_error(context, e.what(), -1);
+      return SQLITE_ERROR;
+    }
+    c.current_row = c.row;
+  }
+  const DecodedValue& value = c.current[static_cast<std::size_t>(index)];
   if (const auto* number = std::get_if<std::int64_t>(&value)) {
     sqlite3_result_int64(context, *number);
   } else if (const auto* real = std::get_if<double>(&value)) {

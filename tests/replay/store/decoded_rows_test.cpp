@@ -46,6 +46,27 @@ class DecodedRowsStored : public rcsim::testing::ScratchDirTest {
   DecodedRowsStored() : ScratchDirTest("decoded_rows") {}
 };
 
+// Issue 51: the extension held a decoded 256-cycle block as rows of values (some 850 bytes a
+// target; 1 GB for the Astyx report's targets); it now holds the store's records and makes the row
+// asked for. The chunk's rows are those of for_each_decoded_row, value for value, every table.
+TEST_F(DecodedRowsStored, AChunkHoldsRecordsAndMakesTheSameRowsWhenAsked) {
+  const std::string db_path = (dir_ / "r.sqlite").string();
+  ASSERT_EQ(rcsim::testing::run_rcsim("replay " + std::string(RCSIM_SOURCE_DIR) + "/recordings_synthetic/two_in_one_cell --db " + db_path).exit_code, 0);
+  const auto db = replay::open_report_database_for_reading(db_path);
+  for (const DecodedTable table : {DecodedTable::cycles, DecodedTable::targets, DecodedTable::objects}) {
+    std::vector<std::vector<DecodedValue>> expected;
+    replay::for_each_decoded_row(*db, table, 1, {5, 40}, [&](const std::vector<DecodedValue>& row) { expected.push_back(row); });
+    replay::DecodedChunk chunk;
+    chunk.read(*db, table, 1, {5, 40});
+    ASSERT_EQ(chunk.size(), expected.size()) << replay::decoded_table_name(table);
+    EXPECT_GT(chunk.size(), 0u) << replay::decoded_table_name(table);
+    for (std::size_t i = 0; i < chunk.size(); ++i) EXPECT_TRUE(chunk.row(i) == expected[i]) << replay::decoded_table_name(table) << " row " << i;
+    chunk.read(*db, table, 1, {200, 300});  // replaced: nothing there
+    EXPECT_EQ(chunk.size(), 0u);
+  }
+  EXPECT_LT(sizeof(replay::StoredTarget), replay::decoded_columns(DecodedTable::targets).size() * sizeof(DecodedValue) / 4);
+}
+
 TEST_F(DecodedRowsStored, RowsComeInCycleOrderWithinTheSpanTypedAsTheirColumns) {
   const std::string db_path = (dir_ / "r.sqlite").string();
   ASSERT_EQ(rcsim::testing::run_rcsim("replay " + std::string(RCSIM_SOURCE_DIR) + "/recordings_synthetic/two_in_one_cell --db " + db_path).exit_code, 0);
