@@ -13,6 +13,7 @@
 #include "cli/replay_options.hpp"
 #include "cli/seed_option.hpp"
 #include "common/input_error.hpp"
+#include "common/safe_text.hpp"
 #include "replay/evaluate/bench.hpp"
 #include "replay/store/bench_store.hpp"
 #include "replay/import/calibration.hpp"
@@ -226,7 +227,7 @@ void run_bench(const BenchArgs& args) {
     // What the import noticed, as rcsim replay prints it (stderr, also with --json).
     const auto warn = [&](const std::string& warning) {
       progress.flush();
-      std::cerr << "rcsim: warning: " << warning << '\n';
+      std::cerr << "rcsim: warning: " << escape_control_characters(warning) << '\n';
     };
     for (auto& r : replay::bench_recording(recordings[i], static_cast<int>(i), options, done, warn)) rows.push_back(std::move(r));
   }

@@ -8,6 +8,7 @@
 #include "cli/replay_options.hpp"
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "common/safe_text.hpp"
 #include "io/recording.hpp"
 #include "replay/import/dataset_importer.hpp"
 #include "replay/import/importer.hpp"
@@ -41,13 +42,13 @@ void import_dataset(const std::string& dataset, const std::string& raw_dir, cons
   check_output_directory(std::filesystem::absolute(output).lexically_normal(), "recording.json");  // before the work
   if (importer.import_to != nullptr && sensor_clocks != "estimated") {  // streamed to disk
     const replay::ImportSummary s = importer.import_to(raw_dir, options, output);
-    for (const auto& warning : s.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
+    for (const auto& warning : s.warnings) std::cerr << "rcsim: warning: " << escape_control_characters(warning) << '\n';
     std::cout << fmt::format("{}: {} sensor cycles on their own clocks, {} sensor{}, {} objects, {} targets; written to {}\n", s.name,
                              s.cycles, s.sensors, s.sensors == 1 ? "" : "s", s.objects, s.targets, output);
     return;
   }
   replay::DatasetRecording imported = importer.import(raw_dir, options);
-  for (const auto& warning : imported.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
+  for (const auto& warning : imported.warnings) std::cerr << "rcsim: warning: " << escape_control_characters(warning) << '\n';
   if (sensor_clocks == "estimated") imported.recording = on_estimated_clocks(imported.recording, raw_dir);
   write_recording(output, imported.recording, imported.extra_files);
   const Recording& rec = imported.recording;
@@ -64,7 +65,7 @@ void write_scene_of(const std::string& recording_dir, const std::string& output,
                              "every {} s\n", recording_dir, recording.cycle_time_s);
   }
   const replay::ImportedScene scene = replay::import_recording(recording, ModelLibrary::builtin(), import_options(import));
-  for (const auto& warning : scene.warnings) std::cerr << "rcsim: warning: " << warning << '\n';
+  for (const auto& warning : scene.warnings) std::cerr << "rcsim: warning: " << escape_control_characters(warning) << '\n';
   replay::write_scene_file(output, scene);
 }
 

@@ -12,6 +12,7 @@
 #include "cli/replay_options.hpp"
 #include "cli/seed_option.hpp"
 #include "cli/verdict_options.hpp"
+#include "common/safe_text.hpp"
 #include "io/recording.hpp"
 #include "io/recording_stream.hpp"
 #include "model/model_library.hpp"
@@ -171,7 +172,7 @@ class PrintImportWarnings final : public replay::ReplaySink {
   static constexpr std::size_t kMaxPrinted = 20;
   void print_new() {
     for (; seen_ < imported_->warnings.size(); ++seen_) {
-      if (seen_ < kMaxPrinted) std::cerr << "rcsim: warning: " << imported_->warnings[seen_] << '\n';
+      if (seen_ < kMaxPrinted) std::cerr << "rcsim: warning: " << escape_control_characters(imported_->warnings[seen_]) << '\n';
     }
   }
   replay::ReplaySink& inner_;
