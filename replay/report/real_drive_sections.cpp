@@ -197,6 +197,9 @@ std::string object_frame_pictures(ReportDatabase& db, const RunData& run, int ma
     return a.second.first + a.second.second > b.second.first + b.second.second;
   });
   if (order.size() > static_cast<std::size_t>(std::max(0, max_pictures))) order.resize(static_cast<std::size_t>(std::max(0, max_pictures)));
+  std::vector<int> objects;
+  for (const auto& [object, counts] : order) objects.push_back(object);
+  auto targets = read_objects_frame_targets(db, run.info.run_id, objects, kPointsPerOrigin);
   std::string out = R"(<div class="figs">)";
   for (const auto& [object, counts] : order) {
     const ObjectInfo* info = object_info(run, object);
@@ -204,7 +207,7 @@ std::string object_frame_pictures(ReportDatabase& db, const RunData& run, int ma
     spec.title = svg::shorten(run.object_label(object), 28);
     spec.notes.push_back(fmt::format("{} recorded, {} simulated targets", counts.first, counts.second));
     if (info) spec.length_m = info->length_m, spec.width_m = info->width_m;
-    for (const ObjectFrameTarget& t : read_object_frame_targets(db, run.info.run_id, object, kPointsPerOrigin)) {
+    for (const ObjectFrameTarget& t : targets[object]) {
       spec.targets.push_back({t.p_OT_O, t.simulated});
     }
     if (counts.first > kPointsPerOrigin || counts.second > kPointsPerOrigin) {
@@ -287,12 +290,10 @@ std::string background_section(ReportDatabase& db, const RunData& run) {
   if (!run.info.has_targets()) return out + needs_full_store("The background's range and azimuth histograms");
   constexpr int kBins = 30;
   out += R"(<div class="figs">)";
-  out += background_plot(read_background_histogram(db, run.info.run_id, BackgroundQuantity::range, 0.0,
-                                                   max_range_m / kBins, kBins),
-                         "Background: range", "range / m", 1.0);
-  out += background_plot(read_background_histogram(db, run.info.run_id, BackgroundQuantity::azimuth, -half_rad,
-                                                   2.0 * half_rad / kBins, kBins),
-                         "Background: azimuth", "azimuth / deg", rad_to_deg(1.0));
+  const auto [range, azimuth] = read_background_histograms(db, run.info.run_id, {0.0, max_range_m / kBins, kBins},
+                                                           {-half_rad, 2.0 * half_rad / kBins, kBins});
+  out += background_plot(range, "Background: range", "range / m", 1.0);
+  out += background_plot(azimuth, "Background: azimuth", "azimuth / deg", rad_to_deg(1.0));
   return out + "</div>";
 }
 

@@ -190,38 +190,72 @@ std::int64_t for_each_residual(SQLite::Database& db, std::int64_t run_id, const 
   return n;
 }
 
-std::vector<ObjectFrameTarget> read_object_frame_targets(SQLite::Database& db, std::int64_t run_id, int object,
-                                                         int max_per_origin) {
-  // The object's targets of class object, by cycle, sensor and idx, per origin; then evenly
+std::map<int, std::vector<ObjectFrameTarget>> read_objects_frame_targets(SQLite::Database& db, std::int64_t run_id,
+                                                                         const std::vector<int>& objects, int max_per_origin) {
+  // Each object's targets of class object, by cycle, sensor and idx, per origin; then evenly
   // thinned by a stride.
-  std::array<std::vector<ObjectFrameTarget>, 2> all;
+  std::map<int, std::array<std::vector<ObjectFrameTarget>, 2>> all;
+  for (const int object : objects) all[object];
   for_each_target(db, run_id, {}, [&](const StoredTarget& t) {
-    if (t.object != object || t.target_class != metrics::TargetClass::object || !t.p_OT_O) return;
-    all[t.simulated ? 1 : 0].push_back({t.sensor, t.simulated, *t.p_OT_O});
+    if (t.target_class != metrics::TargetClass::object || !t.p_OT_O) return;
+    const auto it = all.find(t.object);
+    if (it == all.end()) return;
+    it->second[t.simulated ? 1 : 0].push_back({t.sensor, t.simulated, *t.p_OT_O});
   });
-  std::vector<ObjectFrameTarget> rows;
-  for (const auto& side : all) {
-    const auto count = static_cast<std::int64_t>(side.size());
-    const std::int64_t stride = std::max<std::int64_t>(1, (count + max_per_origin - 1) / std::max(1, max_per_origin));
-    for (std::int64_t k = 0; k < count; k += stride) rows.push_back(side[static_cast<std::size_t>(k)]);
+  std::map<int, std::vector<ObjectFrameTarget>> rows;
+  for (const auto& [object, sides] : all) {
+    std::vector<ObjectFrameTarget>& out = rows[object];
+    for (const auto& side : sides) {
+      const auto count = static_cast<std::int64_t>(side.size());
+      const std::int64_t stride = std::max<std::int64_t>(1, (count + max_per_origin - 1) / std::max(1, max_per_origin));
+      for (std::int64_t k = 0; k < count; k += stride) out.push_back(side[static_cast<std::size_t>(k)]);
+    }
   }
   return rows;
 }
 
-BackgroundHistogram read_background_histogram(SQLite::Database& db, std::int64_t run_id, BackgroundQuantity quantity,
-                                              double lo, double bin_width, int bins) {
+std::vector<ObjectFrameTarget> read_object_frame_targets(SQLite::Database& db, std::int64_t run_id, int object,
+                                                         int max_per_origin) {
+  return read_objects_frame_targets(db, run_id, {object}, max_per_origin)[object];
+}
+
+namespace {
+
+BackgroundHistogram empty_histogram(const BackgroundBins& b) {
   BackgroundHistogram h;
-  h.lo = lo;
-  h.bin_width = bin_width;
-  for (auto& counts : h.counts) counts.assign(static_cast<std::size_t>(std::max(0, bins)), 0);
-  if (bins <= 0) return h;
+  h.lo = b.lo;
+  h.bin_width = b.bin_width;
+  for (auto& counts : h.counts) counts.assign(static_cast<std::size_t>(std::max(0, b.bins)), 0);
+  return h;
+}
+
+void count_in(BackgroundHistogram& h, int bins, double value, bool simulated) {
+  if (bins <= 0) return;
+  const auto b = std::clamp<std::int64_t>(static_cast<std::int64_t>((value - h.lo) / h.bin_width), 0, bins - 1);
+  ++h.counts[simulated ? 1 : 0][static_cast<std::size_t>(b)];
+}
+
+}  // namespace
+
+std::pair<BackgroundHistogram, BackgroundHistogram> read_background_histograms(SQLite::Database& db, std::int64_t run_id,
+                                                                               const BackgroundBins& range_bins,
+                                                                               const BackgroundBins& azimuth_bins) {
+  std::pair<BackgroundHistogram, BackgroundHistogram> h{empty_histogram(range_bins), empty_histogram(azimuth_bins)};
+  if (range_bins.bins <= 0 && azimuth_bins.bins <= 0) return h;
   for_each_target(db, run_id, {}, [&](const StoredTarget& t) {
     if (t.target_class != metrics::TargetClass::stationary_background) return;
-    const double value = quantity == BackgroundQuantity::range ? t.range_m : t.azimuth_rad;
-    const auto b = std::clamp<std::int64_t>(static_cast<std::int64_t>((value - lo) / bin_width), 0, bins - 1);
-    ++h.counts[t.simulated ? 1 : 0][static_cast<std::size_t>(b)];
+    count_in(h.first, range_bins.bins, t.range_m, t.simulated);
+    count_in(h.second, azimuth_bins.bins, t.azimuth_rad, t.simulated);
   });
   return h;
+}
+
+BackgroundHistogram read_background_histogram(SQLite::Database& db, std::int64_t run_id, BackgroundQuantity quantity,
+                                              double lo, double bin_width, int bins) {
+  const BackgroundBins some{lo, bin_width, bins}, none{lo, bin_width, 0};
+  auto [range, azimuth] = read_background_histograms(db, run_id, quantity == BackgroundQuantity::range ? some : none,
+                                                     quantity == BackgroundQuantity::azimuth ? some : none);
+  return quantity == BackgroundQuantity::range ? range : azimuth;
 }
 
 }  // namespace rcsim::replay::report

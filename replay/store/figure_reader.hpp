@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -108,6 +109,10 @@ struct ObjectFrameTarget {
 };
 std::vector<ObjectFrameTarget> read_object_frame_targets(SQLite::Database& db, std::int64_t run_id, int object,
                                                          int max_per_origin);
+// The same for several objects in one pass over the run's targets (a report's pictures: one pass,
+// not one each), by object.
+std::map<int, std::vector<ObjectFrameTarget>> read_objects_frame_targets(SQLite::Database& db, std::int64_t run_id,
+                                                                         const std::vector<int>& objects, int max_per_origin);
 
 // Counts of the background targets in bins of range or azimuth, per origin, counted in SQL; the
 // end bins hold what lies beyond them.
@@ -118,5 +123,13 @@ struct BackgroundHistogram {
 };
 BackgroundHistogram read_background_histogram(SQLite::Database& db, std::int64_t run_id, BackgroundQuantity quantity,
                                               double lo, double bin_width, int bins);
+// Range's and azimuth's in one pass over the run's targets: {range, azimuth}.
+struct BackgroundBins {
+  double lo = 0.0, bin_width = 1.0;
+  int bins = 0;
+};
+std::pair<BackgroundHistogram, BackgroundHistogram> read_background_histograms(SQLite::Database& db, std::int64_t run_id,
+                                                                               const BackgroundBins& range_bins,
+                                                                               const BackgroundBins& azimuth_bins);
 
 }  // namespace rcsim::replay::report
