@@ -4,9 +4,12 @@
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 #include "replay/store/packed_columns.hpp"
 
@@ -185,69 +188,89 @@ std::vector<StoredCycle> decode_cycle_block(SQLite::Statement& q, int run_cycles
   return rows;
 }
 
-std::vector<StoredTargetList> decode_target_block(SQLite::Statement& q, int run_cycles) {
-  // SELECT first_cycle, sensor, cycles, <the columns>
-  const int first_cycle = q.getColumn(0).getInt(), sensor = q.getColumn(1).getInt(), n = q.getColumn(2).getInt();
-  check_block_span(first_cycle, n, run_cycles, "target_blocks");
-  const auto column = [&](int c) { return q.getColumn(3 + c); };
-  std::vector<ColumnReader> r;
-  r.reserve(kTargetColumns);
-  for (int c = 0; c < kTargetColumns; ++c) r.push_back(reader_of(column(c), kTargetColumnNames[static_cast<std::size_t>(c)]));
-  const bool optional[3] = {!column(kRcs).isNull(), !column(kSnr).isNull(), !column(kElevation).isNull()};
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> counts(static_cast<std::size_t>(n));
-  // Every target has its four float32 reals: counts that disagree are damage, not lists to
-  // allocate. Each count is checked against the bytes before it is added (a sum of counts near
-  // 2^64 wraps to a small total).
-  const auto damaged = [&] {
-    return std::runtime_error(fmt::format("report database: the target block of cycle {}, sensor {} is damaged", first_cycle, sensor));
-  };
-  const std::uint64_t targets_in_bytes = static_cast<std::uint64_t>(column(kRange).getBytes()) / 4;
-  std::uint64_t total = 0;
-  for (auto& [recorded, simulated] : counts) {
-    recorded = r[kListRecorded].get_unsigned();
-    simulated = r[kListSimulated].get_unsigned();
-    if (recorded > targets_in_bytes - total || simulated > targets_in_bytes - total - recorded) throw damaged();
-    total += recorded + simulated;
+// One target block, decoded a cycle at a time into a list whose capacity is reused: a block of 256
+// cycles of a point cloud's 4,000 targets a cycle was 120 MB decoded whole, allocated and faulted
+// in again on every pass (half a report's time). The block's bytes are copied out of the query.
+class TargetBlockCursor {
+ public:
+  TargetBlockCursor(SQLite::Statement& q, int run_cycles) {
+    // SELECT first_cycle, sensor, cycles, <the columns>
+    first_cycle_ = q.getColumn(0).getInt(), sensor_ = q.getColumn(1).getInt(), n_ = q.getColumn(2).getInt();
+    check_block_span(first_cycle_, n_, run_cycles, "target_blocks");
+    const auto column = [&](int c) { return q.getColumn(3 + c); };
+    bytes_.resize(static_cast<std::size_t>(kTargetColumns));
+    r_.reserve(kTargetColumns);
+    for (int c = 0; c < kTargetColumns; ++c) {
+      const SQLite::Column col = column(c);
+      auto& bytes = bytes_[static_cast<std::size_t>(c)];
+      const auto* data = static_cast<const std::uint8_t*>(col.getBlob());
+      bytes.assign(data, data + col.getBytes());
+      r_.emplace_back(bytes.data(), bytes.size(), kTargetColumnNames[static_cast<std::size_t>(c)]);
+    }
+    optional_[0] = !column(kRcs).isNull(), optional_[1] = !column(kSnr).isNull(), optional_[2] = !column(kElevation).isNull();
+    counts_.resize(static_cast<std::size_t>(n_));
+    // Every target has its four float32 reals: counts that disagree are damage, not lists to
+    // allocate. Each count is checked against the bytes before it is added (a sum of counts near
+    // 2^64 wraps to a small total).
+    const auto damaged = [&] {
+      return std::runtime_error(fmt::format("report database: the target block of cycle {}, sensor {} is damaged", first_cycle_, sensor_));
+    };
+    const std::uint64_t targets_in_bytes = static_cast<std::uint64_t>(column(kRange).getBytes()) / 4;
+    std::uint64_t total = 0;
+    for (auto& [recorded, simulated] : counts_) {
+      recorded = r_[kListRecorded].get_unsigned();
+      simulated = r_[kListSimulated].get_unsigned();
+      if (recorded > targets_in_bytes - total || simulated > targets_in_bytes - total - recorded) throw damaged();
+      total += recorded + simulated;
+    }
+    if (static_cast<std::uint64_t>(column(kRange).getBytes()) != 4 * total) throw damaged();
   }
-  if (static_cast<std::uint64_t>(column(kRange).getBytes()) != 4 * total) throw damaged();
-  std::vector<StoredTargetList> lists(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    StoredTargetList& list = lists[static_cast<std::size_t>(k)];
-    list.cycle = first_cycle + k;
-    list.sensor = sensor;
-    list.recorded.resize(counts[static_cast<std::size_t>(k)].first);
-    list.simulated.resize(counts[static_cast<std::size_t>(k)].second);
-  }
-  for (StoredTargetList& list : lists) {
+  bool done() const { return next_ == n_; }
+  int cycle() const { return first_cycle_ + next_; }  // of the next list
+  int sensor() const { return sensor_; }
+  // The next cycle's lists into `list` (its vectors' capacity kept).
+  void decode_next(StoredTargetList& list) {
+    list.cycle = cycle();
+    list.sensor = sensor_;
+    list.recorded.resize(counts_[static_cast<std::size_t>(next_)].first);
+    list.simulated.resize(counts_[static_cast<std::size_t>(next_)].second);
     for (auto* side : {&list.recorded, &list.simulated}) {
       for (std::size_t i = 0; i < side->size(); ++i) {
         StoredTarget& t = (*side)[i];
+        t = StoredTarget{};
         t.cycle = list.cycle;
-        t.sensor = sensor;
+        t.sensor = sensor_;
         t.simulated = side == &list.simulated;
         t.idx = static_cast<int>(i);
-        t.track_id = static_cast<int>(r[kTrack].get_signed());
-        t.range_m = r[kRange].get_float32();
-        t.azimuth_rad = r[kAzimuth].get_float32();
-        t.range_rate_mps = r[kRangeRate].get_float32();
-        t.amplitude_db = r[kAmplitude].get_float32();
-        t.object = static_cast<int>(r[kObject].get_signed());
-        t.match_idx = static_cast<int>(r[kMatch].get_signed());
-        const std::uint64_t flags = r[kFlags].get_unsigned();
+        t.track_id = static_cast<int>(r_[kTrack].get_signed());
+        t.range_m = r_[kRange].get_float32();
+        t.azimuth_rad = r_[kAzimuth].get_float32();
+        t.range_rate_mps = r_[kRangeRate].get_float32();
+        t.amplitude_db = r_[kAmplitude].get_float32();
+        t.object = static_cast<int>(r_[kObject].get_signed());
+        t.match_idx = static_cast<int>(r_[kMatch].get_signed());
+        const std::uint64_t flags = r_[kFlags].get_unsigned();
         t.target_class = class_of_code(flags & 3);
         t.merge_artefact = (flags & kMergeFlag) != 0;
         if (has_offset(t)) {
-          const double x_m = r[kXo].get_float32();
-          t.p_OT_O = Vec2{x_m, r[kYo].get_float32()};
+          const double x_m = r_[kXo].get_float32();
+          t.p_OT_O = Vec2{x_m, r_[kYo].get_float32()};
         }
-        if (optional[0]) t.rcs_dbsm = r[kRcs].get_float32();
-        if (optional[1]) t.snr_db = r[kSnr].get_float32();
-        if (optional[2]) t.elevation_rad = r[kElevation].get_float32();
+        if (optional_[0]) t.rcs_dbsm = r_[kRcs].get_float32();
+        if (optional_[1]) t.snr_db = r_[kSnr].get_float32();
+        if (optional_[2]) t.elevation_rad = r_[kElevation].get_float32();
       }
     }
+    ++next_;
   }
-  return lists;
-}
+
+ private:
+  int first_cycle_ = 0, sensor_ = 0, n_ = 0, next_ = 0;
+  std::vector<std::vector<std::uint8_t>> bytes_;
+  std::vector<ColumnReader> r_;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> counts_;
+  bool optional_[3] = {false, false, false};
+};
 
 std::vector<StoredObjectState> decode_object_block(SQLite::Statement& q, int run_cycles, int run_objects) {
   // SELECT first_cycle, cycles, <the columns>
@@ -388,9 +411,30 @@ void for_each_target_list(SQLite::Database& db, std::int64_t run_id, CycleSpan s
   const int run_cycles = stored_run_cycles(db, run_id);
   auto q = block_query(db, "first_cycle, sensor, cycles, " + column_list(kTargetColumnNames), "target_blocks", run_id,
                        span, true);
-  CycleOrder<StoredTargetList> order(span, visit);
-  while (q.executeStep()) order.add_block(q.getColumn(0).getInt(), decode_target_block(q, run_cycles));
-  order.finish();
+  // The blocks' cycles in the order of (cycle, sensor), as CycleOrder gives decoded rows: a cycle
+  // is visited once no block still to come can hold an earlier one (blocks come by first cycle).
+  std::vector<std::unique_ptr<TargetBlockCursor>> open;
+  StoredTargetList list;
+  const auto release_before = [&](int cycle) {
+    for (;;) {
+      TargetBlockCursor* next = nullptr;
+      for (const auto& c : open) {
+        if (!c->done() && c->cycle() <= span.last && c->cycle() < cycle &&
+            (next == nullptr || std::make_pair(c->cycle(), c->sensor()) < std::make_pair(next->cycle(), next->sensor()))) {
+          next = c.get();
+        }
+      }
+      if (next == nullptr) break;
+      next->decode_next(list);
+      if (span.contains(list.cycle)) visit(list);
+    }
+    std::erase_if(open, [&](const auto& c) { return c->done() || c->cycle() > span.last; });
+  };
+  while (q.executeStep()) {
+    release_before(q.getColumn(0).getInt());
+    open.push_back(std::make_unique<TargetBlockCursor>(q, run_cycles));
+  }
+  release_before(std::numeric_limits<int>::max());
 }
 
 void for_each_target(SQLite::Database& db, std::int64_t run_id, CycleSpan span,
