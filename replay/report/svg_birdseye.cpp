@@ -229,8 +229,8 @@ const char* target_colour(const BirdsEyeTarget& t) {
 
 // Marks that would land on one another are drawn once: per origin and class, one mark of the
 // pictured cycle per kCurrentCellPx square (under half its mark's size) and one trace mark (the
-// youngest) per trace square, from kTraceCellPx (about its mark's size) doubled until the traces
-// keep at most kMaxTraceMarks. A point cloud's 2,000 targets a cycle and their traces drew 15,000
+// youngest) per trace square of kTraceCellPx (about its mark's size); the background's and other
+// targets' trace squares doubled until the traces keep at most kMaxTraceMarks. A point cloud's 2,000 targets a cycle and their traces drew 15,000
 // marks a picture (3 MB of markup), most of them covered by a neighbour; merge artefacts are
 // always drawn. What the screen loses: a trace's accumulated opacity, and at point-cloud scale
 // the traces' finest detail.
@@ -254,15 +254,24 @@ std::vector<const BirdsEyeTarget*> one_per_cell(const std::vector<const BirdsEye
 }
 
 std::vector<const BirdsEyeTarget*> visible_targets(const BirdsEyeSpec& spec, const View& v) {
-  std::vector<const BirdsEyeTarget*> current, traces;
-  for (const auto& t : spec.targets) (t.age == 0 ? current : traces).push_back(&t);
+  std::vector<const BirdsEyeTarget*> current, object_traces, other_traces;
+  for (const auto& t : spec.targets) {
+    const bool of_object = t.target_class != "background" && t.target_class != "other";
+    (t.age == 0 ? current : of_object ? object_traces : other_traces).push_back(&t);
+  }
   // Youngest first: the trace mark kept in a square is the one drawn on top.
-  std::stable_sort(traces.begin(), traces.end(), [](const auto* a, const auto* b) { return a->age < b->age; });
+  for (auto* traces : {&object_traces, &other_traces}) {
+    std::stable_sort(traces->begin(), traces->end(), [](const auto* a, const auto* b) { return a->age < b->age; });
+  }
   std::vector<const BirdsEyeTarget*> kept = one_per_cell(current, v, kCurrentCellPx);
-  std::vector<const BirdsEyeTarget*> kept_traces;
+  // The objects' traces (their paths) at the mark's size; the background's and other targets'
+  // coarsened to what is left of the budget.
+  std::vector<const BirdsEyeTarget*> kept_traces = one_per_cell(object_traces, v, kTraceCellPx);
+  kept.insert(kept.end(), kept_traces.begin(), kept_traces.end());
+  const std::size_t left = kMaxTraceMarks > kept_traces.size() ? kMaxTraceMarks - kept_traces.size() : 0;
   for (double cell_px = kTraceCellPx;; cell_px *= 2.0) {
-    kept_traces = one_per_cell(traces, v, cell_px);
-    if (kept_traces.size() <= kMaxTraceMarks || cell_px > 1000.0) break;
+    kept_traces = one_per_cell(other_traces, v, cell_px);
+    if (kept_traces.size() <= left || cell_px > 1000.0) break;
   }
   kept.insert(kept.end(), kept_traces.begin(), kept_traces.end());
   return kept;
