@@ -227,7 +227,7 @@ void list_base_leaves(const Json& node, const std::string& prefix, std::vector<D
 }  // namespace
 
 ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings, const DeriveOptions& options) {
-  const DetectionPool pool = pool_detections(recordings);
+  DetectionPool pool = pool_detections(recordings);
   const Base base = load_base(options.base.empty() ? pool.sensor_type : options.base, *recordings.front());
 
   ProfileDerivation out;
@@ -282,6 +282,9 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
                                    from_base.empty() ? "none" : fmt::format("{}", fmt::join(from_base, ", ")),
                                    weak.empty() ? "none" : fmt::format("{}", fmt::join(weak, ", ")));
 
+  // The pool is read: its memory is the background replay's (derive in bounded memory).
+  const std::size_t sensor_cycles = pool.cycles.size();
+  pool = DetectionPool{};
   // The stationary background, with the derived profile in place of the recordings' type.
   SensorConfig config = parse_sensor_config(JsonField(doc, options.name, ""));
   std::vector<Recording> probes;
@@ -299,9 +302,9 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
   if (background.targets_per_cycle > 0.0) {
     doc["background"] = stationary_background_to_json(background);
     // Its interval: the count's Poisson spread, +-2 sqrt(N) over the cycles; weak in fewer than 10 cycles.
-    const double cycles = static_cast<double>(pool.cycles.size());
+    const double cycles = static_cast<double>(sensor_cycles);
     const double total = background.targets_per_cycle * cycles, half = 2.0 * std::sqrt(total) / cycles;
-    const bool few_cycles = pool.cycles.size() < 10;
+    const bool few_cycles = sensor_cycles < 10;
     out.values.push_back(with_interval({"background.targets_per_cycle", round_to(background.targets_per_cycle, 0.1), ValueSource::derived,
                                         fmt::format("the recorded targets replay classes as stationary background, over {} x {} bins of "
                                                     "range and azimuth{}",
