@@ -98,7 +98,18 @@ struct RunVerdicts {
   }
 };
 
-void write_run_section(std::ostream& out, ReportDatabase& db, const report::RunData& run,
+// Where the report shows a run's rows thinned or summarised, the command that gives them all.
+std::string every_row_line(const std::string& db_label, std::int64_t run_id) {
+  const bool plain = db_label.find_first_of(" '\"$`\\") == std::string::npos;
+  const std::string db = plain ? db_label : "'" + db_label + "'";
+  return fmt::format(R"(<p class="hint rows-query">The plots and pictures show what a screen can: series thinned, marks on one )"
+                     R"(another drawn once. Every row is a query away: each cycle's figures <code>rcsim export {0} --run {1} )"
+                     R"(--table cycles</code>, every target <code>rcsim export {0} --run {1} --table targets</code>, the boxes )"
+                     R"(<code>--table objects</code> (CSV; <code>--format jsonl</code>), or in SQL (docs/sql.md).</p>)",
+                     escape(db), run_id);
+}
+
+void write_run_section(std::ostream& out, ReportDatabase& db, const std::string& db_label, const report::RunData& run,
                        const HtmlReportOptions& options, int max_points, const RunVerdicts& judged) {
   const report::RunInfo& i = run.info;
   const verdict::RunVerdict* verdict = judged.of(i.run_id);
@@ -134,7 +145,7 @@ void write_run_section(std::ostream& out, ReportDatabase& db, const report::RunD
   for (const auto& plot : report::time_series(run, stride, nearest, report::read_cycle_buckets(db, i.run_id, stride))) {
     out << svg::plot_svg(plot);
   }
-  out << "</div>";
+  out << "</div>" << every_row_line(db_label, i.run_id);
 
   out << fmt::format(R"(<h3 id="run-{}-residuals">Residuals of assigned pairs</h3>)", i.run_id);
   if (!i.has_targets()) {
@@ -293,7 +304,7 @@ void write_page(ReportDatabase& db, const std::string& db_label, const HtmlRepor
   if (runs.size() > 1) {
     out << "<h2>Runs side by side</h2>" << report::comparison_table(runs, judged.labels) << "\n";
   }
-  for (const auto& run : runs) write_run_section(out, db, run, options, max_points, judged);
+  for (const auto& run : runs) write_run_section(out, db, db_label, run, options, max_points, judged);
   // The bench measures rcsim, not the model against a recording: after the runs.
   if (bench) out << report::bench_section(*bench);
   out << "</body></html>\n";

@@ -122,6 +122,9 @@ TEST_F(HtmlReport, HasPicturesPerRunAndTheSideBySideOfSeveralRuns) {
   EXPECT_GE(testing::count_occurrences(html, "<polygon class=\"fov\""), 6u);
   EXPECT_GE(testing::count_occurrences(html, "<polygon class=\"box\""), 6u);
   EXPECT_GE(testing::count_occurrences(html, "<circle class=\"merge\""), 1u);
+  // Each run says how to get every row the page thins (issue 52).
+  EXPECT_EQ(testing::count_occurrences(html, "<p class=\"hint rows-query\">"), 2u);
+  EXPECT_NE(html.find("--run 1 --table targets</code>"), std::string::npos);
   EXPECT_NE(html.find("most merge artefacts"), std::string::npos);
   EXPECT_NE(html.find("largest GOSPA"), std::string::npos);
   EXPECT_NE(html.find("Generalized optimal sub-pattern assignment"), std::string::npos);  // cited source

@@ -188,5 +188,36 @@ TEST(SvgBirdseye, EveryTextFromDataIsEscaped) {
   EXPECT_EQ(testing::count_occurrences(out, "&lt;script&gt;&amp;&quot;"), 7u);
 }
 
+
+// A point cloud's marks that would land on one another are drawn once (issue 52): 10,000 targets
+// of the pictured cycle on one spot and 10,000 on another give one mark each (and a merge
+// artefact is always ringed); 50,000 background traces spread over the picture keep at most the
+// trace budget, the objects' traces their path.
+TEST(SvgBirdseye, MarksOnOnePixelAreDrawnOnceAndTracesKeepABudget) {
+  svg::BirdsEyeSpec spec;
+  spec.trace_cycles = 5;
+  spec.sensors.push_back({"s", {0.0, 0.0, 0.0}, 1.0, 60.0});
+  for (int i = 0; i < 10000; ++i) {
+    spec.targets.push_back({{20.0, 1.0}, false, 0, i == 0, ""});
+    spec.targets.push_back({{30.0, -1.0}, true, 0, false, ""});
+  }
+  for (int i = 0; i < 50000; ++i) {
+    const double x_m = 1.0 + 0.001 * i, y_m = -20.0 + 0.0008 * static_cast<double>((i * 7919) % 50000);
+    spec.targets.push_back({{x_m, y_m}, i % 2 == 0, 1 + i % 5, false, "background"});
+  }
+  for (int i = 0; i < 50; ++i) spec.targets.push_back({{5.0 + i, 0.0}, false, 1, false, ""});  // a path 50 m long
+  const std::string out = svg::birdseye_svg(spec);
+  EXPECT_EQ(testing::count_occurrences(out, "<circle class=\"t rec current\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<polygon class=\"t sim current\""), 1u);
+  EXPECT_EQ(testing::count_occurrences(out, "<circle class=\"merge\""), 1u);
+  const std::size_t traces = testing::count_occurrences(out, "<circle class=\"t rec trace\"") +
+                             testing::count_occurrences(out, "<polygon class=\"t sim trace\"");
+  EXPECT_LE(traces, 1500u);
+  EXPECT_GE(traces, 500u);  // the background still covers the picture
+  // The path's 50 targets at least a metre (several pixels) apart: each kept.
+  EXPECT_GE(testing::count_occurrences(out, "<circle class=\"t rec trace\" cx=\""), 50u);
+}
+
 }  // namespace
+
 }  // namespace rcsim::replay
