@@ -97,15 +97,27 @@ class OctaveHistogram {
 // second keeping it (up to 4 times an upper bound of the 5 % quantile's neighbours).
 template <class Key, class Other>
 Distances pair_gaps(const DetectionPool& pool, Key key, Other other, double key_window, double drop_at_most = -1.0) {
-  std::vector<const PooledDetection*> sorted;
-  const auto for_each_gap = [&](const auto& visit) {
+  // Each cycle's (key, other) by key, once for both passes, side by side in memory: the pairs'
+  // loop (10^8 pairs on 400 Astyx frames) reads two arrays instead of following pointers.
+  std::vector<std::size_t> starts{0};
+  std::vector<double> keys, others;
+  {
+    std::vector<std::pair<double, double>> cycle;
     for (const PooledCycle& c : pool.cycles) {
-      sorted.clear();
-      for (const PooledDetection& d : c.detections) sorted.push_back(&d);
-      std::sort(sorted.begin(), sorted.end(), [&](const auto* a, const auto* b) { return key(*a) < key(*b); });
-      for (std::size_t i = 0; i < sorted.size(); ++i) {
-        for (std::size_t j = i + 1; j < sorted.size() && key(*sorted[j]) - key(*sorted[i]) < key_window; ++j) {
-          const double gap = std::abs(other(*sorted[j]) - other(*sorted[i]));
+      cycle.clear();
+      for (const PooledDetection& d : c.detections) cycle.emplace_back(key(d), other(d));
+      std::sort(cycle.begin(), cycle.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (const auto& [k, o] : cycle) keys.push_back(k), others.push_back(o);
+      starts.push_back(keys.size());
+    }
+  }
+  const auto for_each_gap = [&](const auto& visit) {
+    for (std::size_t c = 0; c + 1 < starts.size(); ++c) {
+      const std::size_t end = starts[c + 1];
+      for (std::size_t i = starts[c]; i < end; ++i) {
+        const double key_i = keys[i], other_i = others[i];
+        for (std::size_t j = i + 1; j < end && keys[j] - key_i < key_window; ++j) {
+          const double gap = std::abs(others[j] - other_i);
           if (gap > drop_at_most) visit(gap);
         }
       }
