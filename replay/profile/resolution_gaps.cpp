@@ -7,10 +7,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "common/angles.hpp"
 #include "common/quantile.hpp"
@@ -45,6 +49,32 @@ struct Distances {
     return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
   }
 };
+
+// Sorts distances (non-negative, not NaN) as std::sort would, in linear time: a non-negative
+// double's bits, read as an unsigned integer, order as its value, so a least-significant-digit
+// radix sort of the bits (11 bits a pass, a pass skipped where every value shares its digit)
+// gives the same order. 400 Astyx frames keep 6.4 million pairs' distances a pass; std::sort was
+// a quarter of derive's time.
+void sort_distances(std::vector<double>& values) {
+  constexpr int kDigitBits = 11;
+  constexpr std::size_t kDigits = std::size_t{1} << kDigitBits;
+  if (values.size() < 4096) {
+    std::sort(values.begin(), values.end());
+    return;
+  }
+  std::vector<double> buffer(values.size());
+  std::vector<std::size_t> counts(kDigits);
+  for (int shift = 0; shift < 64; shift += kDigitBits) {
+    const auto digit = [shift](double v) { return (std::bit_cast<std::uint64_t>(v) >> shift) & (kDigits - 1); };
+    std::fill(counts.begin(), counts.end(), 0);
+    for (const double v : values) ++counts[digit(v)];
+    if (std::find(counts.begin(), counts.end(), values.size()) != counts.end()) continue;  // one digit: order kept
+    std::size_t at = 0;
+    for (std::size_t& c : counts) at += std::exchange(c, at);
+    for (const double v : values) buffer[counts[digit(v)]++] = v;
+    values.swap(buffer);
+  }
+}
 
 // The pairs' distances as a histogram of their logarithms (1/64 of an octave a bin): where the
 // low tail ends, to a bin. The bins a flat array over every finite double's (a map's node per
@@ -137,7 +167,7 @@ Distances pair_gaps(const DetectionPool& pool, Key key, Other other, double key_
   for_each_gap([&](double gap) {
     if (gap <= cut) gaps.sorted.push_back(gap);
   });
-  std::sort(gaps.sorted.begin(), gaps.sorted.end());
+  sort_distances(gaps.sorted);
   return gaps;
 }
 
@@ -247,7 +277,7 @@ SameCellPairs same_cell_pairs(const DetectionPool& pool, double range_cell_m) {
       }
     }
   }
-  std::sort(pairs.azimuth_gaps_rad.sorted.begin(), pairs.azimuth_gaps_rad.sorted.end());
+  sort_distances(pairs.azimuth_gaps_rad.sorted);
   pairs.azimuth_gaps_rad.total = pairs.azimuth_gaps_rad.sorted.size();
   return pairs;
 }
@@ -365,8 +395,14 @@ std::vector<DerivedValue> derive_resolution(const DetectionPool& pool, const nlo
     range_gap = this_range_gap, range_rate_gap = this_rate_gap, read = true;
     range_rate_gaps = std::move(rate_gaps);
     if (round == 0 && range_rate_gap.supported()) {
+      // The first round's distances let go first (not both held: 50 MB each on 400 Astyx
+      // frames), taken again in the rare case the second round has too few pairs.
+      range_gaps = Distances{};
       Distances again = pair_gaps(pool, range_rate_of, range_of, 0.25 * range_rate_gap.distance);
-      if (again.size() < kMinPairs) break;
+      if (again.size() < kMinPairs) {
+        range_gaps = pair_gaps(pool, range_rate_of, range_of, kSameRangeRateMps);
+        break;
+      }
       range_gaps = std::move(again);
     } else {
       break;
