@@ -6,6 +6,8 @@
 # frames, with their equality (bench/bench_pointcloud.cpp), and, where python3-scipy is
 # installed, scipy's linear_sum_assignment on the same frames: per component of the pairs closer
 # than c (as a careful user would write it) and on the whole frame's dense matrix (first frames).
+# Also the HTML report of the run (time, memory, size), `profile derive` and `calibrate
+# --real-drive` of the frames (time, memory).
 # What it writes (the recording, the frames' positions, the report) stays in WORK_DIR: derived
 # from the data, never to be committed.
 # Usage: scripts/bench-pointcloud.sh [WORK_DIR=/tmp/rcsim-bench-pointcloud] [FRAMES=0-399]
@@ -32,6 +34,23 @@ rm -f "$db"*
   { cat "$work/stderr.txt"; exit 1; }
 read -r wall_s peak_kib <"$work/time.txt"
 awk -v f="$frames" -v w="$wall_s" -v p="$peak_kib" 'BEGIN { printf "replay of Astyx frames %s: %.2f s, peak %.1f MB\n", f, w, p / 1024 }'
+
+# The report of that run, `profile derive` and `calibrate --real-drive` of the frames (issue 52,
+# items 2 and 3): wall time and peak memory, the report's size. SKIP_CALIBRATE=1 leaves out the
+# calibration (minutes on a loaded machine).
+timed() {  # LABEL COMMAND...: prints "LABEL: WALL s, peak MB"
+  local label=$1; shift
+  /usr/bin/time -o "$work/time.txt" -f "%e %M" "$@" >/dev/null 2>"$work/stderr.txt" || { cat "$work/stderr.txt"; exit 1; }
+  read -r wall_s peak_kib <"$work/time.txt"
+  awk -v l="$label" -v w="$wall_s" -v p="$peak_kib" 'BEGIN { printf "%s: %.2f s, peak %.1f MB\n", l, w, p / 1024 }'
+}
+timed "report (HTML) of the run" build/bin/rcsim report "$db" -o "$work/report.html"
+awk -v b="$(stat -c %s "$work/report.html")" 'BEGIN { printf "report size: %.2f MB\n", b / 1e6 }'
+timed "profile derive of the frames" build/bin/rcsim profile derive "$rec" -o "$work/derived.json"
+if [ "${SKIP_CALIBRATE:-0}" != 1 ]; then
+  rm -rf "$work/calibration"
+  timed "calibrate --real-drive of the frames" build/bin/rcsim calibrate --real-drive "$rec" -o "$work/calibration"
+fi
 
 build/bin/rcsim_bench_pointcloud "$rec" "$work/frames.txt" | tee "$work/assignment.txt"
 
