@@ -287,13 +287,22 @@ ProfileDerivation derive_profile(const std::vector<const Recording*>& recordings
   pool = DetectionPool{};
   // The stationary background, with the derived profile in place of the recordings' type.
   SensorConfig config = parse_sensor_config(JsonField(doc, options.name, ""));
+  // A recording whose sensors are of another type than the base is copied with the base's type
+  // (the replay takes the profile by type); one of the base's type is replayed as it is (a copy
+  // of 400 Astyx frames was 100 MB).
   std::vector<Recording> probes;
+  std::vector<const Recording*> probe_pointers;
   for (const Recording* r : recordings) {
+    const bool of_base_type = std::all_of(r->sensors.begin(), r->sensors.end(), [&](const RecordingSensor& s) { return s.type == base.type; });
+    if (of_base_type) continue;
     probes.push_back(*r);
     for (RecordingSensor& s : probes.back().sensors) s.type = base.type;
   }
-  std::vector<const Recording*> probe_pointers;
-  for (const Recording& r : probes) probe_pointers.push_back(&r);
+  for (std::size_t k = 0, copied = 0; k < recordings.size(); ++k) {
+    const Recording* r = recordings[k];
+    const bool of_base_type = std::all_of(r->sensors.begin(), r->sensors.end(), [&](const RecordingSensor& s) { return s.type == base.type; });
+    probe_pointers.push_back(of_base_type ? r : &probes[copied++]);
+  }
   config.name = base.document.value("name", "");
   ReplayOptions replay_options;
   replay_options.seed = options.seed;
