@@ -139,5 +139,55 @@ TEST_F(FigureReader, ResidualsOfAssignedPairsWithTheAzimuthWrapped) {
   EXPECT_NEAR(stats.mean_square[3], 4.0, 1e-6);
 }
 
+// The report's one-pass readers (issue 52) against the one-figure ones: several objects' targets
+// in their frames at once, the background's range and azimuth histograms at once; over 300
+// cycles (two target blocks, decoded a cycle at a time) with a hand-counted total.
+TEST_F(FigureReader, OnePassReadersEqualTheOneFigureOnes) {
+  db_->exec("INSERT INTO runs (run_id, recording_name, recording_dir, recording_checksum, recording_source, "
+            "cycle_time_s, cycles, seed, level, parameters, rcsim_version, created_utc) "
+            "VALUES (2, 'r', '/r', '0', '{}', 0.1, 300, 0, 'detections', '{}', 'v', 't')");
+  {
+    RunRowWriter rows(*db_, 2, StoreLevel::full, 2.0, 2.0);
+    for (int k = 0; k < 300; ++k) {
+      std::vector<StoredTarget> recorded, simulated;
+      for (int i = 0; i < 3; ++i) {
+        StoredTarget t = target(5.0 + i + 0.01 * k, 0.1 * i - 0.1, 0.0, 0.0, (k + i) % 2, -1, false);
+        t.target_class = metrics::TargetClass::object;
+        t.p_OT_O = Vec2{0.1 * i, 0.001 * k};
+        recorded.push_back(t);
+        StoredTarget b = target(20.0 + 0.1 * (k % 50), -0.3 + 0.002 * k, 0.0, 0.0, -1, -1, false);
+        b.target_class = metrics::TargetClass::stationary_background;
+        (i == 0 ? simulated : recorded).push_back(b);
+      }
+      rows.add_cycle(cycle_row(k, 0.1 * k, Pose2{0, 0, 0}, static_cast<int>(recorded.size()), static_cast<int>(simulated.size()), 0,
+                               0.0, 0, 0, 0),
+                     recorded, simulated);
+      rows.add_object_states(k, {});
+    }
+    rows.finish();
+  }
+  const auto both = read_objects_frame_targets(*db_, 2, {0, 1}, 100000);
+  ASSERT_EQ(both.size(), 2u);
+  for (const int object : {0, 1}) {
+    const auto one = read_object_frame_targets(*db_, 2, object, 100000);
+    ASSERT_EQ(both.at(object).size(), one.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      EXPECT_EQ(both.at(object)[i].p_OT_O, one[i].p_OT_O);
+      EXPECT_EQ(both.at(object)[i].simulated, one[i].simulated);
+    }
+  }
+  EXPECT_EQ(both.at(0).size() + both.at(1).size(), 900u);  // 3 object targets a cycle
+  const auto [range, azimuth] = read_background_histograms(*db_, 2, {15.0, 1.0, 12}, {-0.4, 0.05, 20});
+  const auto range_alone = read_background_histogram(*db_, 2, BackgroundQuantity::range, 15.0, 1.0, 12);
+  const auto azimuth_alone = read_background_histogram(*db_, 2, BackgroundQuantity::azimuth, -0.4, 0.05, 20);
+  EXPECT_EQ(range.counts, range_alone.counts);
+  EXPECT_EQ(azimuth.counts, azimuth_alone.counts);
+  std::int64_t recorded = 0, simulated = 0;
+  for (const std::int64_t c : range.counts[0]) recorded += c;
+  for (const std::int64_t c : range.counts[1]) simulated += c;
+  EXPECT_EQ(recorded, 600);  // 2 background targets a cycle recorded, 1 simulated
+  EXPECT_EQ(simulated, 300);
+}
+
 }  // namespace
 }  // namespace rcsim::replay::report
