@@ -9,7 +9,6 @@ namespace rcsim::replay::packed {
 namespace {
 
 std::uint64_t zigzag(std::int64_t v) { return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63); }
-std::int64_t unzigzag(std::uint64_t u) { return static_cast<std::int64_t>(u >> 1) ^ -static_cast<std::int64_t>(u & 1); }
 
 }  // namespace
 
@@ -52,30 +51,6 @@ ColumnReader::ColumnReader(const void* data, std::size_t size, std::string colum
 
 void ColumnReader::damaged() const {
   throw std::runtime_error("report database: the column " + column_ + " of a block ends early (damaged)");
-}
-
-std::uint64_t ColumnReader::get_varint() {
-  if (all_zero_) return 0;
-  std::uint64_t value = 0;
-  for (int shift = 0; shift < 64; shift += 7) {
-    if (p_ == end_) damaged();
-    const std::uint8_t byte = *p_++;
-    value |= static_cast<std::uint64_t>(byte & 0x7f) << shift;
-    if ((byte & 0x80) == 0) return value;
-  }
-  damaged();
-}
-
-std::uint64_t ColumnReader::get_unsigned() { return get_varint(); }
-
-std::int64_t ColumnReader::get_signed() { return unzigzag(get_varint()); }
-
-double ColumnReader::get_float32() {
-  if (end_ - p_ < 4) damaged();
-  std::uint32_t bits = 0;
-  for (int i = 0; i < 4; ++i) bits |= static_cast<std::uint32_t>(p_[i]) << (8 * i);
-  p_ += 4;
-  return static_cast<double>(std::bit_cast<float>(bits));
 }
 
 double ColumnReader::get_exact(double prediction) {
