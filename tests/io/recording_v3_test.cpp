@@ -191,8 +191,8 @@ TEST_F(RecordingV3, Version3FieldsInVersion1Or2AreRefusedNamingTheField) {
   as_v1.replace(as_v1.find("\"version\": 3"), 12, "\"version\": 1");
   expect_refused(dir, as_v1, {"timeline", "version 3 field", "version 1"});
   std::string v5 = v3_text;
-  v5.replace(v5.find("\"version\": 3"), 12, "\"version\": 5");
-  expect_refused(dir, v5, {"version", "versions 1 to 4"});
+  v5.replace(v5.find("\"version\": 3"), 12, "\"version\": 6");
+  expect_refused(dir, v5, {"version", "versions 1 to 5"});
 }
 
 TEST_F(RecordingV3, BadVersion3ValuesAreRefusedNamingTheField) {

@@ -25,7 +25,7 @@ class RobotLog : public rcsim::testing::ScratchDirTest {
     std::ostringstream out;
     mcap::Writer writer(out, "ros2");
     const auto channel = writer.add_channel("/a", "cdr", writer.add_schema("std_msgs/msg/String", "ros2msg", ""));
-    for (int i = 0; i < n; ++i) writer.write_message(channel, static_cast<std::uint64_t>(100 + i), "m" + std::to_string(i));
+    for (int i = 0; i < n; ++i) writer.write_message(channel, static_cast<std::uint64_t>(100 + i), std::string("m").append(std::to_string(i)));
     writer.finish();
     return out.str();
   }

@@ -148,7 +148,7 @@ TEST(ObjectModelDocument, APolylineTemplateNeedsASpacingAndSomethingToReflect) {
 
 TEST(ModelLibraryLookup, BuiltinsModelFilesAndUnknownNames) {
   const ModelLibrary builtin = ModelLibrary::builtin();
-  EXPECT_EQ(builtin.models().size(), 5u);
+  EXPECT_EQ(builtin.models().size(), 9u);
   // guard_rail.json: posts every 4 m of ERCS 0.5 visible 60 deg either side, faces 0.05 per m.
   const ObjectModel& rail = builtin.at("guard_rail");
   ASSERT_TRUE(rail.polyline.has_value());
@@ -161,7 +161,8 @@ TEST(ModelLibraryLookup, BuiltinsModelFilesAndUnknownNames) {
     FAIL() << "an unknown model was found";
   } catch (const std::out_of_range& e) {
     EXPECT_STREQ(e.what(),
-                 "unknown object model \"hovercraft\" (known: guard_rail, guide_board, passenger_car, pole, truck_trailer)");
+                 "unknown object model \"hovercraft\" (known: bicycle, cyclist, guard_rail, guide_board, passenger_car, "
+                 "pedestrian, pole, sign_gantry, truck_trailer)");
   }
   // A model file; add() puts it beside the built-ins, and a model of the same name replaces one.
   const fs::path dir = testing::fresh_scratch_dir("model_library");
@@ -172,7 +173,7 @@ TEST(ModelLibraryLookup, BuiltinsModelFilesAndUnknownNames) {
   ObjectModel replacement = library.at("small");
   replacement.name = "pole";
   library.add(replacement);
-  EXPECT_EQ(library.models().size(), 6u);
+  EXPECT_EQ(library.models().size(), 10u);
   EXPECT_EQ(library.at("pole").planes.size(), 1u);  // the built-in pole has none
   // A file's refusal names the file.
   std::ofstream(dir / "bad.json") << R"({"format": "rcsim-object-model", "version": 1, "name": "bad", "length_m": 0,

@@ -154,11 +154,10 @@ TEST_F(AstyxImporter, CountsAndClassesAsThePlainReadingHasThem) {
   EXPECT_EQ(models["passenger_car"], classes["Car"]);
   EXPECT_EQ(models["truck_trailer"], classes["Truck"] + classes["Bus"] + classes["Trailer"] + classes["Towed Object"] +
                                           classes["Other Vehicle"]);
-  EXPECT_EQ(models.size(), 2u);
-  // People are left out, one warning line per class with its count.
-  ASSERT_EQ(hires_->warnings.size(), 1u);
-  EXPECT_EQ(hires_->warnings[0].rfind(fmt::format("{} boxes of class Person left out", classes["Person"]), 0), 0u)
-      << hires_->warnings[0];
+  // People are pedestrians (Person, Person with Object), riders of bicycles cyclists: nothing left out.
+  EXPECT_EQ(models["pedestrian"], classes["Person"] + classes["Person with Object"] + classes["Person_with_Object"]);
+  EXPECT_EQ(models["cyclist"], classes["Cyclist"]);
+  EXPECT_TRUE(hires_->warnings.empty()) << hires_->warnings.front();
   // Measured on these 400 frames.
   EXPECT_EQ(points, 894216u);
   EXPECT_EQ(models["passenger_car"], 2161);
@@ -285,7 +284,7 @@ TEST_F(AstyxImporter, TheDemoFramesCarryTheirCanEgoMotion) {
     EXPECT_NEAR(r.ego[static_cast<std::size_t>(k)].yaw_rate_radps, can.at("YAW_RATE").get<double>() * kPi / 180.0, 1e-12);
   }
   EXPECT_EQ(r.source.at("frame_index"), nlohmann::json({0, 1, 2, 3, 8}));
-  // Towed_Object (the demo's spelling) is a truck; Person and Person_with_Object are left out.
+  // Towed_Object (the demo's spelling) is a truck; Person and Person_with_Object are pedestrians.
   int towed = 0;
   for (const RecordingObject& o : r.objects) {
     if (o.attributes.at("dataset_class") != "Towed_Object") continue;
@@ -293,9 +292,10 @@ TEST_F(AstyxImporter, TheDemoFramesCarryTheirCanEgoMotion) {
     EXPECT_EQ(o.object_class, "truck_trailer");
   }
   EXPECT_EQ(towed, 1);
-  ASSERT_EQ(demo_->warnings.size(), 2u);
-  EXPECT_EQ(demo_->warnings[0].rfind("4 boxes of class Person left out", 0), 0u) << demo_->warnings[0];
-  EXPECT_EQ(demo_->warnings[1].rfind("2 boxes of class Person_with_Object left out", 0), 0u) << demo_->warnings[1];
+  EXPECT_TRUE(demo_->warnings.empty()) << demo_->warnings.front();
+  int pedestrians = 0;
+  for (const RecordingObject& o : r.objects) pedestrians += o.object_class == "pedestrian" ? 1 : 0;
+  EXPECT_EQ(pedestrians, 4 + 2);  // 4 Person and 2 Person_with_Object boxes
   // The Doppler sign: driving at 55 km/h (frame 3), the stationary world ahead (within 10 degrees)
   // reads v cos(angle) wrapped into the interval with range rate -V_r, not +V_r.
   const RangeRateInterval interval = *r.sensors[0].range_rate_interval_mps;
@@ -507,7 +507,7 @@ TEST(AstyxFuzzBase, TheBaseAndTheSeedsImportAndReadBack) {
   const fs::path dir = fuzz::write_astyx_dataset({}, options);
   const Recording recording = fuzz::import_astyx_and_read_back(dir, options);
   EXPECT_EQ(recording.cycle_count(), 3);
-  EXPECT_EQ(recording.objects.size(), 9u);  // car, truck and towed object of each frame; the person left out
+  EXPECT_EQ(recording.objects.size(), 12u);  // car, truck, towed object and person of each frame
   EXPECT_EQ(recording.targets.size(), 3u * 20u);
   EXPECT_TRUE(recording.ego_motion_known);
   for (const char* seed : {"frames_0_and_2", "snapshots_without_canbus", "demo_radar_hires1"}) {

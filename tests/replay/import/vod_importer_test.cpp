@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 
 #include "app/cli/run_rcsim.hpp"
@@ -133,6 +134,12 @@ class VodImporter : public testing::ScratchDirTest {
     put("lidar/training/label_2/" + name + ".txt",
         fmt::format("Car 0 1 0 100 200 300 400 1.5 1.8 4.0 {:.9f} {:.9f} {:.9f} {:.9f} 1\n"
                     "Pedestrian 0 0 0 10 20 30 40 1.7 0.6 0.5 1.0 1.5 8.0 0.0 1\n"
+                    // A cyclist boxed three times (VoD boxes its rider and its bicycle again, 0.1 m
+                    // from its centre), and a bicycle alone 7.2 m from it.
+                    "Cyclist 0 0 0 10 20 30 40 1.8 0.6 1.8 -2.0 1.5 12.0 0.0 1\n"
+                    "rider 0 0 0 10 20 30 40 1.7 0.6 0.6 -2.0 1.5 12.1 0.0 1\n"
+                    "bicycle 0 0 0 10 20 30 40 1.1 0.6 1.8 -2.0 1.5 11.9 0.0 1\n"
+                    "bicycle 0 0 0 10 20 30 40 1.1 0.6 1.8 4.0 1.5 6.0 0.0 1\n"
                     "DontCare -1 -1 -10 1 2 3 4 -1 -1 -1 -1000 -1000 -1000 -10 1\n",
                     car_C.x(), car_C.y(), car_C.z(), -kPi / 2));
   }
@@ -224,8 +231,15 @@ TEST_F(VodImporter, ImportsTheFramesAsSnapshots) {
   EXPECT_EQ(rec.source["ego_motion"]["frames_without_yaw_rate"], 1);
   EXPECT_NEAR(rec.source["ego_motion"]["lateral_speed_max_abs_mps"].get<double>(), 0.3, 1e-4);
 
-  // One car a frame, in the radar frame, with its speed from its points; the others left out, said why.
-  ASSERT_EQ(rec.objects.size(), 3u);
+  // A car, a pedestrian, a cyclist and a bicycle a frame, in the radar frame, the car with its speed
+  // from its points; the cyclist's rider and bicycle boxed again left out as its parts, the
+  // others left out, said why.
+  ASSERT_EQ(rec.objects.size(), 12u);
+  std::map<std::string, int> models;
+  for (const RecordingObject& o : rec.objects) ++models[o.object_class];
+  EXPECT_EQ(models, (std::map<std::string, int>{{"bicycle", 3}, {"cyclist", 3}, {"passenger_car", 3}, {"pedestrian", 3}}));
+  EXPECT_EQ(rec.objects[1].object_class, "pedestrian");
+  EXPECT_EQ(rec.objects[1].attributes["dataset_class"], "Pedestrian");
   EXPECT_EQ(rec.objects[0].id, "f00010_00");
   EXPECT_EQ(rec.objects[0].object_class, "passenger_car");
   EXPECT_EQ(rec.objects[0].length_m, 4.0);
@@ -238,7 +252,9 @@ TEST_F(VodImporter, ImportsTheFramesAsSnapshots) {
   EXPECT_NEAR(rec.objects[0].attributes["z_m"].get<double>(), 0.0, 1e-6);
   std::string warnings;
   for (const std::string& w : out.warnings) warnings += w + "\n";
-  EXPECT_NE(warnings.find("3 boxes of class Pedestrian left out: a person"), std::string::npos) << warnings;
+  EXPECT_EQ(warnings.find("class Pedestrian"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("3 boxes of class rider left out: parts of a Cyclist box"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("3 boxes of class bicycle left out: parts of a Cyclist box"), std::string::npos) << warnings;
   EXPECT_NE(warnings.find("3 boxes of class DontCare left out"), std::string::npos) << warnings;
   EXPECT_NE(warnings.find("3 points of earlier scans"), std::string::npos) << warnings;
   EXPECT_NE(warnings.find("placeholder"), std::string::npos) << warnings;
