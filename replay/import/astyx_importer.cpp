@@ -1,4 +1,5 @@
 #include "replay/import/astyx_importer.hpp"
+#include "replay/import/ground_plane.hpp"
 
 #include <Eigen/Dense>
 
@@ -681,6 +682,12 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
 
   rec.sensors.push_back({dataset.radar, astyx::kSensorProfile, mount->X_VS.x_m, mount->X_VS.y_m, mount->X_VS.yaw_rad,
                          ListLevel::detections, AmplitudeUnit::relative_db, astyx::kRangeRateInterval_mps});
+  // The calibration gives no height: the road under the boxes does (a radar that measures elevation reads it).
+  const std::optional<GroundPlaneFit> ground = fit_ground_plane(rec);
+  if (ground) {
+    rec.sensors.back().z_m = ground->z_m;
+    rec.sensors.back().pitch_rad = ground->pitch_rad;
+  }
   const bool demo = dataset.listing.filename() == "dataset_info.json";
   rec.description = fmt::format(
       "Astyx HiRes2019 {}: {} labelled frames ({}) of the imaging radar {}, one frame one cycle (snapshots); {} boxes "
@@ -688,6 +695,8 @@ DatasetRecording import_astyx(const fs::path& raw_dir, const DatasetImportOption
       demo ? "demo frames" : "dataset", frames.size(), astyx::as_ranges(numbers), dataset.radar, kept["passenger_car"],
       kept["truck_trailer"], kept["pedestrian"], kept["cyclist"], ego_known ? "ego motion from CAN" : "no ego motion (snapshots without CAN)");
   rec.source = astyx::astyx_source(dataset_name, numbers, frame_indices, ego_known, doppler);
+  rec.source["mounting"] = ground ? describe(*ground)
+                                  : std::string("height and pitch unknown: fewer than 10 boxes, or no plane through their bottoms");
   if (doppler.unfitted > 0) {
     out.warnings.push_back(fmt::format("{} of {} frames: too few stationary points agree on a speed; the ego is taken "
                                        "as standing there (source.ego_motion)",

@@ -1,4 +1,5 @@
 #include "replay/import/vod_importer.hpp"
+#include "replay/import/ground_plane.hpp"
 
 #include <Eigen/Dense>
 
@@ -617,6 +618,12 @@ DatasetRecording import_vod(const fs::path& raw_dir, const DatasetImportOptions&
   rec.ego_motion_known = tally.frames_without_velocity == 0;
 
   rec.sensors.push_back({"radar", vod::kSensorFile, 0.0, 0.0, 0.0, ListLevel::detections, AmplitudeUnit::relative_db, std::nullopt});
+  // The calibration gives the radar's pose to the camera, not to the road: the road under the boxes does.
+  const std::optional<GroundPlaneFit> ground = fit_ground_plane(rec);
+  if (ground) {
+    rec.sensors.back().z_m = ground->z_m;
+    rec.sensors.back().pitch_rad = ground->pitch_rad;
+  }
   out.extra_files[vod::kSensorFile] = vod::sensor_placeholder();
 
   std::vector<std::string> models;
@@ -680,7 +687,9 @@ DatasetRecording import_vod(const fs::path& raw_dir, const DatasetImportOptions&
                 "(VoD's devkit), length l and width w; speed_mps along the box's length axis from the "
                 "v_r_compensated of the points within 0.3 m of it (0 where none sees that axis); each object is one "
                 "box of one frame (id fNNNNN_KK: frame, line index)"},
-      {"ego_motion", vod::ego_motion_source(tally, frames.size())}};
+      {"ego_motion", vod::ego_motion_source(tally, frames.size())},
+      {"mounting", ground ? describe(*ground)
+                          : std::string("height and pitch unknown: fewer than 10 boxes, or no plane through their bottoms")}};
   return out;
 }
 
