@@ -162,6 +162,10 @@ TEST_F(AstyxImporter, CountsAndClassesAsThePlainReadingHasThem) {
   EXPECT_EQ(points, 894216u);
   EXPECT_EQ(models["passenger_car"], 2161);
   EXPECT_EQ(models["truck_trailer"], 127);
+  // The road under the boxes: 1.59 m below the radar, pitched 2.55 deg down (docs/importers.md).
+  ASSERT_EQ(hires().sensors.size(), 1u);
+  EXPECT_NEAR(hires().sensors[0].z_m, 1.59, 0.01);
+  EXPECT_NEAR(hires().sensors[0].pitch_rad * 180.0 / kPi, 2.55, 0.01);
 }
 
 // Three frames point by point and box by box against the plain reading.
