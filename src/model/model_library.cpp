@@ -122,7 +122,10 @@ ObjectModel parse_object_model(const JsonField& root) {
       point.p_OR_O = {offset_m(p, "x_m"), offset_m(p, "y_m")};
       point.z_m = height_of(p);
       if (version >= 2) {
-        if (const auto swing = p.optional_member("swing")) point.swing = parse_swing(*swing);
+        if (const auto swing = p.optional_member("swing")) {
+          point.swing = parse_swing(*swing);
+          model.has_swinging_points = true;
+        }
       }
       point.ercs_max = p.number_within("ercs", 0.0, limits::kMaxErcs, "");
       require_positive(p, "ercs", point.ercs_max);

@@ -163,6 +163,7 @@ struct ObjectModel {
   // box sides (extended_objects.diffuse_surface "box"), relative to a car's metal body (1): a
   // person or a bicycle far less; 0 for a thing whose box holds no body (a gantry's). 0 to 1.
   double diffuse_ercs_factor = 1.0;
+  bool has_swinging_points = false;  // some point reflector swings (set by parse_object_model; the sensor cycle skips the look-up where none does)
   std::vector<PointReflector> points;
   std::vector<PlaneReflector> planes;
   std::optional<PolylineTemplate> polyline;  // set: a template; a scene's polyline makes the model

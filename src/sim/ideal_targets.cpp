@@ -126,8 +126,9 @@ void add_visible_targets(const SensorFrame& frame, const ObjectModel& model, con
     return Vec2(p_WO_W.x() + c * p_OT_O.x() - s * p_OT_O.y(), p_WO_W.y() + s * p_OT_O.x() + c * p_OT_O.y());
   };
   // A limb's or a wheel's swing at this cycle (micro-Doppler): its speed along the heading.
-  const double speed_mps = body.heading_speed_mps();
-  const auto add = [&](const Vec2& p_WT_W, double z_WT_m, double ercs, std::size_t index, ReflectorKind kind) -> bool {
+  const double speed_mps = model.has_swinging_points ? body.heading_speed_mps() : 0.0;
+  const auto add = [&](const Vec2& p_WT_W, double z_WT_m, double ercs, std::size_t index,
+                       ReflectorKind kind) __attribute__((always_inline)) -> bool {
     if (!frame.in_view(p_WT_W, z_WT_m)) return false;
     IdealTarget& t = out.emplace_back();  // built in place, not copied from the stack
     t.p_WT_W = p_WT_W;
@@ -138,10 +139,12 @@ void add_visible_targets(const SensorFrame& frame, const ObjectModel& model, con
     t.kind = kind;
     return true;
   };
-  for_each_visible_reflector(model, p_OS_O, filter.planes, [&](const VisibleReflector& r) {
-    const double z_m = r.kind == ReflectorKind::Point ? r.point->z_m : model.planes[r.index].z_m;
+  // A planar radar reads no heights; a model without limbs or wheels has no swing to look up.
+  const bool three_d = frame.three_d, swings = model.has_swinging_points;
+  for_each_visible_reflector(model, p_OS_O, filter.planes, [&](const VisibleReflector& r) __attribute__((always_inline)) {
+    const double z_m = !three_d ? 0.0 : r.kind == ReflectorKind::Point ? r.point->z_m : model.planes[r.index].z_m;
     if (!add(to_world(r.p_OT_O), z_m, r.ercs, r.index, r.kind) || r.kind != ReflectorKind::Point) return;
-    if (r.point->swing.active()) out.back().swing_mps = r.point->swing.speed_offset_mps(speed_mps, frame.t_s);
+    if (swings && r.point->swing.active()) out.back().swing_mps = r.point->swing.speed_offset_mps(speed_mps, frame.t_s);
     if (r.zone.kind == VisibilityFunction::Zone::falloff) falloff.add(out.size() - 1, r.point, r.zone);
   });
   if (!filter.planes || !(filter.diffuse_relative_ercs_per_sqrt_m > 0.0)) return;
