@@ -10,6 +10,7 @@
 #include "model/model_library.hpp"
 #include "replay/import/streaming_import.hpp"
 #include "scene/scene.hpp"
+#include "sim/target_list_writer.hpp"
 
 namespace rcsim::stream {
 namespace {
@@ -39,16 +40,18 @@ void add_simulated(const Simulation& simulation, const Scene& scene, std::uint32
     message.sensor_index = static_cast<std::uint16_t>(s);
     message.level = level;
     message.sensor_id = scene.sensors[s].id;
+    message.elevation = rows_carry_elevation(scene);  // as `rcsim simulate` writes its rows
     const SensorCycleState& state = simulation.sensor_state(s);
     if (level == WireLevel::tracks) {
       for (const ReportedTarget& r : state.reported) {
-        message.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db});
+        message.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, r.elevation_rad});
       }
     } else {
       // The detections level numbers its rows 0, 1, 2, … (schemas/target-list.md).
       for (std::size_t i = 0; i < state.detections.size(); ++i) {
         const Detection& d = state.detections[i];
-        message.targets.push_back({static_cast<std::int32_t>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db});
+        message.targets.push_back(
+            {static_cast<std::int32_t>(i), d.range_m, d.azimuth_rad, d.range_rate_mps, d.amplitude_db, d.elevation_rad});
       }
     }
     frame.messages.push_back({MessageType::simulated_targets, message.sensor_index,
@@ -159,8 +162,13 @@ class RecordingSource final : public CycleSource {
       message.sensor_index = static_cast<std::uint16_t>(s);
       message.level = WireLevel::recorded;
       message.sensor_id = header.sensors[s].id;
+      // Recorded elevations go out where the scene's simulated lists carry them too; a target the
+      // recording has none for (no elevation_rad column) is sent with 0.
+      message.elevation = rows_carry_elevation(input_->scene());
       for (const RecordedTarget& r : recorded_) {
-        if (r.sensor == static_cast<int>(s)) message.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db});
+        if (r.sensor != static_cast<int>(s)) continue;
+        const double elevation_rad = message.elevation && std::isfinite(r.elevation_rad) ? r.elevation_rad : 0.0;
+        message.targets.push_back({r.id, r.range_m, r.azimuth_rad, r.range_rate_mps, r.amplitude_db, elevation_rad});
       }
       frame.messages.push_back({MessageType::recorded_targets, message.sensor_index,
                                 encode_target_list(message, options_.max_datagram_bytes)});

@@ -29,15 +29,23 @@ namespace rcsim::stream {
 namespace asio = boost::asio;
 using Clock = std::chrono::steady_clock;
 
-void append_target_rows(std::string& out, TargetListFormat format, std::int64_t timestamp_ns, const TargetListMessage& list) {
+std::string target_rows_csv_header(bool elevation_column) {
+  return elevation_column ? "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db,elevation_rad\n"
+                          : "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db\n";
+}
+
+void append_target_rows(std::string& out, TargetListFormat format, std::int64_t timestamp_ns, const TargetListMessage& list,
+                        bool elevation_column) {
   // The same text as TargetListWriter::write_row at the tracks/detections level: t_s is the
   // header's nanoseconds back in seconds (exact for times with up to 9 decimals).
   const double t_s = static_cast<double>(timestamp_ns) / 1e9;
   if (format == TargetListFormat::Csv) {
     const std::string sensor = csv_field(list.sensor_id);
     for (const WireTarget& t : list.targets) {
-      fmt::format_to(std::back_inserter(out), "{:.6f},{},{},{},{:.4f},{:.6f},{:.4f},{:.3f}\n", t_s, list.cycle, sensor,
+      fmt::format_to(std::back_inserter(out), "{:.6f},{},{},{},{:.4f},{:.6f},{:.4f},{:.3f}", t_s, list.cycle, sensor,
                      t.id, t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db);
+      if (elevation_column) fmt::format_to(std::back_inserter(out), ",{:.6f}", t.elevation_rad);
+      out += '\n';
     }
     return;
   }
@@ -45,8 +53,10 @@ void append_target_rows(std::string& out, TargetListFormat format, std::int64_t 
   for (const WireTarget& t : list.targets) {
     fmt::format_to(std::back_inserter(out),
                    "{{\"t_s\":{:.6f},\"cycle\":{},\"sensor\":{},\"id\":{},\"range_m\":{:.4f},\"azimuth_rad\":{:.6f},"
-                   "\"range_rate_mps\":{:.4f},\"amplitude_db\":{:.3f}}}\n",
+                   "\"range_rate_mps\":{:.4f},\"amplitude_db\":{:.3f}",
                    t_s, list.cycle, sensor, t.id, t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db);
+    if (elevation_column) fmt::format_to(std::back_inserter(out), ",\"elevation_rad\":{:.6f}", t.elevation_rad);
+    out += "}\n";
   }
 }
 
@@ -82,6 +92,9 @@ struct Listener::Impl {
   void idle_tick();
   void finish();
   void flush_output();
+  // The rows' columns, fixed by the first target list printed: with elevation_rad when it carries
+  // elevations. The CSV header goes out then (or at the end, without elevation, if none came).
+  void fix_columns(bool elevation);
 
   ListenOptions options;
   std::ostream& out;
@@ -97,6 +110,7 @@ struct Listener::Impl {
   SenderTable<udp::endpoint> senders;
   ListenSummary summary;
   std::string output, truth_output;  // rows not yet written
+  std::optional<bool> elevation_column;
   std::optional<std::ofstream> truth;
   std::optional<PcapWriter> pcap;
   std::unordered_map<std::uint32_t, std::uint32_t> last_cycle;  // (message type, sensor) -> the last list's cycle
@@ -139,7 +153,12 @@ Listener::Impl::Impl(const ListenOptions& options_in, std::ostream& out_in, std:
     *truth << "t_s,cycle,kind,object,x_m,y_m,yaw_rad,speed_mps,length_m,width_m\n";
   }
   if (!options.pcap_output.empty()) pcap.emplace(options.pcap_output);
-  if (options.format == TargetListFormat::Csv) output += "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db\n";
+}
+
+void Listener::Impl::fix_columns(bool elevation) {
+  if (elevation_column) return;
+  elevation_column = elevation;
+  if (options.format == TargetListFormat::Csv) output.insert(0, target_rows_csv_header(elevation));
 }
 
 void Listener::Impl::receive() {
@@ -250,7 +269,8 @@ void Listener::Impl::handle_message(const CompleteMessage& complete) {
     }
     if (complete.header.type != options.print) return;
     summary.rows += list->targets.size();
-    append_target_rows(output, options.format, complete.header.timestamp_ns, *list);
+    fix_columns(list->elevation);
+    append_target_rows(output, options.format, complete.header.timestamp_ns, *list, *elevation_column);
     return;
   }
   const auto& gt = std::get<GroundTruthMessage>(complete.message);
@@ -375,7 +395,6 @@ ListenSummary Listener::run() {
   Impl& s = *impl_;
   s.log << "rcsim listen: listening on " << to_string(s.local) << '\n';
   s.log.flush();
-  s.flush_output();  // the CSV header, also when nothing arrives
   s.receive();
   if (s.control) {
     s.subscribe_tick();
@@ -389,6 +408,7 @@ ListenSummary Listener::run() {
     });
   }
   const auto flush_all = [&s] {
+    s.fix_columns(false);  // the CSV header, also when nothing arrives
     s.flush_output();
     if (s.pcap) s.pcap->flush();
     if (s.truth) s.truth->flush();

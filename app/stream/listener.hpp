@@ -74,6 +74,11 @@ class Listener {
 };
 
 // Rows of one target list in the `rcsim simulate` format (schemas/target-list.md), appended.
-void append_target_rows(std::string& out, TargetListFormat format, std::int64_t timestamp_ns, const TargetListMessage& list);
+// `elevation_column`: the rows carry elevation_rad as `rcsim simulate` writes it for a scene with a
+// radar that measures elevation (0 for a list without elevations).
+void append_target_rows(std::string& out, TargetListFormat format, std::int64_t timestamp_ns, const TargetListMessage& list,
+                        bool elevation_column = false);
+// The CSV header line of those rows.
+std::string target_rows_csv_header(bool elevation_column);
 
 }  // namespace rcsim::stream

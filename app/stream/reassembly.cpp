@@ -133,7 +133,7 @@ Reassembler::Result Reassembler::assemble(const Partial& partial) {
       } else {
         const TargetListMessage& m = fragment.message;
         agrees = m.cycle == list.cycle && m.sensor_index == list.sensor_index && m.level == list.level &&
-                 m.sensor_id == list.sensor_id;
+                 m.sensor_id == list.sensor_id && m.elevation == list.elevation;
         list.targets.insert(list.targets.end(), m.targets.begin(), m.targets.end());
       }
     } else {

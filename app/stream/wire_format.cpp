@@ -71,6 +71,7 @@ class Reader {
 };
 
 constexpr std::size_t kTargetListFixedBytes = 20;
+constexpr double kMaxElevation_rad = 1.58;  // schemas/limits.md: a target's elevation, ±π/2
 constexpr std::size_t kTruthFixedBytes = 48;
 constexpr std::size_t kTruthObjectFixedBytes = 53;
 constexpr std::size_t kEndBytes = 24;
@@ -118,7 +119,8 @@ bool finite(std::initializer_list<double> values) {
 // Within schemas/limits.md, as the file readers check them: a range of 1e308 is no measurement.
 bool plausible(const WireTarget& t) {
   return std::abs(t.range_m) <= limits::kMaxRange_m && std::abs(t.azimuth_rad) <= limits::kMaxAzimuth_rad &&
-         std::abs(t.range_rate_mps) <= limits::kMaxSpeed_mps && std::abs(t.amplitude_db) <= limits::kMaxLevel_dB;
+         std::abs(t.range_rate_mps) <= limits::kMaxSpeed_mps && std::abs(t.amplitude_db) <= limits::kMaxLevel_dB &&
+         std::abs(t.elevation_rad) <= kMaxElevation_rad;
 }
 
 bool plausible(const WirePose& p) {
@@ -224,7 +226,8 @@ Bytes make_datagram(const Header& header, std::span<const std::uint8_t> payload)
 std::vector<Bytes> encode_target_list(const TargetListMessage& message, std::size_t max_datagram_bytes) {
   check_id(message.sensor_id, "a sensor id");
   const std::size_t capacity = payload_capacity(max_datagram_bytes);
-  const std::size_t per_fragment = (capacity - kTargetListFixedBytes - message.sensor_id.size()) / kTargetBytes;
+  const std::size_t target_bytes = message.elevation ? kElevationTargetBytes : kTargetBytes;
+  const std::size_t per_fragment = (capacity - kTargetListFixedBytes - message.sensor_id.size()) / target_bytes;
   const std::size_t total = message.targets.size();
   const std::size_t fragments = std::max<std::size_t>(1, (total + per_fragment - 1) / per_fragment);
   if (fragments > 0xFFFF) throw std::invalid_argument("target list too long for one message");
@@ -233,7 +236,7 @@ std::vector<Bytes> encode_target_list(const TargetListMessage& message, std::siz
     const std::size_t first = f * per_fragment;
     const std::size_t n = std::min(per_fragment, total - std::min(total, first));
     Bytes& payload = out[f];
-    payload.reserve(kTargetListFixedBytes + message.sensor_id.size() + n * kTargetBytes);
+    payload.reserve(kTargetListFixedBytes + message.sensor_id.size() + n * target_bytes);
     Writer w(payload);
     w.u32(message.cycle);
     w.u16(message.sensor_index);
@@ -242,7 +245,7 @@ std::vector<Bytes> encode_target_list(const TargetListMessage& message, std::siz
     w.u32(static_cast<std::uint32_t>(total));
     w.u32(static_cast<std::uint32_t>(first));
     w.u16(static_cast<std::uint16_t>(n));
-    w.u16(0);
+    w.u16(message.elevation ? kListFlagElevation : std::uint16_t{0});
     w.text(message.sensor_id);
     for (std::size_t i = first; i < first + n; ++i) {
       const WireTarget& t = message.targets[i];
@@ -251,6 +254,7 @@ std::vector<Bytes> encode_target_list(const TargetListMessage& message, std::siz
       w.f64(t.azimuth_rad);
       w.f64(t.range_rate_mps);
       w.f64(t.amplitude_db);
+      if (message.elevation) w.f64(t.elevation_rad);
     }
   }
   return out;
@@ -396,9 +400,11 @@ DecodeError decode_target_list(std::span<const std::uint8_t> payload, TargetList
   out.total_count = r.u32();
   out.first_index = r.u32();
   const std::size_t n = r.u16();
-  r.u16();
+  const std::uint16_t flags = r.u16();
   if (!r.ok()) return DecodeError::bad_length;
-  if (r.remaining() != id_length + n * kTargetBytes) return DecodeError::bad_length;
+  if ((flags & ~kListFlagElevation) != 0) return DecodeError::bad_value;
+  m.elevation = (flags & kListFlagElevation) != 0;
+  if (r.remaining() != id_length + n * (m.elevation ? kElevationTargetBytes : kTargetBytes)) return DecodeError::bad_length;
   if (level > static_cast<std::uint8_t>(WireLevel::recorded) || id_length == 0) return DecodeError::bad_value;
   if (static_cast<std::uint64_t>(out.first_index) + n > out.total_count) return DecodeError::bad_value;
   m.level = static_cast<WireLevel>(level);
@@ -411,7 +417,10 @@ DecodeError decode_target_list(std::span<const std::uint8_t> payload, TargetList
     t.azimuth_rad = r.f64();
     t.range_rate_mps = r.f64();
     t.amplitude_db = r.f64();
-    if (!finite({t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db}) || !plausible(t)) return DecodeError::bad_value;
+    t.elevation_rad = m.elevation ? r.f64() : 0.0;
+    if (!finite({t.range_m, t.azimuth_rad, t.range_rate_mps, t.amplitude_db, t.elevation_rad}) || !plausible(t)) {
+      return DecodeError::bad_value;
+    }
   }
   return DecodeError::none;
 }

@@ -22,6 +22,9 @@ inline constexpr std::uint8_t kWireVersion = 1;
 inline constexpr std::size_t kHeaderBytes = 32;
 inline constexpr std::size_t kMaxDatagramBytes = 1472;
 inline constexpr std::size_t kTargetBytes = 36;  // i32 id + 4 × f64
+// A target list whose flags have kListFlagElevation: each target carries elevation_rad as a fifth f64.
+inline constexpr std::size_t kElevationTargetBytes = 44;
+inline constexpr std::uint16_t kListFlagElevation = 1u << 0;
 
 enum class MessageType : std::uint8_t {
   simulated_targets = 0x01,
@@ -67,6 +70,7 @@ enum class WireLevel : std::uint8_t { ideal = 0, detections = 1, tracks = 2, rec
 struct WireTarget {
   std::int32_t id = 0;
   double range_m = 0.0, azimuth_rad = 0.0, range_rate_mps = 0.0, amplitude_db = 0.0;
+  double elevation_rad = 0.0;  // on the wire only in a list with `elevation`
 };
 
 // One sensor's target list in one cycle (one message, one or more fragments).
@@ -75,6 +79,9 @@ struct TargetListMessage {
   std::uint16_t sensor_index = 0;
   WireLevel level = WireLevel::tracks;
   std::string sensor_id;  // 1..255 bytes
+  // The sensor measures elevation: the list has the flag kListFlagElevation and 44-byte targets.
+  // Without it the list is byte for byte what it was before elevations (36-byte targets).
+  bool elevation = false;
   std::vector<WireTarget> targets;
 };
 
