@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <future>
 
@@ -13,6 +14,7 @@
 
 #include "stream/cycle_source.hpp"
 #include "stream/listener.hpp"
+#include "stream/pcap_writer.hpp"
 #include "stream/streamer.hpp"
 #include "app/stream/stream_test_support.hpp"
 #include "test_support.hpp"
@@ -190,6 +192,54 @@ TEST(StreamDissector, TsharkDecodesTheLoopbackStreamAsTheListenerDoes) {
   } else {
     std::cerr << "[ note ] no live capture on lo here (" << testing::read_file(dir / "capture.err")
               << "); checked the listener's pcap only\n";
+  }
+  fs::remove_all(dir);
+}
+
+// A list of a sensor that measures elevation (flag bit 0, 44-byte targets) beside a planar one:
+// tshark reads the elevation where there is one, and the planar list as before.
+TEST(StreamDissector, TsharkReadsTheElevationOfAListThatCarriesIt) {
+  if (const char* skip = std::getenv("RCSIM_NO_TSHARK"); skip && std::string(skip) == "1") GTEST_SKIP() << "RCSIM_NO_TSHARK=1";
+  ASSERT_EQ(std::system("command -v tshark > /dev/null 2>&1"), 0) << "tshark not found";
+  const fs::path dir = testing::temp_dir("dissector_elevation");
+  const fs::path capture = dir / "elevation.pcap";
+  {
+    PcapWriter pcap(capture.string());
+    const udp::endpoint from(boost::asio::ip::make_address("127.0.0.1"), 40000), to(from.address(), 5005);
+    TargetListMessage list;
+    list.sensor_id = "imaging";
+    list.elevation = true;
+    list.targets = {{1, 10.0, 0.25, -1.5, 30.0, std::asin(0.1)}, {2, 20.0, -0.1, 0.0, 20.0, -0.05}};
+    Header h;
+    pcap.write(0, from, to, make_datagram(h, encode_target_list(list).front()));
+    list.elevation = false;
+    h.sequence = 1;
+    h.message_number = 1;
+    pcap.write(1, from, to, make_datagram(h, encode_target_list(list).front()));
+  }
+  const fs::path out = dir / "tshark.out", err = dir / "tshark.err";
+  testing::Child tshark = testing::spawn({"tshark", "-r", capture.string(), "-X", "lua_script:" + kDissector, "-Y", "rcsim",
+                                          "-T", "fields", "-E", "separator=/t", "-E", "aggregator=;", "-e",
+                                          "rcsim.list_flags.elevation", "-e", "rcsim.target.range_m", "-e",
+                                          "rcsim.target.elevation_rad", "-e", "_ws.expert.message"},
+                                         out, err);
+  ASSERT_EQ(tshark.wait(30s), 0) << testing::read_file(err);
+  const auto lines = split(testing::read_file(out), '\n');
+  ASSERT_GE(lines.size(), 2u) << testing::read_file(out);
+  const auto elevated = split(lines[0], '\t'), planar = split(lines[1], '\t');
+  ASSERT_GE(elevated.size(), 3u) << lines[0];
+  ASSERT_GE(planar.size(), 3u) << lines[1];
+  EXPECT_TRUE(elevated[0] == "1" || elevated[0] == "True") << elevated[0];
+  EXPECT_EQ(elevated[1], "10;20");
+  const auto elevations = split(elevated[2], ';');
+  ASSERT_EQ(elevations.size(), 2u) << elevated[2];
+  EXPECT_NEAR(std::stod(elevations[0]), std::asin(0.1), 1e-12);
+  EXPECT_NEAR(std::stod(elevations[1]), -0.05, 1e-12);
+  EXPECT_TRUE(planar[0] == "0" || planar[0] == "False") << planar[0];
+  EXPECT_EQ(planar[1], "10;20");
+  EXPECT_EQ(planar[2], "");
+  if (elevated.size() > 3) {
+    EXPECT_EQ(elevated[3], "");  // no expert info: well-formed
   }
   fs::remove_all(dir);
 }

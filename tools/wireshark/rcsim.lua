@@ -1,5 +1,5 @@
 -- Wireshark / tshark dissector for the rcsim UDP stream, format rcsim-udp version 1
--- (schemas/udp-stream.md). Every datagram: a 32-byte little-endian header, then a payload by
+-- (schemas/udp-stream.md), with the target lists' elevation flag. Every datagram: a 32-byte little-endian header, then a payload by
 -- message type. Found by its magic "RCSM" on any UDP port (heuristic), and on the UDP port set
 -- in the preferences (Protocols > RCSIM > UDP port, default 0 = none).
 --
@@ -45,6 +45,9 @@ f.range_m = ProtoField.double("rcsim.target.range_m", "Range (m)")
 f.azimuth_rad = ProtoField.double("rcsim.target.azimuth_rad", "Azimuth (rad)")
 f.range_rate_mps = ProtoField.double("rcsim.target.range_rate_mps", "Range rate (m/s)")
 f.amplitude_db = ProtoField.double("rcsim.target.amplitude_db", "Amplitude (dB)")
+f.elevation_rad = ProtoField.double("rcsim.target.elevation_rad", "Elevation (rad)")
+f.list_flags = ProtoField.uint16("rcsim.list_flags", "List flags", base.HEX)
+f.list_flag_elevation = ProtoField.bool("rcsim.list_flags.elevation", "Targets carry elevation", 16, nil, 0x0001)
 
 f.ego = ProtoField.none("rcsim.ego", "Ego")
 f.object = ProtoField.none("rcsim.object", "Object")
@@ -93,7 +96,11 @@ local function target_list(buf, tree, pinfo)
   if buf:len() < 20 then return false end
   local id_length = buf(7, 1):uint()
   local n = buf(16, 2):le_uint()
-  if buf:len() ~= 20 + id_length + 36 * n then return false end
+  local list_flags = buf(18, 2):le_uint()
+  if list_flags > 1 then return false end
+  local elevation = list_flags == 1
+  local size = elevation and 44 or 36  -- 44: elevation_rad as a fifth f64 (issue 49)
+  if buf:len() ~= 20 + id_length + size * n then return false end
   tree:add_le(f.cycle, buf(0, 4))
   tree:add_le(f.sensor_index, buf(4, 2))
   tree:add_le(f.level, buf(6, 1))
@@ -101,19 +108,24 @@ local function target_list(buf, tree, pinfo)
   tree:add_le(f.total_count, buf(8, 4))
   tree:add_le(f.first_index, buf(12, 4))
   tree:add_le(f.count, buf(16, 2))
+  local flags = tree:add_le(f.list_flags, buf(18, 2))
+  flags:add_le(f.list_flag_elevation, buf(18, 2))
   tree:add(f.sensor_id, buf(20, id_length))
   local at = 20 + id_length
   for i = 0, n - 1 do
-    local t = tree:add(f.target, buf(at, 36))
-    t:set_text(string.format("Target %d: id %d, %.3f m, %.4f rad, %.3f m/s, %.2f dB",
+    local t = tree:add(f.target, buf(at, size))
+    local text = string.format("Target %d: id %d, %.3f m, %.4f rad, %.3f m/s, %.2f dB",
       buf(12, 4):le_uint() + i, buf(at, 4):le_int(), buf(at + 4, 8):le_float(), buf(at + 12, 8):le_float(),
-      buf(at + 20, 8):le_float(), buf(at + 28, 8):le_float()))
+      buf(at + 20, 8):le_float(), buf(at + 28, 8):le_float())
+    if elevation then text = text .. string.format(", elevation %.4f rad", buf(at + 36, 8):le_float()) end
+    t:set_text(text)
     t:add_le(f.target_id, buf(at, 4))
     t:add_le(f.range_m, buf(at + 4, 8))
     t:add_le(f.azimuth_rad, buf(at + 12, 8))
     t:add_le(f.range_rate_mps, buf(at + 20, 8))
     t:add_le(f.amplitude_db, buf(at + 28, 8))
-    at = at + 36
+    if elevation then t:add_le(f.elevation_rad, buf(at + 36, 8)) end
+    at = at + size
   end
   pinfo.cols.info:append(string.format(" cycle %d, %s, %d targets", buf(0, 4):le_uint(), buf(20, id_length):string(), n))
   return true

@@ -2,10 +2,14 @@
 // reason, and fuzzing with random, truncated, oversized and bit-flipped datagrams.
 #include "stream/wire_format.hpp"
 
+#include "stream/listener.hpp"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -104,6 +108,82 @@ TEST(WireFormat, LongListsSplitIntoFragmentsOfAtMost1472Bytes) {
   ASSERT_EQ(decode_target_list(payloads[0], first), DecodeError::none);
   EXPECT_EQ(first.message.targets.size(), 39u);
   EXPECT_EQ(kHeaderBytes + payloads[0].size(), 32 + 20 + 10 + 39 * 36u);  // 1466
+}
+
+// Issue 49: a list of a sensor that measures elevation has flag bit 0 and 44-byte targets; a
+// planar list keeps the 36-byte layout and a flags field of 0, byte for byte as before.
+TEST(WireFormat, AListWithElevationCarriesItAsAFifthNumberPerTarget) {
+  TargetListMessage m = make_list(2);
+  const Bytes planar = encode_target_list(m).front();
+  EXPECT_EQ(planar.size(), 20 + m.sensor_id.size() + 2 * 36);
+  EXPECT_EQ(planar[18], 0);
+  EXPECT_EQ(planar[19], 0);
+  m.elevation = true;
+  m.targets[0].elevation_rad = std::asin(0.1);
+  m.targets[1].elevation_rad = -0.05;
+  const Bytes elevated = encode_target_list(m).front();
+  ASSERT_EQ(elevated.size(), 20 + m.sensor_id.size() + 2 * 44);
+  EXPECT_EQ(elevated[18], 1);
+  EXPECT_EQ(elevated[19], 0);
+  // The first target's elevation: little-endian f64 at 20 + L + 36.
+  double first_elevation_rad = 0.0;
+  std::memcpy(&first_elevation_rad, elevated.data() + 20 + m.sensor_id.size() + 36, 8);
+  EXPECT_EQ(first_elevation_rad, std::asin(0.1));
+  // The rest of each target is where it was.
+  EXPECT_TRUE(std::equal(planar.begin() + 20 + 10, planar.begin() + 20 + 10 + 36, elevated.begin() + 20 + 10));
+  TargetListFragment f;
+  ASSERT_EQ(decode_target_list(elevated, f), DecodeError::none);
+  EXPECT_TRUE(f.message.elevation);
+  ASSERT_EQ(f.message.targets.size(), 2u);
+  EXPECT_EQ(f.message.targets[0].elevation_rad, std::asin(0.1));
+  EXPECT_EQ(f.message.targets[1].elevation_rad, -0.05);
+  EXPECT_EQ(f.message.targets[1].range_m, m.targets[1].range_m);
+  ASSERT_EQ(decode_target_list(planar, f), DecodeError::none);
+  EXPECT_FALSE(f.message.elevation);
+  EXPECT_EQ(f.message.targets[0].elevation_rad, 0.0);
+}
+
+TEST(WireFormat, ElevationListsFragmentBy44BytesAndRefuseBadFlagsAndElevations) {
+  // (1472 − 32 − 20 − 10) / 44 = 32 targets per fragment for a 10-byte sensor id.
+  TargetListMessage m = make_list(100);
+  m.elevation = true;
+  const auto payloads = encode_target_list(m);
+  ASSERT_EQ(payloads.size(), 4u);
+  TargetListFragment f;
+  ASSERT_EQ(decode_target_list(payloads[0], f), DecodeError::none);
+  EXPECT_EQ(f.message.targets.size(), 32u);
+  EXPECT_EQ(kHeaderBytes + payloads[0].size(), 32 + 20 + 10 + 32 * 44u);  // 1470
+  Bytes p = encode_target_list(make_list(2)).front();
+  p[18] = 2;  // an unknown flag
+  EXPECT_EQ(decode_target_list(p, f), DecodeError::bad_value);
+  p[18] = 1;  // the flag without the longer targets
+  EXPECT_EQ(decode_target_list(p, f), DecodeError::bad_length);
+  TargetListMessage steep = make_list(1);
+  steep.elevation = true;
+  steep.targets[0].elevation_rad = 1.58;
+  EXPECT_EQ(decode_target_list(encode_target_list(steep).front(), f), DecodeError::none);
+  steep.targets[0].elevation_rad = 1.6;
+  EXPECT_EQ(decode_target_list(encode_target_list(steep).front(), f), DecodeError::bad_value);
+  steep.targets[0].elevation_rad = std::nan("");
+  EXPECT_EQ(decode_target_list(encode_target_list(steep).front(), f), DecodeError::bad_value);
+}
+
+// `rcsim listen` prints the elevation_rad column as `rcsim simulate` does for a 3D scene.
+TEST(WireFormat, ListenRowsCarryTheElevationColumnWhenAsked) {
+  TargetListMessage m = make_list(1);
+  m.cycle = 2;
+  m.elevation = true;
+  m.targets[0] = {4, 10.0, 0.25, -1.5, 30.0, std::asin(0.1)};
+  std::string csv, jsonl, planar;
+  append_target_rows(csv, TargetListFormat::Csv, 80'000'000, m, true);
+  append_target_rows(jsonl, TargetListFormat::Jsonl, 80'000'000, m, true);
+  append_target_rows(planar, TargetListFormat::Csv, 80'000'000, m, false);
+  EXPECT_EQ(target_rows_csv_header(true), "t_s,cycle,sensor,id,range_m,azimuth_rad,range_rate_mps,amplitude_db,elevation_rad\n");
+  EXPECT_EQ(csv, "0.080000,2,front_left,4,10.0000,0.250000,-1.5000,30.000,0.100167\n");
+  EXPECT_EQ(jsonl,
+            "{\"t_s\":0.080000,\"cycle\":2,\"sensor\":\"front_left\",\"id\":4,\"range_m\":10.0000,\"azimuth_rad\":0.250000,"
+            "\"range_rate_mps\":-1.5000,\"amplitude_db\":30.000,\"elevation_rad\":0.100167}\n");
+  EXPECT_EQ(planar, "0.080000,2,front_left,4,10.0000,0.250000,-1.5000,30.000\n");
 }
 
 TEST(WireFormat, EmptyListIsOneFragmentWithNoTargets) {
