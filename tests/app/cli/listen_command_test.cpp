@@ -33,7 +33,8 @@ class ListenCli : public ::testing::Test {
 // Returns false when the listener itself reports a loss (UDP on a loaded loopback may drop a
 // datagram; a lost end-of-stream datagram ends the listener at its idle timeout): the caller
 // retries then. Every other failure is an assertion failure here.
-bool stream_and_listen(const fs::path& dir, const std::string& format, const std::string& scene) {
+bool stream_and_listen(const fs::path& dir, const std::string& format, const std::string& scene, int cycles = 101,
+                       int datagrams = 203) {
   const fs::path out = dir / ("listen." + format), log = dir / "listen.err";
   testing::Child listener = testing::spawn(
       {kBinary, "listen", "--port", "0", "--format", format, "--idle-timeout-s", "10", "-o", out.string()}, dir / "listen.out", log);
@@ -47,14 +48,16 @@ bool stream_and_listen(const fs::path& dir, const std::string& format, const std
   EXPECT_EQ(streamer.wait(), 0) << testing::read_file(dir / "stream.err");
   EXPECT_EQ(listener.wait(), 0) << testing::read_file(log);
   const std::string stream_log = testing::read_file(dir / "stream.err");
-  EXPECT_NE(stream_log.find("rcsim stream: 101 cycles, 203 datagrams"), std::string::npos) << stream_log;
+  EXPECT_NE(stream_log.find(fmt::format("rcsim stream: {} cycles, {} datagrams", cycles, datagrams)), std::string::npos)
+      << stream_log;
   const std::string listen_log = testing::read_file(log);
   if (listen_log.find(" 0 lost, ") == std::string::npos || listen_log.find("end of stream: ") == std::string::npos) {
     std::cerr << "the listener reports a loss on loopback; streaming again:\n" << listen_log;
     return false;
   }
   EXPECT_NE(listen_log.find(" 0 lost, 0 duplicates, 0 reordered, 0 incomplete, 0 malformed"), std::string::npos) << listen_log;
-  EXPECT_NE(listen_log.find("end of stream: the sender sent 203 datagrams"), std::string::npos) << listen_log;
+  EXPECT_NE(listen_log.find(fmt::format("end of stream: the sender sent {} datagrams", datagrams)), std::string::npos)
+      << listen_log;
   return true;
 }
 
@@ -68,6 +71,23 @@ TEST_F(ListenCli, PrintsExactlyWhatSimulateWritesCsvAndJsonl) {
     ASSERT_EQ(simulate.wait(), 0);
     const std::string expected = testing::read_file(simulated);
     EXPECT_GT(expected.size(), 5000u);
+    EXPECT_EQ(testing::read_file(dir_ / ("listen." + format)), expected) << format << " after " << attempts << " attempt(s)";
+  }
+}
+
+// Issue 49: a scene whose radar measures elevation streams its targets' elevations, and the
+// listener prints the elevation_rad column exactly as `rcsim simulate` writes it.
+TEST_F(ListenCli, PrintsTheElevationColumnOfA3dSceneAsSimulateDoes) {
+  const std::string scene = std::string(RCSIM_SOURCE_DIR) + "/docs/examples/road_users/pedestrian_crossing.json";
+  for (const std::string format : {"csv", "jsonl"}) {
+    int attempts = 1;
+    while (!stream_and_listen(dir_, format, scene, 31, 106) && attempts < 3) ++attempts;
+    const fs::path simulated = dir_ / ("simulate." + format);
+    testing::Child simulate = testing::spawn({kBinary, "simulate", scene, "--seed", "11", "--format", format, "-o", simulated.string()},
+                                             dir_ / "simulate.out", dir_ / "simulate.err");
+    ASSERT_EQ(simulate.wait(), 0);
+    const std::string expected = testing::read_file(simulated);
+    EXPECT_NE(expected.find("elevation_rad"), std::string::npos);
     EXPECT_EQ(testing::read_file(dir_ / ("listen." + format)), expected) << format << " after " << attempts << " attempt(s)";
   }
 }
