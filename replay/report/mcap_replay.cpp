@@ -252,8 +252,11 @@ class McapReplayWriter {
     if (targets != nullptr) {
       for (const StoredTarget& t : *targets) {
         if (t.sensor != sensor) continue;
-        const Vec2 p = t.p_ST_S();
-        const double z_m = std::isfinite(t.elevation_rad) ? t.range_m * std::sin(t.elevation_rad) : 0.0;
+        // A radar that measures elevation: range·cos(elevation) in the sensor's horizontal plane,
+        // range·sin(elevation) above it; a planar one (NaN) in the plane.
+        const bool elevated = std::isfinite(t.elevation_rad);
+        const Vec2 p = elevated ? Vec2(t.p_ST_S() * std::cos(t.elevation_rad)) : t.p_ST_S();
+        const double z_m = elevated ? t.range_m * std::sin(t.elevation_rad) : 0.0;
         const std::string& c = class_colour_json(t);
         if (t.simulated) {
           simulated.cube(p.x(), p.y(), z_m, 0.0, kTargetSizeM, kTargetSizeM, kTargetSizeM, c);

@@ -15,6 +15,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "app/cli/run_rcsim.hpp"
 #include "io/mcap_reader.hpp"
@@ -102,6 +103,70 @@ TEST_F(McapReplay, EveryCycleHasItsTargetsBoxesEgoAndFiguresPerSensor) {
   // Coloured by class: the recorded object targets blue (#1f5fbf: 31, 95, 191 / 255), others teal.
   EXPECT_GT(targets_by_colour[Json({{"r", 31 / 255.0}, {"g", 95 / 255.0}, {"b", 191 / 255.0}, {"a", 1.0}}).dump()], 0);
   EXPECT_GT(targets_by_colour[Json({{"r", 12 / 255.0}, {"g", 166 / 255.0}, {"b", 120 / 255.0}, {"a", 1.0}}).dump()], 0);
+}
+
+// Issue 49, by hand: a recorded target at range 10 m, azimuth 0, elevation asin(0.1) lies
+// 10 · 0.1 = 1 m above the sensor's plane and 10 · cos(asin 0.1) = √99 = 9.9499 m ahead in it.
+// The sensors measure elevation (imaging_3d.json), so the simulated targets are lifted too.
+TEST_F(McapReplay, TargetsWithAnElevationAreLiftedAndTheirHorizontalDistanceShortened) {
+  const fs::path rec = dir_ / "standstill_3d";
+  fs::copy(fs::path(RCSIM_SOURCE_DIR) / "recordings_synthetic/standstill_1m", rec, fs::copy_options::recursive);
+  fs::copy_file(fs::path(RCSIM_SOURCE_DIR) / "docs/examples/road_users/imaging_3d.json", rec / "imaging_3d.json");
+  Json recording = Json::parse(std::ifstream(rec / "recording.json"));
+  for (Json& sensor : recording["sensors"]) sensor["type"] = "imaging_3d.json";
+  std::ofstream(rec / "recording.json") << recording.dump(2);
+  std::stringstream targets_in;
+  targets_in << std::ifstream(rec / "targets.csv").rdbuf();
+  std::string line, targets_out;
+  for (int i = 0; std::getline(targets_in, line); ++i) {
+    if (i == 0) {
+      targets_out += line + ",elevation_rad\n";
+    } else if (i == 1) {  // 0.120000,3,front_right,0,1.2662,0.358640,...: range 10 m, azimuth 0
+      std::vector<std::string> f;
+      std::stringstream fields(line);
+      for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+      f[4] = "10.0000";
+      f[5] = "0.000000";
+      for (const auto& x : f) targets_out += x + ",";
+      targets_out += "0.1001674211615598\n";  // asin(0.1)
+    } else {
+      targets_out += line + ",0.0\n";
+    }
+  }
+  std::ofstream(rec / "targets.csv") << targets_out;
+  const std::string db_path = (dir_ / "r3d.sqlite").string();
+  const auto r = rcsim::testing::run_rcsim("replay " + rec.string() + " --db " + db_path);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto db = replay::open_report_database_for_reading(db_path);
+  const fs::path path = dir_ / "r3d.mcap";
+  {
+    std::ofstream out(path, std::ios::binary);
+    replay::write_run_mcap(*db, 1, out);
+  }
+  mcap::Reader reader(path);
+  int lifted_recorded = 0, lifted_simulated = 0, simulated = 0;
+  reader.for_each_message([&](const mcap::Message& m, const mcap::Channel& c, const mcap::Schema*) {
+    const bool is_recorded = c.topic.ends_with("/recorded"), is_simulated = c.topic.ends_with("/simulated");
+    if (!is_recorded && !is_simulated) return;
+    const Json body = Json::parse(m.data);
+    for (const auto& shape : body["entities"][0][is_recorded ? "spheres" : "cubes"]) {
+      const Json& p = shape["pose"]["position"];
+      const double x = p["x"], y = p["y"], z = p["z"];
+      if (is_simulated) {
+        ++simulated;
+        lifted_simulated += std::abs(z) > 1e-3;
+      } else if (std::abs(z) > 1e-9) {
+        ++lifted_recorded;
+        EXPECT_EQ(c.topic, "/rcsim/front_right/recorded");
+        EXPECT_NEAR(z, 1.0, 1e-6);  // elevations are stored as float32
+        EXPECT_NEAR(x, std::sqrt(99.0), 1e-6);
+        EXPECT_NEAR(y, 0.0, 1e-9);
+      }
+    }
+  });
+  EXPECT_EQ(lifted_recorded, 1);
+  EXPECT_GT(simulated, 0);
+  EXPECT_GT(lifted_simulated, 0);
 }
 
 TEST_F(McapReplay, ASummaryRunHasItsFiguresAndViewFieldsButNoTargets) {
