@@ -199,6 +199,32 @@ TEST(WireReassembly, ALostFragmentLeavesTheMessageIncompleteAndCounted) {
   EXPECT_EQ(reassembler.pending(), 0u);
 }
 
+// Issue 49: a list with elevations is split by 44-byte targets and put back with them; a
+// fragment of a planar list under its number makes it malformed.
+TEST(WireReassembly, AListWithElevationsReassemblesWithThem) {
+  TargetListMessage m = many_targets(60, 3);
+  m.elevation = true;
+  for (std::size_t i = 0; i < m.targets.size(); ++i) m.targets[i].elevation_rad = 0.01 * static_cast<double>(i);
+  const auto d = datagrams_of(m, 0, 1);
+  ASSERT_EQ(d.size(), 2u);  // 32 + 28 targets
+  Reassembler reassembler;
+  EXPECT_FALSE(reassembler.add(d[1].header, d[1].payload).message);
+  const auto result = reassembler.add(d[0].header, d[0].payload);
+  ASSERT_TRUE(result.message);
+  const auto& list = std::get<TargetListMessage>(result.message->message);
+  EXPECT_TRUE(list.elevation);
+  ASSERT_EQ(list.targets.size(), 60u);
+  for (std::size_t i = 0; i < 60; ++i) EXPECT_EQ(list.targets[i].elevation_rad, m.targets[i].elevation_rad) << i;
+
+  TargetListMessage planar = m;
+  planar.elevation = false;
+  const auto p = datagrams_of(planar, 2, 2);
+  const auto e = datagrams_of(m, 4, 2);
+  ASSERT_EQ(p.size(), 2u);
+  reassembler.add(e[0].header, e[0].payload);
+  EXPECT_EQ(reassembler.add(p[1].header, p[1].payload).status, Reassembler::Status::malformed);
+}
+
 TEST(WireReassembly, FragmentsThatDisagreeMakeTheMessageMalformed) {
   auto a = datagrams_of(many_targets(100, 1), 0, 5);
   auto b = datagrams_of(many_targets(100, 2), 0, 5);  // same message number, another cycle
