@@ -57,7 +57,7 @@ inline void check_round_trip(const stream::TargetListMessage& list) {
       check(stream::decode_target_list(payload, fragment) == stream::DecodeError::none, "a re-encoded target list does not decode");
       check(fragment.message.cycle == list.cycle && fragment.message.sensor_id == list.sensor_id &&
                 fragment.message.level == list.level && fragment.message.sensor_index == list.sensor_index &&
-                fragment.total_count == list.targets.size() && fragment.first_index == targets.size(),
+                fragment.message.elevation == list.elevation && fragment.total_count == list.targets.size() && fragment.first_index == targets.size(),
             "a re-encoded target list decodes to another list");
       targets.insert(targets.end(), fragment.message.targets.begin(), fragment.message.targets.end());
     }
@@ -66,7 +66,7 @@ inline void check_round_trip(const stream::TargetListMessage& list) {
       const auto& a = targets[i];
       const auto& b = list.targets[i];
       check(a.id == b.id && a.range_m == b.range_m && a.azimuth_rad == b.azimuth_rad && a.range_rate_mps == b.range_rate_mps &&
-                a.amplitude_db == b.amplitude_db,
+                a.amplitude_db == b.amplitude_db && a.elevation_rad == b.elevation_rad,
             "a re-encoded target differs");
     }
   }
@@ -201,6 +201,11 @@ inline std::vector<std::pair<std::string, stream::Bytes>> udp_datagram_seeds() {
   reply.cycle_count = 100;
   const std::vector<Bytes> replies = datagrams(MessageType::control_reply, {encode_control_reply(reply)});
   seeds.emplace_back("target_list", bundle(whole));
+  TargetListMessage elevated = list;  // a radar that measures elevation: 44-byte targets (issue 49)
+  elevated.elevation = true;
+  for (std::size_t i = 0; i < elevated.targets.size(); ++i) elevated.targets[i].elevation_rad = 0.002 * static_cast<double>(i) - 0.05;
+  seeds.emplace_back("target_list_elevation",
+                     bundle(datagrams(MessageType::simulated_targets, encode_target_list(elevated, udp::kSmallDatagramBytes))));
   seeds.emplace_back("target_list_fragments", bundle(fragments));
   seeds.emplace_back("ground_truth_fragments", bundle(gt));
   seeds.emplace_back("end_of_stream", bundle(end));
