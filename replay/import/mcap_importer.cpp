@@ -645,29 +645,36 @@ struct RowSink {
 
 // The ego log's rows: times increasing, no hole beyond kMaxEgoLogStep_s, the yaw unwrapped (so
 // that interpolation never turns the long way; ego.csv allows any yaw).
-// With skip_edges, a pose stamped as the one before is left out and counted; else refused.
+// A recording keeps its times to the microsecond (t_s with 6 decimals, schemas/recording.md): two
+// stamps of the ego, one sensor or one object within the same microsecond would read back as one
+// time twice.
+double written_us(double t_s) { return std::round(t_s * 1e6); }
+
+// With skip_edges, a pose stamped as the one before (to the microsecond) is left out and counted; else refused.
 std::size_t write_ego(std::vector<LoggedEgo>& ego, std::int64_t t0_ns, const fs::path& log, const std::string& topic, bool skip_edges,
                       RowSink& sink) {
   std::stable_sort(ego.begin(), ego.end(), [](const LoggedEgo& a, const LoggedEgo& b) { return a.t_ns < b.t_ns; });
   EgoSample previous;
+  bool written_any = false;
   std::size_t skipped = 0;
   for (std::size_t i = 0; i < ego.size(); ++i) {
     const LoggedEgo& e = ego[i];
-    if (i > 0 && e.t_ns == ego[i - 1].t_ns) {
+    EgoSample row{seconds_since(e.t_ns, t0_ns), e.x_m, e.y_m, e.yaw_rad, e.speed_mps, e.yaw_rate_radps};
+    if (written_any && written_us(row.t_s) <= written_us(previous.t_s)) {
       if (skip_edges) {
         ++skipped;
         continue;
       }
-      throw InputError(log.string(), topic, fmt::format("two ego poses stamped {} ns (--skip-edges leaves the second out)", e.t_ns));
+      throw InputError(log.string(), topic,
+                       fmt::format("two ego poses stamped {} ns, within one microsecond (--skip-edges leaves the second out)", e.t_ns));
     }
-    EgoSample row{seconds_since(e.t_ns, t0_ns), e.x_m, e.y_m, e.yaw_rad, e.speed_mps, e.yaw_rate_radps};
     if (!(std::abs(row.x_m) <= limits::kMaxCoordinate_m && std::abs(row.y_m) <= limits::kMaxCoordinate_m && std::isfinite(row.yaw_rad) &&
           std::abs(row.speed_mps) <= limits::kMaxSpeed_mps && std::abs(row.yaw_rate_radps) <= limits::kMaxYawRate_radps)) {
       throw InputError(log.string(), topic, fmt::format("the ego pose stamped {} ns lies beyond the limits of schemas/limits.md "
                                                         "(x {}, y {}, yaw {}, speed {}, yaw rate {})",
                                                         e.t_ns, row.x_m, row.y_m, row.yaw_rad, row.speed_mps, row.yaw_rate_radps));
     }
-    if (i > 0) {
+    if (written_any) {
       if (row.t_s - previous.t_s > kMaxEgoLogStep_s) {
         throw InputError(log.string(), topic, fmt::format("{:.3f} s without an ego pose after {:.6f} s (at most {} s are interpolated)",
                                                           row.t_s - previous.t_s, previous.t_s, kMaxEgoLogStep_s));
@@ -676,6 +683,7 @@ std::size_t write_ego(std::vector<LoggedEgo>& ego, std::int64_t t0_ns, const fs:
     }
     sink.ego(row);
     previous = row;
+    written_any = true;
   }
   return skipped;
 }
@@ -691,7 +699,7 @@ class CycleStream {
   CycleStream(const fs::path& log, const Mapping& mapping, std::int64_t t0_ns, double first_ego_s, double last_ego_s, bool skip_edges,
               RowSink& sink)
       : log_(log), mapping_(mapping), t0_ns_(t0_ns), first_ego_s_(first_ego_s), last_ego_s_(last_ego_s), skip_edges_(skip_edges), sink_(sink),
-        last_t_s_(mapping.sensors.size(), -std::numeric_limits<double>::infinity()) {}
+        last_t_us_(mapping.sensors.size(), -std::numeric_limits<double>::infinity()) {}
 
   void add(int sensor, ros2::RadarScan& scan) {
     const std::int64_t t_ns = scan.header.stamp.ns();
@@ -730,7 +738,16 @@ class CycleStream {
     const auto s = static_cast<std::size_t>(key.second);
     const std::string& topic = mapping_.sensors[s].topic;
     const double t_s = seconds_since(key.first, t0_ns_);
-    if (t_s <= last_t_s_[s]) throw InputError(log_.string(), topic, fmt::format("two scans stamped {:.9f} s after the log's start", t_s));
+    if (written_us(t_s) <= last_t_us_[s]) {
+      if (skip_edges_) {
+        ++skipped_duplicates_;
+        return;
+      }
+      throw InputError(log_.string(), topic,
+                       fmt::format("two scans stamped within one microsecond, the second {:.9f} s after the log's start (a "
+                                   "recording keeps times to the microsecond; --skip-edges leaves the second out)",
+                                   t_s));
+    }
     if (t_s < first_ego_s_ - kEgoExtrapolationMargin_s || t_s > last_ego_s_ + kEgoExtrapolationMargin_s) {
       if (skip_edges_) {
         ++skipped_outside_;
@@ -740,7 +757,7 @@ class CycleStream {
                        fmt::format("a scan at {:.6f} s lies beyond the ego log's {:.6f} to {:.6f} s by more than {} s (--skip-edges "
                                    "leaves such scans out)", t_s, first_ego_s_, last_ego_s_, kEgoExtrapolationMargin_s));
     }
-    last_t_s_[s] = t_s;
+    last_t_us_[s] = written_us(t_s);
     targets_buffer_.clear();
     for (const ros2::RadarReturn& r : returns) {
       RecordedTarget t;
@@ -775,7 +792,7 @@ class CycleStream {
   std::map<std::pair<std::int64_t, int>, std::vector<ros2::RadarReturn>> pending_;
   std::pair<std::int64_t, int> written_{std::numeric_limits<std::int64_t>::min(), 0};
   std::int64_t newest_ns_ = std::numeric_limits<std::int64_t>::min();
-  std::vector<double> last_t_s_;
+  std::vector<double> last_t_us_;  // per sensor: its last scan's time as the recording writes it, in microseconds
   std::vector<RecordedTarget> targets_buffer_;
   std::size_t targets_ = 0;
   int cycle_ = 0;
@@ -829,8 +846,10 @@ class BoxStream {
     pending_[o].pop_front();
     AnnotatedBox box{seconds_since(b.t_ns, t0_ns_), b.x_m, b.y_m, b.yaw_rad, std::isnan(b.speed_mps) ? 0.0 : b.speed_mps, 0};
     const std::optional<AnnotatedBox>& previous = previous_[o];
-    if (previous && box.t_s <= previous->t_s) {
-      throw InputError(log_.string(), mapping_.objects_source(), fmt::format("entity '{}' twice at {:.6f} s", survey_.objects[o].id, box.t_s));
+    if (previous && written_us(box.t_s) <= written_us(previous->t_s)) {
+      throw InputError(log_.string(), mapping_.objects_source(),
+                       fmt::format("entity '{}' twice at {:.6f} s (within one microsecond: a recording keeps times to the microsecond)",
+                                   survey_.objects[o].id, box.t_s));
     }
     if (survey_.objects[o].speed_missing) {
       const AnnotatedBox& a = previous ? *previous : box;
